@@ -1,0 +1,1 @@
+list(APPEND IARAP_APP_SOURCES main.cpp)

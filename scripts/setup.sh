@@ -1,0 +1,10 @@
+#!/usr/bin/env bash
+# Quick start, step 1: install dependencies, build, and run the main job on the bundled bunny.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/install_deps.sh
+bash scripts/build.sh
+mkdir -p out
+./build/iarap deform data/bunny.off --scenario data/bunny_scenario.json --method iarap \
+  --iterations 50 --out out/bunny_iarap.off --report out/bunny_iarap.json
+echo "setup: deformed mesh in out/bunny_iarap.off, report in out/bunny_iarap.json"

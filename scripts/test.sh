@@ -1,0 +1,15 @@
+#!/usr/bin/env bash
+# Quick start, step 2: build and run the whole test suite (C++ via CTest, Python via pytest).
+# With CI=true or --sanitize it also runs the suite under AddressSanitizer + UBSan (build-asan/).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/install_deps.sh
+bash scripts/build.sh
+ctest --test-dir build --output-on-failure -j"$(nproc)"
+if [ -d python/tests ] && [ -n "$(ls build/python/iarap*.so 2>/dev/null)" ]; then
+  PYTHONPATH="$PWD/build/python" /usr/bin/python3 -m pytest -q python/tests
+fi
+if [ "${CI:-}" = "true" ] || [ "${1:-}" = "--sanitize" ]; then
+  IARAP_BUILD_DIR=build-asan bash scripts/build.sh -DIARAP_SANITIZE=ON -DIARAP_BUILD_PYTHON=OFF -DCMAKE_BUILD_TYPE=RelWithDebInfo
+  ASAN_OPTIONS=detect_leaks=0 ctest --test-dir build-asan --output-on-failure -j"$(nproc)"
+fi

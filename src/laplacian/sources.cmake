@@ -1,0 +1,2 @@
+# Sources of the laplacian module, relative to src/.
+list(APPEND IARAP_SOURCES)

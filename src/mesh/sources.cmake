@@ -1,0 +1,2 @@
+# Sources of the mesh module, relative to src/.
+list(APPEND IARAP_SOURCES mesh/edge_topology.cpp mesh/cotan.cpp)

@@ -1,0 +1,2 @@
+# Sources of the scene module, relative to src/.
+list(APPEND IARAP_SOURCES)

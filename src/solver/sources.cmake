@@ -1,0 +1,2 @@
+# Sources of the solver module, relative to src/.
+list(APPEND IARAP_SOURCES)

@@ -1,0 +1,1 @@
+list(APPEND IARAP_TEST_SOURCES core/threads_test.cpp)
