@@ -1,2 +1,2 @@
 # Sources of the mesh module, relative to src/.
-list(APPEND IARAP_SOURCES mesh/edge_topology.cpp mesh/cotan.cpp)
+list(APPEND IARAP_SOURCES mesh/edge_topology.cpp mesh/cotan.cpp mesh/connected_components.cpp)
