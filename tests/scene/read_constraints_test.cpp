@@ -1,0 +1,77 @@
+#include "iarap/scene/read_constraints.h"
+
+#include "iarap/core/errors.h"
+
+#include <gtest/gtest.h>
+
+#include <sstream>
+
+namespace {
+
+iarap::ConstraintSet parse(const std::string& text, int num_vertices = 10) {
+  std::istringstream in(text);
+  return iarap::parse_constraints(in, "c.txt", num_vertices);
+}
+
+// Expects an InputError whose message contains every fragment.
+void expect_error(const std::string& text, const std::vector<std::string>& fragments, int num_vertices = 10) {
+  try {
+    parse(text, num_vertices);
+    FAIL() << "no error for:\n" << text;
+  } catch (const iarap::InputError& e) {
+    for (const auto& fragment : fragments)
+      EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
+  }
+}
+
+TEST(ReadConstraints, ParsesLinesCommentsAndBlanks) {
+  const auto c = parse("# header\n\n3 1 2 3\n  7\t-1e-3 0 4.5  # trailing comment\n0 0 0 0\n");
+  ASSERT_EQ(c.fixed.size(), 3);
+  EXPECT_EQ(c.fixed(0), 3);
+  EXPECT_EQ(c.fixed(1), 7);
+  EXPECT_EQ(c.fixed(2), 0);
+  EXPECT_EQ(c.targets.row(0), Eigen::RowVector3d(1, 2, 3));
+  EXPECT_EQ(c.targets.row(1), Eigen::RowVector3d(-1e-3, 0, 4.5));
+  EXPECT_TRUE(c.warnings.empty());
+}
+
+TEST(ReadConstraints, IdenticalDuplicateIsMergedWithWarning) {
+  const auto c = parse("1 0 0 1\n2 0 0 0\n1 0 0 1\n");
+  ASSERT_EQ(c.fixed.size(), 2);
+  ASSERT_EQ(c.warnings.size(), 1u);
+  EXPECT_NE(c.warnings[0].find("c.txt:3"), std::string::npos) << c.warnings[0];
+}
+
+TEST(ReadConstraints, ConflictingDuplicateNamesBothLines) {
+  expect_error("1 0 0 1\n\n1 0 0 2\n", {"c.txt:3", "vertex 1", "line 1", "different target"});
+}
+
+TEST(ReadConstraints, IndexOutOfRangeGivesMeshSize) {
+  expect_error("0 0 0 0\n10 0 0 0\n", {"c.txt:2", "10", "mesh has 10 vertices"});
+  expect_error("-1 0 0 0\n", {"c.txt:1", "out of range"});
+}
+
+TEST(ReadConstraints, NonFiniteCoordinates) {
+  expect_error("0 nan 0 0\n", {"c.txt:1", "non-finite x"});
+  expect_error("0 0 0 inf\n", {"c.txt:1", "non-finite z"});
+  expect_error("0 0 1e999 0\n", {"c.txt:1", "non-finite y"});
+}
+
+TEST(ReadConstraints, BadTokens) {
+  expect_error("1.5 0 0 0\n", {"c.txt:1", "bad vertex index '1.5'"});
+  expect_error("abc 0 0 0\n", {"c.txt:1", "bad vertex index"});
+  expect_error("1 0 0x 0\n", {"c.txt:1", "bad y coordinate '0x'"});
+  expect_error("1 0 0\n", {"c.txt:1", "found 3 token"});
+  expect_error("1 0 0 0 5\n", {"c.txt:1", "found 5 token"});
+}
+
+TEST(ReadConstraints, EmptySet) {
+  expect_error("", {"c.txt", "no constraints"});
+  expect_error("# only a comment\n\n", {"c.txt", "no constraints"});
+}
+
+TEST(ReadConstraints, MissingFile) {
+  EXPECT_THROW(iarap::read_constraints("/nonexistent/constraints.txt", 10), iarap::InputError);
+}
+
+} // namespace
