@@ -1,2 +1,6 @@
 # Sources of the intrinsic module, relative to src/.
-list(APPEND IARAP_SOURCES)
+list(APPEND IARAP_SOURCES
+  intrinsic/signpost_triangulation.cpp
+  intrinsic/trace_edges.cpp
+  intrinsic/segments.cpp
+  intrinsic/intrinsic_delaunay.cpp)

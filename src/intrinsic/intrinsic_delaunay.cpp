@@ -1,0 +1,80 @@
+#include "iarap/intrinsic/intrinsic_delaunay.h"
+
+#include "segments.h"
+#include "signpost_triangulation.h"
+#include "trace_edges.h"
+
+#include "iarap/mesh/cotan.h"
+
+#include <chrono>
+
+namespace iarap {
+
+namespace {
+
+double ms_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+IntrinsicTriangulation export_triangulation(const detail::SignpostTriangulation& tri) {
+  const int nf = tri.num_faces(), ne = tri.num_edges();
+  IntrinsicTriangulation out;
+  out.F.resize(nf, 3);
+  out.FE.resize(nf, 3);
+  out.corner_angle.resize(nf, 3);
+  out.face_area.resize(nf);
+  for (int f = 0; f < nf; ++f) {
+    for (int k = 0; k < 3; ++k) {
+      const int h = 3 * f + k;
+      out.F(f, k) = tri.tail(h);
+      out.FE(f, (k + 2) % 3) = tri.edge[static_cast<size_t>(h)]; // halfedge k is opposite corner k + 2
+      out.corner_angle(f, k) = tri.corner_angle(h);
+    }
+    out.face_area(f) = triangle_area_from_lengths(tri.halfedge_length(3 * f), tri.halfedge_length(3 * f + 1),
+                                                  tri.halfedge_length(3 * f + 2));
+  }
+  out.E.resize(ne, 2);
+  out.length.resize(ne);
+  out.cot_weight.resize(ne);
+  out.is_boundary.resize(ne);
+  out.original_edge.resize(ne);
+  for (int e = 0; e < ne; ++e) {
+    const int h = tri.edge_halfedge[static_cast<size_t>(e)];
+    out.E(e, 0) = tri.tail(h);
+    out.E(e, 1) = tri.head(h);
+    out.length(e) = tri.length[static_cast<size_t>(e)];
+    out.cot_weight(e) = tri.cotan_weight(e);
+    out.is_boundary(e) = tri.twin[static_cast<size_t>(h)] < 0;
+    out.original_edge(e) = tri.original_edge[static_cast<size_t>(e)];
+  }
+  out.mollify_delta = tri.mollify_delta;
+  return out;
+}
+
+} // namespace
+
+IntrinsicDelaunay intrinsic_delaunay(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
+                                     const IntrinsicOptions& options) {
+  IntrinsicDelaunay result;
+  auto t0 = std::chrono::steady_clock::now();
+  const detail::SignpostTriangulation input =
+      detail::build_signpost_triangulation(V, F, options.mollify, options.mollify_epsilon);
+  detail::SignpostTriangulation tri = input;
+  const detail::FlipStats stats = detail::flip_to_delaunay(tri, options.delaunay_tolerance);
+  result.triangulation = export_triangulation(tri);
+  result.triangulation.flips = stats.flips;
+  result.triangulation.non_delaunay_before = stats.non_delaunay_before;
+  result.triangulation.non_delaunay_after = stats.non_delaunay_after;
+  result.flip_ms = ms_since(t0);
+
+  t0 = std::chrono::steady_clock::now();
+  result.traces = detail::trace_edges(input, tri);
+  result.trace_ms = ms_since(t0);
+
+  t0 = std::chrono::steady_clock::now();
+  result.segments = detail::build_segments(V, result.triangulation, result.traces);
+  result.segment_ms = ms_since(t0);
+  return result;
+}
+
+} // namespace iarap

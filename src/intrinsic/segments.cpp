@@ -1,0 +1,92 @@
+#include "segments.h"
+
+#include "iarap/core/errors.h"
+
+#include <string>
+#include <vector>
+
+namespace iarap::detail {
+
+Segments build_segments(const Eigen::MatrixXd& V, const IntrinsicTriangulation& tri, const TracedEdges& traces) {
+  const int ne = static_cast<int>(tri.E.rows());
+  Segments seg;
+  seg.edge_start.resize(ne + 1);
+  for (int e = 0; e <= ne; ++e) seg.edge_start(e) = traces.start[static_cast<size_t>(e)] - e;
+  const int ns = seg.edge_start(ne);
+  seg.edge.resize(ns);
+  seg.face.resize(ns);
+  seg.b_index.resize(ns, 3);
+  seg.b_value.resize(ns, 3);
+  seg.s_hat.resize(ns, 3);
+  seg.length.resize(ns);
+  seg.weight.resize(ns);
+  bool bad = false;
+  int bad_segment = -1;
+
+#pragma omp parallel for schedule(static)
+  for (int e = 0; e < ne; ++e) {
+    const double w = tri.cot_weight(e), l = tri.length(e);
+    for (int m = traces.start[static_cast<size_t>(e)]; m + 1 < traces.start[static_cast<size_t>(e + 1)]; ++m) {
+      const int s = m - e;
+      int idx[3];
+      double val[3] = {0, 0, 0};
+      int n = 0;
+      auto add = [&](int v, double coefficient) {
+        for (int q = 0; q < n; ++q)
+          if (idx[q] == v) {
+            val[q] += coefficient;
+            return true;
+          }
+        if (n == 3) return false;
+        idx[n] = v;
+        val[n++] = coefficient;
+        return true;
+      };
+      const size_t p0 = static_cast<size_t>(m), p1 = static_cast<size_t>(m + 1);
+      bool ok = true;
+      // b = b(end point) - b(start point); a point is (1 - t) e_a + t e_c, or e_a alone.
+      if (traces.c[p1] < 0) ok &= add(traces.a[p1], 1.0);
+      else ok &= add(traces.a[p1], 1.0 - traces.t[p1]) && add(traces.c[p1], traces.t[p1]);
+      if (traces.c[p0] < 0) ok &= add(traces.a[p0], -1.0);
+      else ok &= add(traces.a[p0], -(1.0 - traces.t[p0])) && add(traces.c[p0], -traces.t[p0]);
+      if (!ok) {
+#pragma omp critical
+        {
+          bad = true;
+          bad_segment = s;
+        }
+        continue;
+      }
+      for (int q = n; q < 3; ++q) {
+        idx[q] = idx[0];
+        val[q] = 0.0;
+      }
+      Eigen::Vector3d s_hat = Eigen::Vector3d::Zero();
+      for (int q = 0; q < 3; ++q) {
+        seg.b_index(s, q) = idx[q];
+        seg.b_value(s, q) = val[q];
+        s_hat += val[q] * V.row(idx[q]).transpose();
+      }
+      const double len = s_hat.norm();
+      seg.edge(s) = e;
+      seg.face(s) = traces.face[p0];
+      seg.s_hat.row(s) = s_hat.transpose();
+      seg.length(s) = len;
+      seg.weight(s) = len > 1e-12 * l ? w * l / len : 0.0; // Eq. 11: w_ij^t = sigma_ij^t w_ij, sigma = |e| / |s|
+    }
+  }
+  if (bad)
+    throw SolverError("segment " + std::to_string(bad_segment) +
+                      " has end points on no common input face (more than 3 vertices in b)");
+
+  std::vector<Eigen::Triplet<double>> triplets;
+  triplets.reserve(static_cast<size_t>(3 * ns));
+  for (int s = 0; s < ns; ++s)
+    for (int q = 0; q < 3; ++q)
+      if (seg.b_value(s, q) != 0.0) triplets.emplace_back(s, seg.b_index(s, q), seg.b_value(s, q));
+  seg.B.resize(ns, V.rows());
+  seg.B.setFromTriplets(triplets.begin(), triplets.end());
+  return seg;
+}
+
+} // namespace iarap::detail

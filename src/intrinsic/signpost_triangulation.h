@@ -1,0 +1,70 @@
+// Internal: the intrinsic triangulation as a corner table with signpost angles (Sharp, Soliman & Crane
+// 2019, "Navigating intrinsic triangulations").
+//
+// Why signposts: flipping needs only edge lengths, and one angle per halfedge (its direction at its tail
+// vertex, measured in the surface's own angle around that vertex) is enough to trace every intrinsic
+// edge over the input mesh afterwards, edge by edge and in parallel. Integer coordinates (Gillespie et al.
+// 2021) are more robust for very long edges but need far more machinery; an explicit overlay (Fisher et
+// al. 2007) must be updated at every flip. The tracer checks every edge's end, so a signpost failure is
+// reported, not hidden.
+//
+// Layout: halfedge h = 3 f + k runs from corner k to corner k+1 of face f and is opposite corner k+2.
+// There are no halfedges outside the surface: twin = -1 marks a boundary edge.
+#pragma once
+#include <Eigen/Core>
+#include <vector>
+
+namespace iarap::detail {
+
+inline int next_halfedge(int h) { return h - h % 3 + (h % 3 + 1) % 3; }
+inline int prev_halfedge(int h) { return h - h % 3 + (h % 3 + 2) % 3; }
+
+struct SignpostTriangulation {
+  int num_vertices = 0;
+  std::vector<int> corner_vertex;  // 3F vertex at corner h (tail of halfedge h)
+  std::vector<int> twin;           // 3F opposite halfedge, -1 on boundary
+  std::vector<int> edge;           // 3F edge of halfedge
+  std::vector<int> edge_halfedge;  // #E one halfedge of each edge (the one whose tail is E(e,0))
+  std::vector<double> length;      // #E intrinsic length
+  std::vector<double> phi;         // 3F direction of halfedge h at its tail, in [0, vertex_angle_sum)
+  std::vector<double> vertex_angle_sum;  // #V total angle around each vertex (Theta_v)
+  std::vector<char> boundary_vertex;     // #V
+  std::vector<int> original_edge;  // #E input edge this edge still is, -1 once flipped
+  double mollify_delta = 0.0;
+
+  int tail(int h) const { return corner_vertex[static_cast<size_t>(h)]; }
+  int head(int h) const { return corner_vertex[static_cast<size_t>(next_halfedge(h))]; }
+  double halfedge_length(int h) const { return length[static_cast<size_t>(edge[static_cast<size_t>(h)])]; }
+  // Interior angle at the tail of h, inside h's face.
+  double corner_angle(int h) const;
+  // Cotangent of the angle opposite halfedge h, inside h's face.
+  double opposite_cotangent(int h) const;
+  // w_e = (cot a + cot b) / 2, one term on boundary edges.
+  double cotan_weight(int e) const;
+  int num_faces() const { return static_cast<int>(corner_vertex.size() / 3); }
+  int num_edges() const { return static_cast<int>(length.size()); }
+};
+
+// Builds the triangulation of the input mesh: validates manifoldness and orientation (TopologyError
+// naming the edge or vertex), computes edge lengths (mollified if asked and needed), vertex angle sums and
+// the signpost angles of the input halfedges. Edge ids equal those of edge_topology(F).
+SignpostTriangulation build_signpost_triangulation(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
+                                                   bool mollify, double mollify_epsilon);
+
+// Flips edge e in place; false (and no change) when the edge cannot be flipped: boundary, both sides in
+// one face, or a non-convex intrinsic quad.
+bool flip_edge(SignpostTriangulation& tri, int e);
+
+struct FlipStats {
+  long flips = 0;
+  int non_delaunay_before = 0;
+  int non_delaunay_after = 0;
+};
+
+// Flips until every interior edge satisfies cot a + cot b >= -tolerance (Bobenko & Springborn 2007).
+FlipStats flip_to_delaunay(SignpostTriangulation& tri, double tolerance);
+
+// Number of interior edges with cot a + cot b < -tolerance.
+int count_non_delaunay(const SignpostTriangulation& tri, double tolerance);
+
+} // namespace iarap::detail

@@ -1,0 +1,196 @@
+#include "trace_edges.h"
+
+#include "iarap/core/errors.h"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+namespace iarap::detail {
+
+namespace {
+
+struct Vec2 {
+  double x, y;
+  Vec2 operator+(Vec2 o) const { return {x + o.x, y + o.y}; }
+  Vec2 operator-(Vec2 o) const { return {x - o.x, y - o.y}; }
+  Vec2 operator*(double s) const { return {x * s, y * s}; }
+};
+double cross(Vec2 a, Vec2 b) { return a.x * b.y - a.y * b.x; }
+double norm(Vec2 a) { return std::hypot(a.x, a.y); }
+
+struct TracePoint {
+  int a, c, face;
+  double t;
+};
+
+// Outgoing input halfedges of each vertex, sorted by signpost angle (counter-clockwise).
+struct VertexFans {
+  std::vector<int> start; // #V + 1
+  std::vector<int> halfedge;
+  std::vector<double> phi;
+};
+
+VertexFans build_fans(const SignpostTriangulation& input) {
+  VertexFans fans;
+  const int nv = input.num_vertices, nh = 3 * input.num_faces();
+  fans.start.assign(static_cast<size_t>(nv + 1), 0);
+  for (int h = 0; h < nh; ++h) ++fans.start[static_cast<size_t>(input.tail(h) + 1)];
+  for (int v = 0; v < nv; ++v) fans.start[static_cast<size_t>(v + 1)] += fans.start[static_cast<size_t>(v)];
+  fans.halfedge.resize(static_cast<size_t>(nh));
+  std::vector<int> fill(fans.start.begin(), fans.start.end() - 1);
+  for (int h = 0; h < nh; ++h) fans.halfedge[static_cast<size_t>(fill[static_cast<size_t>(input.tail(h))]++)] = h;
+  for (int v = 0; v < nv; ++v) {
+    auto first = fans.halfedge.begin() + fans.start[static_cast<size_t>(v)];
+    auto last = fans.halfedge.begin() + fans.start[static_cast<size_t>(v + 1)];
+    std::sort(first, last, [&](int a, int b) { return input.phi[static_cast<size_t>(a)] < input.phi[static_cast<size_t>(b)]; });
+  }
+  fans.phi.resize(static_cast<size_t>(nh));
+  for (int k = 0; k < nh; ++k) fans.phi[static_cast<size_t>(k)] = input.phi[static_cast<size_t>(fans.halfedge[static_cast<size_t>(k)])];
+  return fans;
+}
+
+// Position of the third corner of the face left of the directed segment pa -> pb.
+Vec2 third_corner(Vec2 pa, Vec2 pb, double l_ab, double l_ac, double l_bc) {
+  const Vec2 ex = (pb - pa) * (1.0 / norm(pb - pa));
+  const Vec2 ey{-ex.y, ex.x};
+  const double x = (l_ac * l_ac - l_bc * l_bc + l_ab * l_ab) / (2 * l_ab);
+  const double y = std::sqrt(std::max(l_ac * l_ac - x * x, 0.0));
+  return pa + ex * x + ey * y;
+}
+
+[[noreturn]] void trace_failure(int e, int i, int j, const std::string& why) {
+  throw SolverError("tracing intrinsic edge " + std::to_string(e) + " (" + std::to_string(i) + " -> " +
+                    std::to_string(j) + ") over the input mesh failed: " + why);
+}
+
+// Appends the points of intrinsic edge e to `out`.
+void trace_one(const SignpostTriangulation& input, const VertexFans& fans, const SignpostTriangulation& tri, int e,
+               std::vector<TracePoint>& out) {
+  const int h = tri.edge_halfedge[static_cast<size_t>(e)];
+  const int i = tri.tail(h), j = tri.head(h);
+  const int original = tri.original_edge[static_cast<size_t>(e)];
+  if (original >= 0) {
+    const int hin = input.edge_halfedge[static_cast<size_t>(original)];
+    out.push_back({i, -1, hin / 3, 0.0});
+    out.push_back({j, -1, -1, 0.0});
+    return;
+  }
+  const double length = tri.length[static_cast<size_t>(e)];
+  const double phi = tri.phi[static_cast<size_t>(h)];
+  const double tol = 1e-7 * length; // snapping distance at the end; tracing errors are ~1e-14 * length
+
+  // The input corner at i whose angular range holds phi.
+  const int first = fans.start[static_cast<size_t>(i)], last = fans.start[static_cast<size_t>(i + 1)];
+  int k = static_cast<int>(std::upper_bound(fans.phi.begin() + first, fans.phi.begin() + last, phi) - fans.phi.begin()) - 1;
+  k = std::max(k, first);
+  const int hin = fans.halfedge[static_cast<size_t>(k)];
+  const double alpha = std::clamp(phi - fans.phi[static_cast<size_t>(k)], 0.0, input.corner_angle(hin));
+
+  // Lay out the first face with i at the origin and hin along +x.
+  const int u = input.head(hin), w = input.tail(prev_halfedge(hin));
+  const double l_iu = input.halfedge_length(hin), l_iw = input.halfedge_length(prev_halfedge(hin));
+  const Vec2 pi{0, 0}, pu{l_iu, 0};
+  const Vec2 pw = third_corner(pi, pu, l_iu, l_iw, input.halfedge_length(next_halfedge(hin)));
+  const Vec2 dir{std::cos(alpha), std::sin(alpha)};
+  const Vec2 end0 = dir * length;
+  out.push_back({i, -1, hin / 3, 0.0});
+  if (u == j && norm(end0 - pu) <= tol) {
+    out.push_back({j, -1, -1, 0.0});
+    return;
+  }
+  if (w == j && norm(end0 - pw) <= tol) {
+    out.push_back({j, -1, -1, 0.0});
+    return;
+  }
+
+  // Walk: exit halfedge x of the current face, crossing at distance r along the ray.
+  Vec2 p = pi, q0 = pu, q1 = pw;
+  int x = next_halfedge(hin);
+  double remaining = length;
+  const int max_steps = 4 * input.num_faces() + 16;
+  for (int step = 0; step < max_steps; ++step) {
+    const Vec2 edge_vec = q1 - q0;
+    const double denom = cross(dir, edge_vec);
+    const double r = cross(q0 - p, edge_vec) / denom;
+    const double s = std::clamp(cross(q0 - p, dir) / denom, 0.0, 1.0);
+    if (!(r < remaining - tol)) trace_failure(e, i, j, "the line ends inside input face " + std::to_string(x / 3) + " away from the end vertex");
+    const int tx = input.twin[static_cast<size_t>(x)];
+    if (tx < 0) trace_failure(e, i, j, "the line leaves the surface through boundary halfedge " + std::to_string(x));
+    out.push_back({input.tail(x), input.head(x), tx / 3, s});
+    p = p + dir * r;
+    remaining -= r;
+    // Enter the face across x: its halfedge tx runs head(x) -> tail(x); the face lies to its left.
+    const Vec2 pa = q1, pb = q0;
+    const int c = input.tail(prev_halfedge(tx));
+    const Vec2 pc = third_corner(pa, pb, input.halfedge_length(tx), input.halfedge_length(prev_halfedge(tx)),
+                                 input.halfedge_length(next_halfedge(tx)));
+    if (c == j && norm(p + dir * remaining - pc) <= tol) {
+      out.push_back({j, -1, -1, 0.0});
+      return;
+    }
+    // pa is left of the ray and pb right of it: the ray leaves through b->c when c is on its left.
+    if (cross(dir, pc - p) > 0) {
+      x = next_halfedge(tx);
+      q0 = pb;
+      q1 = pc;
+    } else {
+      x = prev_halfedge(tx);
+      q0 = pc;
+      q1 = pa;
+    }
+  }
+  trace_failure(e, i, j, "more than " + std::to_string(max_steps) + " crossings");
+}
+
+} // namespace
+
+TracedEdges trace_edges(const SignpostTriangulation& input, const SignpostTriangulation& intrinsic) {
+  const VertexFans fans = build_fans(input);
+  const int ne = intrinsic.num_edges();
+  std::vector<int> counts(static_cast<size_t>(ne), 0);
+  std::vector<std::vector<TracePoint>> buffers(static_cast<size_t>(omp_get_max_threads()));
+  std::string error;
+#pragma omp parallel
+  {
+    auto& buffer = buffers[static_cast<size_t>(omp_get_thread_num())];
+    // schedule(static) hands each thread one contiguous, increasing block of edges, so the buffers
+    // concatenated in thread order are in edge order.
+#pragma omp for schedule(static)
+    for (int e = 0; e < ne; ++e) {
+      const size_t before = buffer.size();
+      try {
+        trace_one(input, fans, intrinsic, e, buffer);
+      } catch (const std::exception& ex) {
+#pragma omp critical
+        if (error.empty()) error = ex.what();
+        buffer.resize(before);
+      }
+      counts[static_cast<size_t>(e)] = static_cast<int>(buffer.size() - before);
+    }
+  }
+  if (!error.empty()) throw SolverError(error);
+
+  TracedEdges traces;
+  traces.start.resize(static_cast<size_t>(ne + 1));
+  traces.start[0] = 0;
+  for (int e = 0; e < ne; ++e) traces.start[static_cast<size_t>(e + 1)] = traces.start[static_cast<size_t>(e)] + counts[static_cast<size_t>(e)];
+  const size_t np = static_cast<size_t>(traces.start.back());
+  traces.a.reserve(np);
+  traces.c.reserve(np);
+  traces.face.reserve(np);
+  traces.t.reserve(np);
+  for (const auto& buffer : buffers)
+    for (const TracePoint& p : buffer) {
+      traces.a.push_back(p.a);
+      traces.c.push_back(p.c);
+      traces.face.push_back(p.face);
+      traces.t.push_back(p.t);
+    }
+  return traces;
+}
+
+} // namespace iarap::detail

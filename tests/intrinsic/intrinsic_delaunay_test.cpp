@@ -1,0 +1,244 @@
+#include "iarap/intrinsic/intrinsic_delaunay.h"
+
+#include "iarap/core/errors.h"
+#include "iarap/io/read_mesh.h"
+#include "iarap/mesh/edge_topology.h"
+#include "intrinsic/mesh_generators.h"
+#include "test_support.h"
+
+#include <Eigen/Geometry>
+#include <gtest/gtest.h>
+
+#include <set>
+#include <string>
+
+using namespace iarap;
+using iarap::test::TestMesh;
+
+namespace {
+
+// The invariants every intrinsic Delaunay triangulation must satisfy (issue 4's list). Returns the
+// largest number of segments of one edge.
+int expect_invariants(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const IntrinsicDelaunay& idt,
+                      const std::string& name) {
+  const auto& tri = idt.triangulation;
+  const auto& seg = idt.segments;
+  const auto& tr = idt.traces;
+  const EdgeTopology topo = edge_topology(F, static_cast<int>(V.rows()));
+  EXPECT_EQ(tri.F.rows(), F.rows()) << name;
+  EXPECT_EQ(tri.E.rows(), topo.E.rows()) << name;
+  EXPECT_EQ(tri.non_delaunay_after, 0) << name;
+  int max_segments = 0;
+  int failures = 0;
+  for (int e = 0; e < tri.E.rows() && failures < 5; ++e) {
+    // Delaunay: cot a + cot b >= 0 up to the flip tolerance (cotangents are scale-free).
+    if (!tri.is_boundary(e) && 2 * tri.cot_weight(e) < -1e-9) {
+      ADD_FAILURE() << name << ": edge " << e << " not Delaunay, cot sum " << 2 * tri.cot_weight(e);
+      ++failures;
+    }
+    const int p0 = tr.start[e], p1 = tr.start[e + 1];
+    EXPECT_GE(p1 - p0, 2);
+    EXPECT_EQ(tr.a[p0], tri.E(e, 0));
+    EXPECT_EQ(tr.c[p0], -1);
+    EXPECT_EQ(tr.a[p1 - 1], tri.E(e, 1));
+    EXPECT_EQ(tr.c[p1 - 1], -1);
+    double traced = 0.0;
+    for (int s = seg.edge_start(e); s < seg.edge_start(e + 1); ++s) {
+      traced += seg.length(s);
+      // Both ends of the segment lie on its carrying input face.
+      const int g = seg.face(s);
+      const int m = p0 + (s - seg.edge_start(e));
+      for (int p : {m, m + 1})
+        for (int v : {tr.a[p], tr.c[p]}) {
+          if (v < 0) continue;
+          if (v != F(g, 0) && v != F(g, 1) && v != F(g, 2)) {
+            ADD_FAILURE() << name << ": point " << p << " of edge " << e << " is not on face " << g;
+            ++failures;
+          }
+        }
+      EXPECT_NEAR(seg.b_value.row(s).sum(), 0.0, 1e-14) << name << " segment " << s;
+      EXPECT_LE((seg.b_value.row(s).array() != 0.0).count(), 3);
+    }
+    max_segments = std::max(max_segments, seg.edge_start(e + 1) - seg.edge_start(e));
+    // With mollification the layout uses lengths longer by delta than the extrinsic ones.
+    if (tri.mollify_delta == 0.0 && std::abs(traced - tri.length(e)) > 1e-9 * tri.length(e)) {
+      ADD_FAILURE() << name << ": edge " << e << " traced length " << traced << " vs intrinsic " << tri.length(e);
+      ++failures;
+    }
+  }
+  return max_segments;
+}
+
+// Independent planar check: every intrinsic face's circumcircle (from the input points) holds no vertex.
+void expect_planar_delaunay(const Eigen::MatrixXd& V, const IntrinsicDelaunay& idt, const std::string& name) {
+  const auto& tri = idt.triangulation;
+  const double scale = (V.colwise().maxCoeff() - V.colwise().minCoeff()).norm();
+  int failures = 0;
+  for (int f = 0; f < tri.F.rows() && failures < 5; ++f) {
+    const Eigen::Vector2d a = V.row(tri.F(f, 0)).head<2>(), b = V.row(tri.F(f, 1)).head<2>(), c = V.row(tri.F(f, 2)).head<2>();
+    const double d = 2 * (a.x() * (b.y() - c.y()) + b.x() * (c.y() - a.y()) + c.x() * (a.y() - b.y()));
+    const Eigen::Vector2d centre((a.squaredNorm() * (b.y() - c.y()) + b.squaredNorm() * (c.y() - a.y()) + c.squaredNorm() * (a.y() - b.y())) / d,
+                                 (a.squaredNorm() * (c.x() - b.x()) + b.squaredNorm() * (a.x() - c.x()) + c.squaredNorm() * (b.x() - a.x())) / d);
+    const double radius = (a - centre).norm();
+    for (int v = 0; v < V.rows(); ++v) {
+      if (v == tri.F(f, 0) || v == tri.F(f, 1) || v == tri.F(f, 2)) continue;
+      if ((V.row(v).head<2>().transpose() - centre).norm() < radius - 1e-9 * scale) {
+        ADD_FAILURE() << name << ": vertex " << v << " inside the circumcircle of intrinsic face " << f;
+        ++failures;
+        break;
+      }
+    }
+  }
+  // Every traced edge is the straight segment between its end points.
+  for (int e = 0; e < tri.E.rows(); ++e) {
+    const Eigen::Vector3d p = V.row(tri.E(e, 0)), q = V.row(tri.E(e, 1));
+    EXPECT_NEAR(tri.length(e), (q - p).norm(), 1e-12 * scale) << name << " edge " << e;
+    for (int k = idt.traces.start[e]; k < idt.traces.start[e + 1]; ++k) {
+      const int a = idt.traces.a[k], c = idt.traces.c[k];
+      const double t = idt.traces.t[k];
+      const Eigen::Vector3d x = c < 0 ? Eigen::Vector3d(V.row(a)) : Eigen::Vector3d((1 - t) * V.row(a) + t * V.row(c));
+      const double off_line = ((x - p).cross(q - p)).norm() / (q - p).norm();
+      EXPECT_LT(off_line, 1e-10 * scale) << name << " edge " << e << " point " << k;
+    }
+  }
+}
+
+} // namespace
+
+TEST(IntrinsicDelaunay, DelaunayGridNeedsNoFlips) {
+  const TestMesh m = iarap::test::planar_grid(6);
+  const IntrinsicDelaunay idt = intrinsic_delaunay(m.V, m.F);
+  EXPECT_EQ(idt.triangulation.flips, 0);
+  EXPECT_EQ(idt.segments.edge.size(), idt.triangulation.E.rows()); // one segment per edge
+  for (int s = 0; s < idt.segments.edge.size(); ++s) {
+    EXPECT_EQ((idt.segments.b_value.row(s).array() != 0.0).count(), 2);
+    EXPECT_NEAR(idt.segments.weight(s), idt.triangulation.cot_weight(idt.segments.edge(s)), 1e-15);
+    EXPECT_EQ(idt.triangulation.original_edge(s), s);
+  }
+  expect_invariants(m.V, m.F, idt, "grid");
+}
+
+TEST(IntrinsicDelaunay, DelaunaySharedMeshesNeedNoFlips) {
+  for (const std::string name : {"cube.obj", "bumpy-cube.obj"}) {
+    const std::string path = iarap::test::shared_mesh_path(name);
+    if (path.empty()) {
+      std::cout << "[ SKIPPED  ] " << name << " not found beside the repository\n";
+      continue;
+    }
+    const MeshData mesh = read_mesh(path);
+    const IntrinsicDelaunay idt = intrinsic_delaunay(mesh.V, mesh.F);
+    EXPECT_EQ(idt.triangulation.flips, 0) << name;
+    EXPECT_EQ(idt.segments.edge.size(), idt.triangulation.E.rows()) << name;
+    for (int s = 0; s < idt.segments.edge.size(); ++s) ASSERT_EQ((idt.segments.b_value.row(s).array() != 0.0).count(), 2) << name;
+  }
+}
+
+TEST(IntrinsicDelaunay, BundledBunny) {
+  const MeshData mesh = read_mesh(iarap::test::data_path("bunny.off"));
+  const IntrinsicDelaunay idt = intrinsic_delaunay(mesh.V, mesh.F);
+  EXPECT_GT(idt.triangulation.non_delaunay_before, 0);
+  EXPECT_GT(idt.triangulation.flips, 0);
+  EXPECT_EQ(idt.triangulation.mollify_delta, 0.0);
+  const int max_segments = expect_invariants(mesh.V, mesh.F, idt, "bunny");
+  EXPECT_GE(max_segments, 2);
+  // Every weight of a closed intrinsic Delaunay mesh is non-negative (Eq. 11 keeps the sign of w_ij).
+  EXPECT_GE(idt.segments.weight.minCoeff(), -1e-12);
+}
+
+TEST(IntrinsicDelaunay, SharedSurfaceMeshes) {
+  int tested = 0;
+  for (const std::string name :
+       {"planexy.off", "grid.off", "decimated-knight.off", "spike.ply", "halftunnel.off", "3holes.off", "fertility.off",
+        "horse.obj", "cactus.obj", "elephant.obj", "cheburashka.off", "lion.off", "camelhead.off", "armadillo_30K.obj",
+        "beetle.off", "face.obj", "ogre.obj"}) {
+    const std::string path = iarap::test::shared_mesh_path(name);
+    if (path.empty()) continue;
+    const MeshData mesh = read_mesh(path);
+    const IntrinsicDelaunay idt = intrinsic_delaunay(mesh.V, mesh.F);
+    expect_invariants(mesh.V, mesh.F, idt, name);
+    ++tested;
+  }
+  if (tested == 0) GTEST_SKIP() << "shared meshes not found beside the repository";
+}
+
+TEST(IntrinsicDelaunay, FlatMeshMadeNonDelaunayReturnsToPlanarDelaunay) {
+  TestMesh m = iarap::test::planar_grid(10, 0.3, 3);
+  iarap::test::random_planar_flips(m, 120, 11);
+  const IntrinsicDelaunay idt = intrinsic_delaunay(m.V, m.F);
+  EXPECT_GT(idt.triangulation.non_delaunay_before, 10);
+  expect_invariants(m.V, m.F, idt, "flipped grid");
+  expect_planar_delaunay(m.V, idt, "flipped grid");
+}
+
+TEST(IntrinsicDelaunay, ZigzagStripCrossesManyEdges) {
+  const TestMesh m = iarap::test::zigzag_strip(24);
+  const IntrinsicDelaunay idt = intrinsic_delaunay(m.V, m.F);
+  const int max_segments = expect_invariants(m.V, m.F, idt, "zigzag strip");
+  EXPECT_GE(max_segments, 12);
+  expect_planar_delaunay(m.V, idt, "zigzag strip");
+}
+
+TEST(IntrinsicDelaunay, HighValenceFan) {
+  const TestMesh m = iarap::test::ellipse_fan(120);
+  const IntrinsicDelaunay idt = intrinsic_delaunay(m.V, m.F);
+  EXPECT_GT(idt.triangulation.flips, 50);
+  expect_invariants(m.V, m.F, idt, "fan");
+  expect_planar_delaunay(m.V, idt, "fan");
+}
+
+TEST(IntrinsicDelaunay, SharpConeApex) {
+  const TestMesh m = iarap::test::closed_cone(7, 3, 12.0, 0.5);
+  const IntrinsicDelaunay idt = intrinsic_delaunay(m.V, m.F);
+  EXPECT_GT(idt.triangulation.flips, 0);
+  expect_invariants(m.V, m.F, idt, "cone");
+}
+
+TEST(IntrinsicDelaunay, DeltaComplexWithDoubleEdges) {
+  // A closed three-sided cone flips into a Delta-complex where two edges join the same pair of vertices;
+  // weights and segments are indexed per edge, so both edges keep their own trace.
+  const TestMesh m = iarap::test::closed_cone(3, 2, 2.0);
+  const IntrinsicDelaunay idt = intrinsic_delaunay(m.V, m.F);
+  const auto& E = idt.triangulation.E;
+  std::set<std::pair<int, int>> pairs;
+  int repeated = 0;
+  for (int e = 0; e < E.rows(); ++e)
+    if (!pairs.insert({std::min(E(e, 0), E(e, 1)), std::max(E(e, 0), E(e, 1))}).second) ++repeated;
+  EXPECT_GT(repeated, 0);
+  expect_invariants(m.V, m.F, idt, "three-sided cone");
+}
+
+TEST(IntrinsicDelaunay, DegenerateTriangleIsMollifiedOrNamed) {
+  // A flat square with vertex 4 on its bottom edge.
+  Eigen::MatrixXd V(5, 3);
+  V << 0, 0, 0, 2, 0, 0, 2, 2, 0, 0, 2, 0, 1, 0, 0;
+  // Three proper faces plus the zero-area sliver (0, 1, 4) under the bottom edge.
+  Eigen::MatrixXi Fz(4, 3);
+  Fz << 0, 4, 3, 4, 1, 2, 4, 2, 3, 0, 1, 4;
+  IntrinsicOptions strict;
+  strict.mollify = false;
+  try {
+    intrinsic_delaunay(V, Fz, strict);
+    ADD_FAILURE() << "expected a TopologyError for the zero-area face";
+  } catch (const TopologyError& e) {
+    EXPECT_NE(std::string(e.what()).find("face 3"), std::string::npos) << e.what();
+  }
+  const IntrinsicDelaunay idt = intrinsic_delaunay(V, Fz);
+  EXPECT_GT(idt.triangulation.mollify_delta, 0.0);
+  EXPECT_TRUE(idt.triangulation.cot_weight.allFinite());
+  EXPECT_TRUE(idt.segments.weight.allFinite());
+  EXPECT_TRUE(idt.segments.s_hat.allFinite());
+}
+
+TEST(IntrinsicDelaunay, NonManifoldInputIsNamed) {
+  // Three faces on edge (0, 1).
+  Eigen::MatrixXd V(5, 3);
+  V << 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, -1, 0, 0, 0, 1;
+  Eigen::MatrixXi F(3, 3);
+  F << 0, 1, 2, 1, 0, 3, 0, 1, 4;
+  try {
+    intrinsic_delaunay(V, F);
+    ADD_FAILURE() << "expected a TopologyError";
+  } catch (const TopologyError& e) {
+    EXPECT_NE(std::string(e.what()).find("non-manifold edge (0, 1)"), std::string::npos) << e.what();
+  }
+}

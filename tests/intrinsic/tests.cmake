@@ -1,0 +1,1 @@
+list(APPEND IARAP_TEST_SOURCES intrinsic/intrinsic_delaunay_test.cpp)
