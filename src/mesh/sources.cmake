@@ -1,2 +1,3 @@
 # Sources of the mesh module, relative to src/.
-list(APPEND IARAP_SOURCES mesh/edge_topology.cpp mesh/cotan.cpp mesh/connected_components.cpp)
+list(APPEND IARAP_SOURCES mesh/edge_topology.cpp mesh/cotan.cpp mesh/connected_components.cpp
+  mesh/validate.cpp mesh/repair.cpp mesh/subdivide.cpp)

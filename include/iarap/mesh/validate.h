@@ -1,0 +1,44 @@
+// Validation of a triangle mesh before ARAP: what is wrong with it, what cannot be handled, what repair fixes.
+#pragma once
+#include <Eigen/Core>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace iarap {
+
+struct MeshReport {
+  int vertices = 0, faces = 0;
+  int components = 0;     // edge- or vertex-connected pieces of the faces (unreferenced vertices not counted)
+  int boundary_loops = 0; // connected chains of boundary edges
+  // Per component chi = V - E + F and genus = (2 - chi - b) / 2, summed; null when the mesh is non-manifold
+  // or a component is non-orientable (odd 2 - chi - b).
+  std::optional<int> genus;
+  int non_manifold_edges = 0;    // edges with 3 or more faces
+  int non_manifold_vertices = 0; // vertices whose faces form more than one edge-connected fan
+  int zero_area_faces = 0;       // area <= 1e-12 * bbox_diagonal^2
+  int unreferenced_vertices = 0;
+  int non_delaunay_edges = 0;    // interior edges with cot a + cot b < -1e-12 (negative cotan weight)
+  int inconsistently_oriented_edges = 0; // interior edges both faces traverse in the same direction
+  int repeated_vertex_faces = 0;
+  int out_of_range_indices = 0;  // face entries outside 0..#V-1
+  int non_finite_coordinates = 0; // vertices with a NaN or Inf coordinate
+  int coincident_vertices = 0;   // vertices within 1e-12 * bbox_diagonal of a vertex with a smaller index
+  int boundary_edges = 0;
+  double bbox_diagonal = 0.0;    // of the finite vertices
+  std::vector<std::string> errors, warnings; // each names the first offending element and the count
+  bool usable() const { return errors.empty(); }
+};
+
+// Checks V (#V x 3) and F (#F x 3). Never throws on bad data and never reads out of bounds: faces with
+// out-of-range indices or repeated vertices are reported and left out of the topological checks.
+// Errors (ARAP cannot handle): non-finite coordinates, out-of-range indices, faces with repeated vertices,
+// non-manifold edges or vertices, inconsistent orientation, no faces, wrong column counts.
+// Warnings (repair_mesh fixes): unreferenced vertices, zero-area faces, coincident vertices, one component
+// per face. O(#F log #F + #V log #V).
+MeshReport check_mesh(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F);
+
+// Length of the diagonal of the bounding box of the finite rows of V (#V x 3); 0 when there are none.
+double bounding_box_diagonal(const Eigen::MatrixXd& V);
+
+} // namespace iarap

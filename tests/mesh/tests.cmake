@@ -1,0 +1,1 @@
+list(APPEND IARAP_TEST_SOURCES mesh/validate_test.cpp mesh/repair_test.cpp mesh/subdivide_test.cpp)
