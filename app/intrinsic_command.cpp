@@ -1,0 +1,170 @@
+// `iarap intrinsic MESH`: the intrinsic Delaunay triangulation's figures, its traced edges as polylines
+// (paper Fig. 14) and, for the performance target of the preprocess, a CHOLMOD factorization to compare.
+#include "command_registry.h"
+#include "mesh_report_json.h"
+#include "write_text_file.h"
+
+#include "iarap/core/errors.h"
+#include "iarap/core/threads.h"
+#include "iarap/intrinsic/intrinsic_delaunay.h"
+#include "iarap/io/read_mesh.h"
+#include "iarap/mesh/connected_components.h"
+#include "iarap/mesh/cotan.h"
+#include "iarap/mesh/subdivide.h"
+#include "iarap/solver/sparse_cholesky.h"
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <sstream>
+#include <vector>
+
+namespace iarap::cli {
+namespace {
+
+struct IntrinsicArgs {
+  std::string mesh;
+  std::string out_edges;
+  bool json = false;
+  int threads = 0;
+  int subdivide = 0;
+  bool compare_factorization = false;
+  bool no_mollify = false;
+};
+
+double ms_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// OBJ with the input vertices first (file order), then one vertex per edge crossing, and one `l` record
+// per intrinsic edge over its traced points.
+std::string traced_edges_obj(const Eigen::MatrixXd& V, const IntrinsicDelaunay& idt) {
+  std::ostringstream out;
+  out.precision(17);
+  out << "# iarap intrinsic Delaunay edges traced over the input mesh: " << idt.triangulation.E.rows()
+      << " edges, " << idt.segments.edge.size() << " segments\n";
+  for (Eigen::Index v = 0; v < V.rows(); ++v) out << "v " << V(v, 0) << ' ' << V(v, 1) << ' ' << V(v, 2) << '\n';
+  const auto& tr = idt.traces;
+  std::vector<long> index(tr.a.size());
+  long next = V.rows() + 1;
+  for (size_t p = 0; p < tr.a.size(); ++p) {
+    if (tr.c[p] < 0) {
+      index[p] = tr.a[p] + 1;
+      continue;
+    }
+    const Eigen::RowVector3d x = (1 - tr.t[p]) * V.row(tr.a[p]) + tr.t[p] * V.row(tr.c[p]);
+    out << "v " << x(0) << ' ' << x(1) << ' ' << x(2) << '\n';
+    index[p] = next++;
+  }
+  for (size_t e = 0; e + 1 < tr.start.size(); ++e) {
+    out << 'l';
+    for (int p = tr.start[e]; p < tr.start[e + 1]; ++p) out << ' ' << index[static_cast<size_t>(p)];
+    out << '\n';
+  }
+  return out.str();
+}
+
+// Factorization time of the cotan Laplacian with one vertex per component pinned (what an ARAP
+// precompute pays for its global step), the yardstick of the intrinsic preprocess.
+double cotan_factorization_ms(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
+  int count = 0;
+  const Eigen::VectorXi component = vertex_components(F, static_cast<int>(V.rows()), &count);
+  std::vector<char> pinned_component(static_cast<size_t>(count), 0);
+  std::vector<int> free_index(static_cast<size_t>(V.rows()), -1);
+  int n_free = 0;
+  for (Eigen::Index v = 0; v < V.rows(); ++v) {
+    char& pinned = pinned_component[static_cast<size_t>(component(v))];
+    if (!pinned) pinned = 1;
+    else free_index[static_cast<size_t>(v)] = n_free++;
+  }
+  const Eigen::SparseMatrix<double> L = cotan_laplacian(V, F);
+  std::vector<Eigen::Triplet<double>> triplets;
+  for (int k = 0; k < L.outerSize(); ++k)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(L, k); it; ++it) {
+      const int i = free_index[static_cast<size_t>(it.row())], j = free_index[static_cast<size_t>(it.col())];
+      if (i >= 0 && j >= 0) triplets.emplace_back(i, j, it.value());
+    }
+  Eigen::SparseMatrix<double> L_ff(n_free, n_free);
+  L_ff.setFromTriplets(triplets.begin(), triplets.end());
+  const auto t0 = std::chrono::steady_clock::now();
+  SparseCholesky cholesky(L_ff);
+  return ms_since(t0);
+}
+
+void run(const IntrinsicArgs& args) {
+  set_thread_count(args.threads);
+  MeshData mesh = read_mesh(args.mesh);
+  for (int k = 0; k < args.subdivide; ++k) {
+    Eigen::MatrixXd V2;
+    Eigen::MatrixXi F2;
+    subdivide_midpoint(mesh.V, mesh.F, V2, F2);
+    mesh.V = std::move(V2);
+    mesh.F = std::move(F2);
+  }
+  IntrinsicOptions options;
+  options.mollify = !args.no_mollify;
+  const auto t0 = std::chrono::steady_clock::now();
+  const IntrinsicDelaunay idt = intrinsic_delaunay(mesh.V, mesh.F, options);
+  const double total_ms = ms_since(t0);
+
+  nlohmann::json j = intrinsic_summary_json(idt);
+  j["file"] = args.mesh;
+  j["vertices"] = mesh.V.rows();
+  j["faces"] = mesh.F.rows();
+  j["threads"] = thread_count();
+  j["time_ms"] = total_ms;
+  j["flip_ms"] = idt.flip_ms;
+  j["trace_ms"] = idt.trace_ms;
+  j["segment_ms"] = idt.segment_ms;
+  if (args.compare_factorization) {
+    const double factor_ms = cotan_factorization_ms(mesh.V, mesh.F);
+    j["cotan_factorization_ms"] = factor_ms;
+    j["intrinsic_over_factorization"] = total_ms / factor_ms;
+  }
+  if (!args.out_edges.empty()) {
+    if (std::filesystem::exists(args.out_edges) &&
+        std::filesystem::equivalent(args.out_edges, args.mesh))
+      throw InputError("--out-edges " + args.out_edges + " is the input mesh; refusing to overwrite it");
+    write_text_file(args.out_edges, traced_edges_obj(mesh.V, idt));
+    j["out_edges"] = args.out_edges;
+  }
+  if (args.json) {
+    std::cout << j.dump(2) << "\n";
+    return;
+  }
+  std::printf("%s: %ld vertices, %ld faces, %d threads\n", args.mesh.c_str(), static_cast<long>(mesh.V.rows()),
+              static_cast<long>(mesh.F.rows()), thread_count());
+  std::printf("flips %ld, non-Delaunay edges %d -> %d, mollify delta %.3g\n", idt.triangulation.flips,
+              idt.triangulation.non_delaunay_before, idt.triangulation.non_delaunay_after,
+              idt.triangulation.mollify_delta);
+  std::printf("segments %ld over %ld edges (%.4f per edge, max %d)\n", static_cast<long>(idt.segments.edge.size()),
+              static_cast<long>(idt.triangulation.E.rows()), j["segments_per_edge"].get<double>(),
+              j["max_segments_per_edge"].get<int>());
+  std::printf("time %.1f ms (flip %.1f, trace %.1f, segments %.1f)\n", total_ms, idt.flip_ms, idt.trace_ms,
+              idt.segment_ms);
+  if (args.compare_factorization)
+    std::printf("cotan Laplacian CHOLMOD factorization %.1f ms; intrinsic preprocess / factorization = %.3f\n",
+                j["cotan_factorization_ms"].get<double>(), j["intrinsic_over_factorization"].get<double>());
+  if (!args.out_edges.empty()) std::printf("traced edges written to %s\n", args.out_edges.c_str());
+}
+
+const bool registered = register_command(
+    {"intrinsic", [](CLI::App& app) {
+       auto args = std::make_shared<IntrinsicArgs>();
+       auto* sub = app.add_subcommand("intrinsic", "Intrinsic Delaunay triangulation: figures, traced edges, timing");
+       sub->add_option("mesh", args->mesh, "Input mesh (OBJ, OFF, PLY, STL)")->required()->check(CLI::ExistingFile);
+       sub->add_option("--out-edges", args->out_edges,
+                       "Write the traced intrinsic edges as OBJ polylines (input vertices first, in file order)");
+       sub->add_flag("--json", args->json, "Print one JSON object");
+       sub->add_option("--threads", args->threads, "Threads (0: all)")->check(CLI::NonNegativeNumber);
+       sub->add_option("--subdivide", args->subdivide, "Apply K 1-to-4 midpoint subdivisions first")
+           ->check(CLI::Range(0, 4));
+       sub->add_flag("--compare-factorization", args->compare_factorization,
+                     "Also time a CHOLMOD factorization of the mesh's cotan Laplacian");
+       sub->add_flag("--no-mollify", args->no_mollify, "Fail on degenerate triangles instead of mollifying");
+       sub->callback([args] { run(*args); });
+     }});
+
+} // namespace
+} // namespace iarap::cli
