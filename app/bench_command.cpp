@@ -1,0 +1,201 @@
+// `iarap bench MESH...`: precomputation and per-iteration timings of the three ARAP variants.
+#include "command_registry.h"
+#include "cpu_name.h"
+#include "write_text_file.h"
+
+#include "iarap/core/errors.h"
+#include "iarap/core/threads.h"
+#include "iarap/io/read_mesh.h"
+#include "iarap/mesh/subdivide.h"
+#include "iarap/mesh/validate.h"
+#include "iarap/scene/scenario.h"
+#include "iarap/solver/arap.h"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+
+namespace iarap::cli {
+namespace {
+
+struct BenchArguments {
+  std::vector<std::string> meshes;
+  std::vector<std::string> methods = {"arap", "spokes-rims", "iarap"};
+  int iterations = 10;
+  int threads = 0;
+  int subdivide = 0;
+  bool json = false;
+  std::string report;
+};
+
+// The fixed benchmark scene (documented in README.md): the bottom 10% of the bounding box along y is
+// fixed, the top 10% along y moves by 10% of the bounding-box diagonal along +x.
+Scenario bench_scenario() {
+  Scenario scenario;
+  scenario.source = "bench scenario";
+  Region bottom;
+  bottom.kind = RegionKind::Bottom;
+  bottom.axis = 1;
+  bottom.fraction = 0.1;
+  bottom.path = "bench scenario: bottom 10% along y";
+  Region top = bottom;
+  top.kind = RegionKind::Top;
+  top.path = "bench scenario: top 10% along y";
+  Handle handle;
+  handle.vertices = {top};
+  handle.translation = Eigen::Vector3d(0.1, 0, 0);
+  handle.translation_relative = true;
+  handle.path = top.path;
+  scenario.fixed = {bottom};
+  scenario.handles = {handle};
+  return scenario;
+}
+
+// Median of values[first..]: the entries after the warm-up.
+double median_after(std::vector<double> values, std::size_t first) {
+  if (values.size() <= first)
+    return 0;
+  values.erase(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(first));
+  const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
+  std::nth_element(values.begin(), middle, values.end());
+  if (values.size() % 2 == 1)
+    return *middle;
+  return 0.5 * (*middle + *std::max_element(values.begin(), middle));
+}
+
+double elapsed_ms(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+nlohmann::json bench_one(const std::string& path, const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
+                         const ConstraintSet& constraints, ArapMethod method, int iterations) {
+  ArapOptions options;
+  options.method = method;
+  const auto start = std::chrono::steady_clock::now();
+  ArapData data = arap_precompute(V, F, constraints.fixed, options);
+  const double precompute_ms = elapsed_ms(start);
+  Eigen::MatrixXd U = V;
+  ArapSolveOptions solve_options;
+  solve_options.max_iterations = iterations + 1; // the first is the warm-up
+  solve_options.tolerance = -1;                  // run them all
+  const ArapReport report = arap_solve(data, constraints.targets, U, solve_options);
+  std::vector<double> iteration_ms(report.local_ms_per_iteration.size());
+  for (std::size_t k = 0; k < iteration_ms.size(); ++k) {
+    iteration_ms[k] = report.local_ms_per_iteration[k] + report.global_ms_per_iteration[k];
+  }
+  nlohmann::json j;
+  j["mesh"] = path;
+  j["vertices"] = V.rows();
+  j["faces"] = F.rows();
+  j["method"] = arap_method_name(method);
+  j["threads"] = thread_count();
+  j["precompute_ms"] = precompute_ms;
+  j["intrinsic_ms"] = data.timings.intrinsic_ms;
+  j["assembly_ms"] = data.timings.assembly_ms;
+  j["factor_ms"] = data.timings.factor_ms;
+  j["iteration_ms"] = median_after(iteration_ms, 1);
+  j["local_ms"] = median_after(report.local_ms_per_iteration, 1);
+  j["global_ms"] = median_after(report.global_ms_per_iteration, 1);
+  j["measured_iterations"] = std::max(report.iterations - 1, 0);
+  j["factorization"] = factorization_name(arap_factorization(data));
+  j["final_energy"] = report.energies.empty() ? report.initial_energy : report.energies.back();
+  return j;
+}
+
+void print_table(const nlohmann::json& results) {
+  std::printf("%-28s %9s %-12s %4s %12s %12s %12s %12s %12s %10s %10s\n", "mesh", "vertices", "method", "thr",
+              "precompute", "intrinsic", "assembly", "factor", "iteration", "local", "global");
+  for (const auto& r : results) {
+    std::string name = r["mesh"].get<std::string>();
+    if (name.size() > 28)
+      name = "..." + name.substr(name.size() - 25);
+    std::printf("%-28s %9lld %-12s %4d %12.3f %12.3f %12.3f %12.3f %12.3f %10.3f %10.3f\n", name.c_str(),
+                r["vertices"].get<long long>(), r["method"].get<std::string>().c_str(),
+                r["threads"].get<int>(), r["precompute_ms"].get<double>(), r["intrinsic_ms"].get<double>(),
+                r["assembly_ms"].get<double>(), r["factor_ms"].get<double>(), r["iteration_ms"].get<double>(),
+                r["local_ms"].get<double>(), r["global_ms"].get<double>());
+  }
+  std::printf("(milliseconds; iteration, local and global are medians over the measured iterations)\n");
+}
+
+void run_bench(const BenchArguments& args) {
+  std::vector<ArapMethod> methods;
+  for (const auto& name : args.methods)
+    methods.push_back(parse_arap_method(name));
+  set_thread_count(args.threads);
+  nlohmann::json j;
+  j["cpu"] = cpu_name();
+  j["threads"] = thread_count();
+  j["iterations"] = args.iterations;
+  j["warmup_iterations"] = 1;
+  j["subdivide"] = args.subdivide;
+  j["scenario"] = "bottom 10% along y fixed; top 10% along y moved by 10% of the bbox diagonal along +x";
+  j["results"] = nlohmann::json::array();
+  for (const auto& path : args.meshes) {
+    MeshData mesh = read_mesh(path);
+    for (int k = 0; k < args.subdivide; ++k) {
+      Eigen::MatrixXd V;
+      Eigen::MatrixXi F;
+      subdivide_midpoint(mesh.V, mesh.F, V, F);
+      mesh.V = std::move(V);
+      mesh.F = std::move(F);
+    }
+    const MeshReport check = check_mesh(mesh.V, mesh.F);
+    if (!check.usable()) {
+      throw TopologyError(path + ": mesh not usable for ARAP: " + check.errors.front() +
+                          " (see `iarap info`)");
+    }
+    const ConstraintSet constraints = resolve_scenario(bench_scenario(), mesh.V);
+    for (const ArapMethod method : methods) {
+      if (!args.json) {
+        std::cerr << "bench: " << path << " (" << mesh.V.rows() << " vertices), " << arap_method_name(method)
+                  << "\n";
+      }
+      j["results"].push_back(bench_one(path, mesh.V, mesh.F, constraints, method, args.iterations));
+    }
+  }
+  const std::string text = j.dump(2) + "\n";
+  if (!args.report.empty())
+    write_text_file(args.report, text);
+  if (args.json) {
+    std::cout << text;
+  } else {
+    std::printf("cpu: %s, threads: %d, %d measured iterations after 1 warm-up\n",
+                j["cpu"].get<std::string>().c_str(), thread_count(), args.iterations);
+    print_table(j["results"]);
+  }
+}
+
+const bool registered = register_command(
+    {"bench", [](CLI::App& app) {
+       auto args = std::make_shared<BenchArguments>();
+       auto* sub = app.add_subcommand(
+           "bench",
+           "Time precomputation and iterations of the ARAP variants on a fixed scene: the bottom 10% along y "
+           "fixed, the top 10% along y moved by 10% of the bounding-box diagonal along +x");
+       sub->add_option("MESH", args->meshes, "Mesh files")->required()->check(CLI::ExistingFile);
+       sub->add_option("--methods", args->methods, "Comma-separated subset of arap,spokes-rims,iarap")
+           ->delimiter(',')
+           ->check(CLI::IsMember({"arap", "spokes-rims", "iarap"}))
+           ->capture_default_str();
+       sub->add_option("--iterations", args->iterations,
+                       "Measured iterations per run (after 1 warm-up), >= 1")
+           ->check(CLI::Range(1, 100000))
+           ->capture_default_str();
+       sub->add_option("--threads", args->threads, "Threads for the parallel loops; 0 = all hardware threads")
+           ->check(CLI::Range(0, 4096))
+           ->capture_default_str();
+       sub->add_option("--subdivide", args->subdivide,
+                       "Apply K midpoint 1-to-4 subdivisions first (4^K x faces)")
+           ->check(CLI::Range(0, 6))
+           ->capture_default_str();
+       sub->add_flag("--json", args->json, "Print the results as one JSON object instead of a table");
+       sub->add_option("--report", args->report, "Also write the JSON results to this file (atomically)");
+       sub->callback([args] { run_bench(*args); });
+     }});
+
+} // namespace
+} // namespace iarap::cli

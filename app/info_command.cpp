@@ -1,0 +1,106 @@
+// `iarap info MESH`: what check_mesh finds, and what the intrinsic Delaunay triangulation looks like.
+#include "command_registry.h"
+#include "mesh_report_json.h"
+
+#include "iarap/core/errors.h"
+#include "iarap/intrinsic/intrinsic_delaunay.h"
+#include "iarap/io/read_mesh.h"
+#include "iarap/mesh/validate.h"
+
+#include <chrono>
+#include <iostream>
+
+namespace iarap::cli {
+namespace {
+
+struct InfoArguments {
+  std::string mesh;
+  bool json = false;
+  bool no_intrinsic = false;
+};
+
+void print_text(const nlohmann::json& j) {
+  std::cout << "file: " << j["file"].get<std::string>() << "\n";
+  if (j.contains("vertices")) {
+    std::cout << "vertices " << j["vertices"] << ", faces " << j["faces"] << ", components "
+              << j["components"] << ", boundary loops " << j["boundary_loops"] << ", genus "
+              << (j["genus"].is_null() ? std::string("undefined") : j["genus"].dump()) << "\n"
+              << "bounding-box diagonal " << j["bbox_diagonal"] << "\n";
+    for (const char* count :
+         {"non_manifold_edges", "non_manifold_vertices", "inconsistently_oriented_edges",
+          "repeated_vertex_faces", "out_of_range_indices", "non_finite_coordinates", "zero_area_faces",
+          "unreferenced_vertices", "coincident_vertices", "boundary_edges", "non_delaunay_edges"}) {
+      std::cout << "  " << count << ": " << j[count] << "\n";
+    }
+  }
+  for (const auto& note : j.value("notes", nlohmann::json::array()))
+    std::cout << "note: " << note.get<std::string>() << "\n";
+  for (const auto& warning : j["warnings"])
+    std::cout << "warning: " << warning.get<std::string>() << "\n";
+  for (const auto& error : j["errors"])
+    std::cout << "error: " << error.get<std::string>() << "\n";
+  if (j.contains("intrinsic")) {
+    const auto& in = j["intrinsic"];
+    if (in.contains("error")) {
+      std::cout << "intrinsic Delaunay: failed: " << in["error"].get<std::string>() << "\n";
+    } else {
+      std::cout << "intrinsic Delaunay: " << in["flips"] << " flips, non-Delaunay edges "
+                << in["non_delaunay_before"] << " -> " << in["non_delaunay_after"] << ", " << in["segments"]
+                << " segments (" << in["segments_per_edge"].get<double>() << " per edge, at most "
+                << in["max_segments_per_edge"] << "), " << in["time_ms"].get<double>() << " ms\n";
+    }
+  }
+  std::cout << (j["usable"].get<bool>() ? "usable for ARAP: yes" : "usable for ARAP: no") << "\n";
+}
+
+void run_info(const InfoArguments& args) {
+  nlohmann::json j;
+  j["file"] = args.mesh;
+  bool ok = true;
+  try {
+    const MeshData mesh = read_mesh(args.mesh);
+    j.update(mesh_report_json(check_mesh(mesh.V, mesh.F)));
+    j["notes"] = mesh.notes;
+    ok = j["usable"].get<bool>();
+    if (ok && !args.no_intrinsic) {
+      try {
+        const auto start = std::chrono::steady_clock::now();
+        const IntrinsicDelaunay intrinsic = intrinsic_delaunay(mesh.V, mesh.F);
+        const std::chrono::duration<double, std::milli> elapsed = std::chrono::steady_clock::now() - start;
+        j["intrinsic"] = intrinsic_summary_json(intrinsic);
+        j["intrinsic"]["time_ms"] = elapsed.count();
+      } catch (const Error& e) {
+        j["intrinsic"] = {{"error", e.what()}};
+        ok = false;
+      }
+    }
+  } catch (const Error& e) { // unreadable: the report still says why
+    j["errors"] = {e.what()};
+    j["warnings"] = nlohmann::json::array();
+    j["usable"] = false;
+    ok = false;
+  }
+  if (args.json) {
+    std::cout << j.dump(2) << "\n";
+  } else {
+    print_text(j);
+  }
+  std::cout.flush();
+  if (!ok)
+    throw InputError(args.mesh + ": not usable for ARAP (see the report above)");
+}
+
+const bool registered = register_command(
+    {"info", [](CLI::App& app) {
+       auto args = std::make_shared<InfoArguments>();
+       auto* sub =
+           app.add_subcommand("info", "Check a mesh (topology, degeneracies, Delaunay-ness) for ARAP; "
+                                      "exit 0 when usable, 1 when not or unreadable");
+       sub->add_option("MESH", args->mesh, "Mesh file (.obj .off .ply .stl)")->required();
+       sub->add_flag("--json", args->json, "Print one JSON object instead of text");
+       sub->add_flag("--no-intrinsic", args->no_intrinsic, "Skip the intrinsic Delaunay triangulation");
+       sub->callback([args] { run_info(*args); });
+     }});
+
+} // namespace
+} // namespace iarap::cli

@@ -1,0 +1,324 @@
+// End-to-end tests of the iarap tool: exit codes (0 ok, 1 runtime error, 2 usage error), JSON output,
+// output files. They run the built binary (IARAP_CLI_PATH) through the shell.
+#include "iarap/io/read_mesh.h"
+#include "iarap/scene/read_constraints.h"
+#include "test_support.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <sys/wait.h>
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+struct CliRun {
+  int code = -1;
+  std::string out; // stdout (stderr too when asked)
+};
+
+// Runs `iarap ARGS`; stderr goes to the test log unless merge_stderr.
+CliRun iarap_cli(const std::string& args, bool merge_stderr = false) {
+  const std::string command = std::string("'") + IARAP_CLI_PATH + "' " + args + (merge_stderr ? " 2>&1" : "");
+  CliRun run;
+  std::FILE* pipe = ::popen(command.c_str(), "r");
+  if (pipe == nullptr)
+    return run;
+  char buffer[4096];
+  std::size_t n = 0;
+  while ((n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0)
+    run.out.append(buffer, n);
+  const int status = ::pclose(pipe);
+  run.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return run;
+}
+
+json parse_json(const CliRun& run) {
+  try {
+    return json::parse(run.out);
+  } catch (const json::exception& e) {
+    ADD_FAILURE() << "not JSON (" << e.what() << "):\n" << run.out;
+    return json::object();
+  }
+}
+
+std::string read_file(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+void write_file(const fs::path& path, const std::string& text) {
+  std::ofstream(path, std::ios::binary) << text;
+}
+
+const std::string bunny = iarap::test::data_path("bunny.off");
+
+TEST(Cli, HelpOnEachCommandExitsZero) {
+  for (const char* command : {"--help", "info --help", "deform --help", "bench --help"}) {
+    const CliRun run = iarap_cli(command);
+    EXPECT_EQ(run.code, 0) << command;
+    EXPECT_NE(run.out.find("Usage"), std::string::npos) << command << ":\n" << run.out;
+  }
+}
+
+TEST(Cli, NoOrUnknownCommandIsUsageError) {
+  EXPECT_EQ(iarap_cli("").code, 2);
+  EXPECT_EQ(iarap_cli("reticulate").code, 2);
+}
+
+TEST(Cli, InfoJsonOnBunny) {
+  const CliRun run = iarap_cli("info --json '" + bunny + "'");
+  ASSERT_EQ(run.code, 0) << run.out;
+  const json j = parse_json(run);
+  EXPECT_EQ(j["file"], bunny);
+  EXPECT_EQ(j["vertices"], 3485);
+  EXPECT_EQ(j["faces"], 6966);
+  EXPECT_EQ(j["components"], 1);
+  EXPECT_EQ(j["boundary_loops"], 0);
+  EXPECT_EQ(j["genus"], 0);
+  EXPECT_EQ(j["non_manifold_edges"], 0);
+  EXPECT_EQ(j["non_manifold_vertices"], 0);
+  EXPECT_EQ(j["zero_area_faces"], 0);
+  EXPECT_EQ(j["unreferenced_vertices"], 0);
+  EXPECT_GT(j["non_delaunay_edges"].get<int>(), 0); // shared/meshes/README: 9% non-Delaunay
+  EXPECT_GT(j["bbox_diagonal"].get<double>(), 0);
+  EXPECT_TRUE(j["errors"].empty());
+  EXPECT_TRUE(j["warnings"].is_array());
+  const json& in = j["intrinsic"];
+  EXPECT_EQ(in["non_delaunay_before"], j["non_delaunay_edges"]);
+  EXPECT_EQ(in["non_delaunay_after"], 0);
+  EXPECT_GT(in["flips"].get<long>(), 0);
+  EXPECT_GT(in["segments"].get<long>(), in["intrinsic_edges"].get<long>()); // flipped edges cross input edges
+  EXPECT_GT(in["segments_per_edge"].get<double>(), 1.0);
+  EXPECT_GE(in["max_segments_per_edge"].get<int>(), 2);
+  EXPECT_GE(in["time_ms"].get<double>(), 0.0);
+
+  const json skipped = parse_json(iarap_cli("info --json --no-intrinsic '" + bunny + "'"));
+  EXPECT_FALSE(skipped.contains("intrinsic"));
+  const CliRun text = iarap_cli("info '" + bunny + "'");
+  EXPECT_EQ(text.code, 0);
+  EXPECT_NE(text.out.find("usable for ARAP: yes"), std::string::npos) << text.out;
+}
+
+TEST(Cli, InfoOnUnreadableOrMissingMeshExitsOneAndSaysWhy) {
+  const auto dir = iarap::test::temp_dir("cli_info_bad");
+  write_file(dir / "garbage.off", "OFF\n3 1 0\n0 0 0\n1 zero 0\n");
+  for (const fs::path& path : {dir / "garbage.off", dir / "missing.off"}) {
+    const CliRun run = iarap_cli("info --json '" + path.string() + "'");
+    EXPECT_EQ(run.code, 1) << path;
+    const json j = parse_json(run);
+    EXPECT_EQ(j["file"], path.string());
+    ASSERT_EQ(j["errors"].size(), 1u) << run.out;
+    EXPECT_NE(j["errors"][0].get<std::string>().find(path.string()), std::string::npos) << run.out;
+  }
+  fs::remove_all(dir);
+}
+
+TEST(Cli, InfoOnNonManifoldCubeExitsOne) {
+  const std::string cube = iarap::test::shared_mesh_path("cube_40k.obj");
+  if (cube.empty())
+    GTEST_SKIP() << "shared mesh cube_40k.obj not present";
+  const CliRun run = iarap_cli("info --json '" + cube + "'");
+  EXPECT_EQ(run.code, 1);
+  const json j = parse_json(run);
+  EXPECT_GT(j["non_manifold_edges"].get<int>(), 0);
+  EXPECT_TRUE(j["genus"].is_null());
+  EXPECT_FALSE(j.contains("intrinsic")); // not attempted on an unusable mesh
+  bool named = false;
+  for (const auto& error : j["errors"])
+    named = named || error.get<std::string>().find("non-manifold") != std::string::npos;
+  EXPECT_TRUE(named) << j["errors"].dump();
+}
+
+TEST(Cli, DeformWithConstraintsFile) {
+  const auto dir = iarap::test::temp_dir("cli_deform");
+  const std::string constraints = iarap::test::data_path("bunny_constraints.txt");
+  const fs::path out = dir / "out.obj";
+  const CliRun run =
+      iarap_cli("deform '" + bunny + "' --constraints '" + constraints +
+                "' --method arap --iterations 5 --threads 1 --json --quiet --out '" + out.string() + "'");
+  ASSERT_EQ(run.code, 0) << run.out;
+  const json j = parse_json(run);
+  for (const char* key : {"method", "iterations", "energies", "precompute_ms", "intrinsic_ms", "factor_ms",
+                          "local_ms", "global_ms", "output", "converged", "max_displacement"}) {
+    EXPECT_TRUE(j.contains(key)) << key;
+  }
+  EXPECT_EQ(j["method"], "arap");
+  EXPECT_EQ(j["output"], out.string());
+  EXPECT_LE(j["iterations"].get<int>(), 5);
+  EXPECT_EQ(j["energies"].size(), j["iterations"].get<std::size_t>());
+  EXPECT_EQ(j["intrinsic_ms"], 0.0); // original ARAP builds no intrinsic triangulation
+  EXPECT_EQ(j["threads"], 1);
+
+  const auto result = iarap::read_mesh(out.string());
+  const auto rest = iarap::read_mesh(bunny);
+  ASSERT_EQ(result.V.rows(), 3485);
+  ASSERT_EQ(result.F, rest.F);
+  // Constrained vertices land on their targets: the solver sets them exactly and OBJ keeps 17 digits.
+  const auto c = iarap::read_constraints(constraints, 3485);
+  double worst = 0;
+  for (Eigen::Index k = 0; k < c.fixed.size(); ++k) {
+    worst = std::max(worst, (result.V.row(c.fixed(k)) - c.targets.row(k)).norm());
+  }
+  EXPECT_EQ(worst, 0.0);
+  // The handle moved by 10% of the diagonal, so some vertex moved at least that far.
+  const double diagonal = j["bbox_diagonal"].get<double>();
+  EXPECT_NEAR(j["max_displacement"].get<double>(), (result.V - rest.V).rowwise().norm().maxCoeff(),
+              1e-15 * diagonal);
+  EXPECT_GE(j["max_displacement"].get<double>(), 0.1 * diagonal * (1 - 1e-12));
+  fs::remove_all(dir);
+}
+
+TEST(Cli, DeformWithScenarioWritesReport) {
+  const auto dir = iarap::test::temp_dir("cli_scenario");
+  const fs::path out = dir / "bunny_iarap.off";
+  const fs::path report = dir / "report.json";
+  const CliRun run =
+      iarap_cli("deform '" + bunny + "' --scenario '" + iarap::test::data_path("bunny_scenario.json") +
+                "' --method iarap --iterations 3 --tolerance 0 --out '" + out.string() + "' --report '" +
+                report.string() + "'");
+  ASSERT_EQ(run.code, 0) << run.out;
+  EXPECT_TRUE(run.out.empty()) << "no --json: nothing on stdout, got:\n" << run.out;
+  const json j = json::parse(read_file(report));
+  EXPECT_EQ(j["method"], "iarap");
+  EXPECT_EQ(j["iterations"], 3);
+  EXPECT_GT(j["intrinsic_ms"].get<double>(), 0.0);
+  EXPECT_GT(j["intrinsic"]["flips"].get<long>(), 0);
+  const auto& energies = j["energies"];
+  ASSERT_EQ(energies.size(), 3u);
+  EXPECT_LE(energies[2].get<double>(), energies[0].get<double>()); // iARAP descends
+  EXPECT_EQ(iarap::read_mesh(out.string()).V.rows(), 3485);
+  fs::remove_all(dir);
+}
+
+TEST(Cli, DeformRefusesToOverwriteItsInput) {
+  const auto dir = iarap::test::temp_dir("cli_overwrite");
+  fs::copy_file(bunny, dir / "bunny.off");
+  const std::string before = read_file(dir / "bunny.off");
+  const std::string scenario = iarap::test::data_path("bunny_scenario.json");
+  for (const std::string& out : {(dir / "bunny.off").string(), (dir / "." / "bunny.off").string()}) {
+    const CliRun run = iarap_cli("deform '" + (dir / "bunny.off").string() + "' --scenario '" + scenario +
+                                     "' --out '" + out + "'",
+                                 true);
+    EXPECT_EQ(run.code, 2) << run.out;
+    EXPECT_NE(run.out.find("refusing to overwrite"), std::string::npos) << run.out;
+  }
+  EXPECT_EQ(read_file(dir / "bunny.off"), before);
+  fs::remove_all(dir);
+}
+
+TEST(Cli, BadArgumentsAreUsageErrors) {
+  const auto dir = iarap::test::temp_dir("cli_usage");
+  const std::string scenario = " --scenario '" + iarap::test::data_path("bunny_scenario.json") + "'";
+  const std::string out = " --out '" + (dir / "o.off").string() + "'";
+  const std::string mesh = " '" + bunny + "'";
+  for (const std::string& args : std::vector<std::string>{
+           "deform" + mesh + scenario + out + " --iterations -1",
+           "deform" + mesh + scenario + out + " --method fast-arap",
+           "deform" + mesh + scenario + out + " --threads -2",
+           "deform" + mesh + scenario + out + " --tolerance -1",
+           "deform" + mesh + scenario + out + " --iterations many",
+           "deform '/nonexistent/mesh.off'" + scenario + out,
+           "deform" + mesh + " --scenario /nonexistent/s.json" + out,
+           "deform" + mesh + out,
+           "deform" + mesh + scenario,
+           "deform" + mesh + scenario + " --constraints '" + iarap::test::data_path("bunny_constraints.txt") +
+               "'" + out,
+           "bench" + mesh + " --methods arap,fast",
+           "bench" + mesh + " --iterations 0",
+           "bench /nonexistent/mesh.off",
+           "info",
+       }) {
+    const CliRun run = iarap_cli(args, true);
+    EXPECT_EQ(run.code, 2) << args << "\n" << run.out;
+  }
+  EXPECT_FALSE(fs::exists(dir / "o.off"));
+  fs::remove_all(dir);
+}
+
+TEST(Cli, RuntimeErrorsExitOne) {
+  const auto dir = iarap::test::temp_dir("cli_runtime");
+  write_file(dir / "garbage.off", "OFF\n3 1 0\n0 0 0\n");
+  write_file(dir / "far.txt", "0 0 0 0\n# next is out of range\n3485 1 2 3\n");
+  const std::string out = " --out '" + (dir / "o.off").string() + "'";
+  const std::string scenario = " --scenario '" + iarap::test::data_path("bunny_scenario.json") + "'";
+  const CliRun unreadable =
+      iarap_cli("deform '" + (dir / "garbage.off").string() + "'" + scenario + out, true);
+  EXPECT_EQ(unreadable.code, 1) << unreadable.out;
+  EXPECT_NE(unreadable.out.find("garbage.off"), std::string::npos) << unreadable.out;
+  const CliRun far =
+      iarap_cli("deform '" + bunny + "' --constraints '" + (dir / "far.txt").string() + "'" + out, true);
+  EXPECT_EQ(far.code, 1) << far.out;
+  EXPECT_NE(far.out.find("far.txt:3"), std::string::npos) << far.out;
+  EXPECT_NE(far.out.find("3485 vertices"), std::string::npos) << far.out;
+  EXPECT_EQ(iarap_cli("bench '" + (dir / "garbage.off").string() + "'").code, 1);
+  EXPECT_FALSE(fs::exists(dir / "o.off"));
+  fs::remove_all(dir);
+}
+
+// A tetrahedron plus one vertex no face uses: --repair drops it and maps the constraint indices.
+TEST(Cli, RepairMapsConstraintIndices) {
+  const auto dir = iarap::test::temp_dir("cli_repair");
+  write_file(dir / "tet.off", "OFF\n5 4 0\n0 0 0\n9 9 9\n1 0 0\n0 1 0\n0 0 1\n"
+                              "3 0 3 2\n3 0 2 4\n3 0 4 3\n3 2 3 4\n");
+  write_file(dir / "c.txt", "0 0 0 0\n2 1 0 0\n3 0 1 0\n4 0 0 1.5\n");
+  write_file(dir / "removed.txt", "1 9 9 9\n0 0 0 0\n");
+  const std::string mesh = " '" + (dir / "tet.off").string() + "'";
+  const std::string out = " --out '" + (dir / "o.off").string() + "'";
+  // Without repair the stray vertex is an unconstrained component: the solver refuses.
+  EXPECT_EQ(iarap_cli("deform" + mesh + " --constraints '" + (dir / "c.txt").string() + "'" + out).code, 1);
+  const CliRun run =
+      iarap_cli("deform" + mesh + " --repair --method spokes-rims --json --quiet --constraints '" +
+                (dir / "c.txt").string() + "'" + out);
+  ASSERT_EQ(run.code, 0) << run.out;
+  EXPECT_FALSE(parse_json(run)["repair"].empty());
+  const auto result = iarap::read_mesh((dir / "o.off").string());
+  ASSERT_EQ(result.V.rows(), 4);
+  EXPECT_EQ(result.V.row(3), Eigen::RowVector3d(0, 0, 1.5)); // old vertex 4 is new vertex 3
+  const CliRun removed = iarap_cli(
+      "deform" + mesh + " --repair --constraints '" + (dir / "removed.txt").string() + "'" + out, true);
+  EXPECT_EQ(removed.code, 1);
+  EXPECT_NE(removed.out.find("constrained vertex 1 was removed"), std::string::npos) << removed.out;
+  fs::remove_all(dir);
+}
+
+TEST(Cli, BenchJsonHasEveryTiming) {
+  const CliRun run =
+      iarap_cli("bench '" + bunny + "' --methods arap,iarap --iterations 2 --threads 1 --json");
+  ASSERT_EQ(run.code, 0) << run.out;
+  const json j = parse_json(run);
+  EXPECT_FALSE(j["cpu"].get<std::string>().empty());
+  EXPECT_EQ(j["threads"], 1);
+  ASSERT_EQ(j["results"].size(), 2u);
+  for (const auto& r : j["results"]) {
+    EXPECT_EQ(r["vertices"], 3485);
+    EXPECT_EQ(r["threads"], 1);
+    EXPECT_EQ(r["measured_iterations"], 2);
+    for (const char* key : {"precompute_ms", "intrinsic_ms", "assembly_ms", "factor_ms", "iteration_ms",
+                            "local_ms", "global_ms"}) {
+      EXPECT_GE(r[key].get<double>(), 0.0) << key;
+    }
+    EXPECT_GT(r["iteration_ms"].get<double>(), 0.0);
+  }
+  EXPECT_EQ(j["results"][0]["method"], "arap");
+  EXPECT_EQ(j["results"][1]["method"], "iarap");
+  EXPECT_GT(j["results"][1]["intrinsic_ms"].get<double>(), 0.0);
+}
+
+TEST(Cli, BenchSubdivideAndTable) {
+  const CliRun run = iarap_cli("bench '" + bunny + "' --methods spokes-rims --iterations 1 --subdivide 1");
+  ASSERT_EQ(run.code, 0) << run.out;
+  // One midpoint per edge of a closed mesh: 3485 + 6966 * 3 / 2 vertices.
+  EXPECT_NE(run.out.find(" 13934 "), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("spokes-rims"), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("cpu: "), std::string::npos) << run.out;
+}
+
+} // namespace

@@ -1,0 +1,4 @@
+# End-to-end tests of the iarap tool; they need the tool built.
+if(IARAP_BUILD_APP)
+  list(APPEND IARAP_TEST_SOURCES app/cli_test.cpp)
+endif()
