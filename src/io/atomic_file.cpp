@@ -5,8 +5,8 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
-#include <filesystem>
 #include <fcntl.h>
+#include <filesystem>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -14,10 +14,13 @@ namespace iarap::io_detail {
 
 void write_file_atomically(const std::string& path, const std::string& contents) {
   const std::filesystem::path target(path);
-  const std::filesystem::path folder = target.has_parent_path() ? target.parent_path() : std::filesystem::path(".");
+  const std::filesystem::path folder =
+      target.has_parent_path() ? target.parent_path() : std::filesystem::path(".");
   std::string temp = (folder / ("." + target.filename().string() + ".tmp.XXXXXX")).string();
   const int fd = ::mkstemp(temp.data());
-  if (fd < 0) throw InputError(path + ": cannot create a temporary file in " + folder.string() + ": " + std::strerror(errno));
+  if (fd < 0)
+    throw InputError(path + ": cannot create a temporary file in " + folder.string() + ": " +
+                     std::strerror(errno));
   const auto fail = [&](const char* what) {
     const int err = errno;
     ::close(fd);
@@ -28,12 +31,14 @@ void write_file_atomically(const std::string& path, const std::string& contents)
   while (done < contents.size()) {
     const ssize_t n = ::write(fd, contents.data() + done, contents.size() - done);
     if (n < 0) {
-      if (errno == EINTR) continue;
+      if (errno == EINTR)
+        continue;
       fail("write failed");
     }
     done += static_cast<std::size_t>(n);
   }
-  if (::fsync(fd) != 0) fail("fsync failed");
+  if (::fsync(fd) != 0)
+    fail("fsync failed");
   // mkstemp creates 0600; keep the mode of the file being replaced, else the usual 0644
   // (reading the umask would need umask(), which is process-wide and racy).
   struct stat existing;

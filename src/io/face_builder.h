@@ -1,5 +1,5 @@
-// Internal: collects the faces of a mesh file as triangles (polygons fan-triangulated from their first corner,
-// triangle strips unrolled), checks vertex indices and writes the notes the readers return.
+// Internal: collects the faces of a mesh file as triangles (polygons fan-triangulated from their first
+// corner, triangle strips unrolled), checks vertex indices and writes the notes the readers return.
 #pragma once
 #include <Eigen/Core>
 #include <cstdint>
@@ -38,7 +38,8 @@ private:
   Location kind_;
   int index_base_;
   std::vector<int> triangles_; // flat, 3 per triangle
-  std::int64_t polygons_ = 0, polygons_split_ = 0, strips_ = 0, strip_degenerate_ = 0, strip_triangles_ = 0;
+  std::int64_t polygons_ = 0, polygons_split_ = 0, strips_ = 0, strip_runs_ = 0, strip_degenerate_ = 0,
+               strip_triangles_ = 0;
   // The largest index seen and where, so one check at the end names the worst offender.
   std::int64_t max_index_ = -1, max_where_ = 0, max_element_ = 0;
   bool max_in_strip_ = false;

@@ -18,9 +18,11 @@ bool next_content_line(io_detail::LineReader& lines, std::vector<std::string_vie
   std::string_view line;
   while (lines.next(line)) {
     const std::size_t hash = line.find('#');
-    if (hash != std::string_view::npos) line = line.substr(0, hash);
+    if (hash != std::string_view::npos)
+      line = line.substr(0, hash);
     io_detail::split_tokens(line, tokens);
-    if (!tokens.empty()) return true;
+    if (!tokens.empty())
+      return true;
   }
   return false;
 }
@@ -31,7 +33,8 @@ MeshData read_off(const std::string& path) {
   const std::string text = io_detail::read_whole_file(path);
   io_detail::LineReader lines(text);
   std::vector<std::string_view> tokens;
-  if (!next_content_line(lines, tokens)) fail_at_line(path, lines.line(), "empty file; expected an OFF header");
+  if (!next_content_line(lines, tokens))
+    fail_at_line(path, lines.line(), "empty file; expected an OFF header");
 
   // Keyword [ST][C][N][4][n]OFF, optionally followed on the same line by the counts.
   const std::string_view keyword = tokens[0];
@@ -39,7 +42,8 @@ MeshData read_off(const std::string& path) {
     fail_at_line(path, lines.line(), "expected the keyword OFF, found " + quote_token(keyword));
   const std::string_view prefix = keyword.substr(0, keyword.size() - 3);
   if (prefix.find_first_not_of("STCN") != std::string_view::npos)
-    fail_at_line(path, lines.line(), "unsupported OFF variant " + quote_token(keyword) + " (only 3D [ST][C][N]OFF)");
+    fail_at_line(path, lines.line(),
+                 "unsupported OFF variant " + quote_token(keyword) + " (only 3D [ST][C][N]OFF)");
   std::size_t next_token = 1;
   if (tokens.size() > 1 && tokens[1] == "BINARY")
     fail_at_line(path, lines.line(), "binary OFF is not supported; convert it to ASCII OFF or PLY");
@@ -50,7 +54,8 @@ MeshData read_off(const std::string& path) {
   while (have < 3) {
     if (next_token >= tokens.size()) {
       if (!next_content_line(lines, tokens))
-        fail_at_line(path, lines.line(), "file ends inside the header; expected vertex, face and edge counts");
+        fail_at_line(path, lines.line(),
+                     "file ends inside the header; expected vertex, face and edge counts");
       next_token = 0;
     }
     if (!io_detail::parse_int(tokens[next_token], counts[have]) || counts[have] < 0)
@@ -59,7 +64,8 @@ MeshData read_off(const std::string& path) {
     ++have;
   }
   if (next_token < tokens.size())
-    fail_at_line(path, lines.line(), "unexpected " + quote_token(tokens[next_token]) + " after the header counts");
+    fail_at_line(path, lines.line(),
+                 "unexpected " + quote_token(tokens[next_token]) + " after the header counts");
   const std::int64_t nv = counts[0], nf = counts[1];
 
   // Each record takes at least 2 bytes ("x\n"), so the remaining size caps any honest count; reserve no more.
@@ -68,13 +74,18 @@ MeshData read_off(const std::string& path) {
   positions.reserve(static_cast<std::size_t>(3 * std::min(nv, cap)));
   for (std::int64_t v = 0; v < nv; ++v) {
     if (!next_content_line(lines, tokens))
-      fail_at_line(path, lines.line(), "file ends after " + std::to_string(v) + " of " + std::to_string(nv) + " vertices");
+      fail_at_line(path, lines.line(),
+                   "file ends after " + std::to_string(v) + " of " + std::to_string(nv) + " vertices");
     if (tokens.size() < 3)
-      fail_at_line(path, lines.line(), "vertex " + std::to_string(v) + " needs 3 coordinates, found " + std::to_string(tokens.size()));
+      fail_at_line(path, lines.line(),
+                   "vertex " + std::to_string(v) + " needs 3 coordinates, found " +
+                       std::to_string(tokens.size()));
     for (int k = 0; k < 3; ++k) {
       double x;
       if (!io_detail::parse_double(tokens[static_cast<std::size_t>(k)], x))
-        fail_at_line(path, lines.line(), "vertex " + std::to_string(v) + ": bad coordinate " + quote_token(tokens[static_cast<std::size_t>(k)]));
+        fail_at_line(path, lines.line(),
+                     "vertex " + std::to_string(v) + ": bad coordinate " +
+                         quote_token(tokens[static_cast<std::size_t>(k)]));
       positions.push_back(x);
     }
   }
@@ -84,28 +95,34 @@ MeshData read_off(const std::string& path) {
   std::vector<std::int64_t> corners;
   for (std::int64_t f = 0; f < nf; ++f) {
     if (!next_content_line(lines, tokens))
-      fail_at_line(path, lines.line(), "file ends after " + std::to_string(f) + " of " + std::to_string(nf) + " faces");
+      fail_at_line(path, lines.line(),
+                   "file ends after " + std::to_string(f) + " of " + std::to_string(nf) + " faces");
     std::int64_t n;
     if (!io_detail::parse_int(tokens[0], n) || n < 0)
-      fail_at_line(path, lines.line(), "face " + std::to_string(f) + ": bad corner count " + quote_token(tokens[0]));
+      fail_at_line(path, lines.line(),
+                   "face " + std::to_string(f) + ": bad corner count " + quote_token(tokens[0]));
     // Values past the n indices are a per-face color, which is allowed and ignored.
     if (static_cast<std::int64_t>(tokens.size()) - 1 < n)
-      fail_at_line(path, lines.line(), "face " + std::to_string(f) + " declares " + std::to_string(n) + " corners but lists " +
-                                           std::to_string(tokens.size() - 1));
+      fail_at_line(path, lines.line(),
+                   "face " + std::to_string(f) + " declares " + std::to_string(n) + " corners but lists " +
+                       std::to_string(tokens.size() - 1));
     corners.resize(static_cast<std::size_t>(n));
     for (std::int64_t k = 0; k < n; ++k) {
       const std::string_view token = tokens[static_cast<std::size_t>(k + 1)];
       if (!io_detail::parse_int(token, corners[static_cast<std::size_t>(k)]))
-        fail_at_line(path, lines.line(), "face " + std::to_string(f) + ": bad vertex index " + quote_token(token));
+        fail_at_line(path, lines.line(),
+                     "face " + std::to_string(f) + ": bad vertex index " + quote_token(token));
     }
     faces.add_polygon(corners, lines.line());
   }
   if (next_content_line(lines, tokens))
-    fail_at_line(path, lines.line(), "unexpected data after the " + std::to_string(nf) + " faces the header declares");
+    fail_at_line(path, lines.line(),
+                 "unexpected data after the " + std::to_string(nf) + " faces the header declares");
 
   MeshData mesh;
   mesh.F = faces.finish(nv, mesh.notes);
-  mesh.V = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>>(positions.data(), nv, 3);
+  mesh.V =
+      Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>>(positions.data(), nv, 3);
   return mesh;
 }
 

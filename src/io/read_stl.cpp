@@ -1,5 +1,6 @@
 // Hand-written: no Debian library reads STL into indexed meshes with located errors. STL stores each triangle
-// with its own three corners, so this is the one reader that renumbers: bitwise identical positions are welded.
+// with its own three corners, so this is the one reader that renumbers: bitwise identical positions are
+// welded.
 #include "iarap/core/errors.h"
 #include "iarap/io/read_mesh.h"
 #include "text_reader.h"
@@ -32,10 +33,14 @@ MeshData weld_corners(const std::vector<double>& corners) {
     for (int k = 0; k < 3; ++k) {
       const double x = key(a, k), y = key(b, k);
       const bool xn = std::isnan(x), yn = std::isnan(y);
-      if (xn != yn) return yn;
-      if (xn) continue;
-      if (x < y) return true;
-      if (y < x) return false;
+      if (xn != yn)
+        return yn;
+      if (xn)
+        continue;
+      if (x < y)
+        return true;
+      if (y < x)
+        return false;
     }
     return a < b;
   };
@@ -45,7 +50,8 @@ MeshData weld_corners(const std::vector<double>& corners) {
   for (std::size_t s = 0; s < n; ++s) {
     const std::size_t i = order[s];
     const std::size_t prev = s > 0 ? order[s - 1] : i;
-    const bool same = s > 0 && key(i, 0) == key(prev, 0) && key(i, 1) == key(prev, 1) && key(i, 2) == key(prev, 2);
+    const bool same =
+        s > 0 && key(i, 0) == key(prev, 0) && key(i, 1) == key(prev, 1) && key(i, 2) == key(prev, 2);
     representative[i] = same ? representative[prev] : i;
   }
   std::vector<int> vertex_of(n, -1);
@@ -62,7 +68,8 @@ MeshData weld_corners(const std::vector<double>& corners) {
     }
     mesh.F(static_cast<Eigen::Index>(i / 3), static_cast<Eigen::Index>(i % 3)) = vertex_of[r];
   }
-  mesh.V = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>>(positions.data(), nv, 3);
+  mesh.V =
+      Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>>(positions.data(), nv, 3);
   mesh.notes.push_back("welded " + std::to_string(n) + " STL triangle corners into " + std::to_string(nv) +
                        " vertices with identical positions (vertices renumbered by first appearance)");
   return mesh;
@@ -97,36 +104,44 @@ std::vector<double> read_ascii_corners(const std::string& path, const std::strin
   std::int64_t facet = 0;
   while (lines.next(line)) {
     io_detail::split_tokens(line, tokens);
-    if (tokens.empty()) continue;
+    if (tokens.empty())
+      continue;
     const std::string_view w = tokens[0];
     const auto expect = [&](const char* what) {
       fail_at_line(path, lines.line(), std::string("expected ") + what + ", found " + quote_token(w));
     };
     if (!started) {
-      if (w != "solid") expect("'solid'");
+      if (w != "solid")
+        expect("'solid'");
       started = true;
       continue;
     }
     switch (state) {
     case State::solid:
-      if (w == "endsolid") state = State::done;
-      else if (w == "facet") state = State::facet;
-      else expect("'facet' or 'endsolid'");
+      if (w == "endsolid")
+        state = State::done;
+      else if (w == "facet")
+        state = State::facet;
+      else
+        expect("'facet' or 'endsolid'");
       break;
     case State::facet:
-      if (w != "outer" || tokens.size() < 2 || tokens[1] != "loop") expect("'outer loop'");
+      if (w != "outer" || tokens.size() < 2 || tokens[1] != "loop")
+        expect("'outer loop'");
       loop.clear();
       state = State::in_loop;
       break;
     case State::in_loop:
       if (w == "endloop") {
         if (loop.size() < 9)
-          fail_at_line(path, lines.line(), "facet " + std::to_string(facet) + " has " + std::to_string(loop.size() / 3) +
-                                               " vertices; at least 3 needed");
+          fail_at_line(path, lines.line(),
+                       "facet " + std::to_string(facet) + " has " + std::to_string(loop.size() / 3) +
+                           " vertices; at least 3 needed");
         // Polygons (rare) are fanned from the first corner like the other readers do.
         for (std::size_t i = 1; i + 1 < loop.size() / 3; ++i) {
           corners.insert(corners.end(), loop.begin(), loop.begin() + 3);
-          corners.insert(corners.end(), loop.begin() + static_cast<std::ptrdiff_t>(3 * i), loop.begin() + static_cast<std::ptrdiff_t>(3 * i + 6));
+          corners.insert(corners.end(), loop.begin() + static_cast<std::ptrdiff_t>(3 * i),
+                         loop.begin() + static_cast<std::ptrdiff_t>(3 * i + 6));
         }
         state = State::after_loop;
       } else if (w == "vertex") {
@@ -135,7 +150,9 @@ std::vector<double> read_ascii_corners(const std::string& path, const std::strin
         for (int k = 1; k <= 3; ++k) {
           double x;
           if (!io_detail::parse_double(tokens[static_cast<std::size_t>(k)], x))
-            fail_at_line(path, lines.line(), "facet " + std::to_string(facet) + ": bad coordinate " + quote_token(tokens[static_cast<std::size_t>(k)]));
+            fail_at_line(path, lines.line(),
+                         "facet " + std::to_string(facet) + ": bad coordinate " +
+                             quote_token(tokens[static_cast<std::size_t>(k)]));
           loop.push_back(x);
         }
       } else {
@@ -143,19 +160,23 @@ std::vector<double> read_ascii_corners(const std::string& path, const std::strin
       }
       break;
     case State::after_loop:
-      if (w != "endfacet") expect("'endfacet'");
+      if (w != "endfacet")
+        expect("'endfacet'");
       ++facet;
       state = State::solid;
       break;
     case State::done:
       // Some files hold several solids back to back.
-      if (w != "solid") expect("end of file or another 'solid'");
+      if (w != "solid")
+        expect("end of file or another 'solid'");
       state = State::solid;
       break;
     }
   }
-  if (!started) fail_at_line(path, lines.line(), "empty file");
-  if (state != State::done) fail_at_line(path, lines.line(), "file ends inside a solid (no 'endsolid')");
+  if (!started)
+    fail_at_line(path, lines.line(), "empty file");
+  if (state != State::done)
+    fail_at_line(path, lines.line(), "file ends inside a solid (no 'endsolid')");
   return corners;
 }
 
@@ -167,8 +188,8 @@ MeshData read_stl(const std::string& path) {
   std::uint32_t count = 0;
   if (bytes.size() >= 84) {
     const auto* b = reinterpret_cast<const unsigned char*>(bytes.data()) + 80;
-    count = static_cast<std::uint32_t>(b[0]) | static_cast<std::uint32_t>(b[1]) << 8 | static_cast<std::uint32_t>(b[2]) << 16 |
-            static_cast<std::uint32_t>(b[3]) << 24;
+    count = static_cast<std::uint32_t>(b[0]) | static_cast<std::uint32_t>(b[1]) << 8 |
+            static_cast<std::uint32_t>(b[2]) << 16 | static_cast<std::uint32_t>(b[3]) << 24;
     // Binary files may also start with "solid"; the exact size decides.
     binary = bytes.size() == 84 + 50 * static_cast<std::uint64_t>(count);
   }
@@ -179,10 +200,11 @@ MeshData read_stl(const std::string& path) {
                      "file too short for a binary STL (84-byte header) and does not start with 'solid'");
     fail_at_offset(path, 80,
                    "binary STL declares " + std::to_string(count) + " triangles, which need " +
-                       std::to_string(84 + 50 * static_cast<std::uint64_t>(count)) + " bytes, but the file has " +
-                       std::to_string(bytes.size()));
+                       std::to_string(84 + 50 * static_cast<std::uint64_t>(count)) +
+                       " bytes, but the file has " + std::to_string(bytes.size()));
   }
-  const std::vector<double> corners = binary ? read_binary_corners(bytes, count) : read_ascii_corners(path, bytes);
+  const std::vector<double> corners =
+      binary ? read_binary_corners(bytes, count) : read_ascii_corners(path, bytes);
   return weld_corners(corners);
 }
 

@@ -26,8 +26,8 @@ class LineReader {
 public:
   explicit LineReader(std::string_view text, std::size_t start = 0, std::int64_t lines_before = 0);
   bool next(std::string_view& line);
-  std::int64_t line() const { return line_; }           // number of the line last returned
-  std::size_t offset() const { return pos_; }           // byte offset just past the line last returned
+  std::int64_t line() const { return line_; } // number of the line last returned
+  std::size_t offset() const { return pos_; } // byte offset just past the line last returned
   std::size_t remaining_bytes() const { return text_.size() - pos_; }
 
 private:

@@ -8,13 +8,15 @@
 namespace iarap::io_detail {
 
 void check_mesh_arrays(const std::string& path, const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
-  if (V.cols() != 3) throw InputError(path + ": V has " + std::to_string(V.cols()) + " columns; 3 needed");
-  if (F.cols() != 3) throw InputError(path + ": F has " + std::to_string(F.cols()) + " columns; 3 needed");
+  if (V.cols() != 3)
+    throw InputError(path + ": V has " + std::to_string(V.cols()) + " columns; 3 needed");
+  if (F.cols() != 3)
+    throw InputError(path + ": F has " + std::to_string(F.cols()) + " columns; 3 needed");
   for (Eigen::Index f = 0; f < F.rows(); ++f)
     for (int k = 0; k < 3; ++k)
       if (F(f, k) < 0 || F(f, k) >= V.rows())
-        throw InputError(path + ": face " + std::to_string(f) + " uses vertex " + std::to_string(F(f, k)) + "; mesh has " +
-                         std::to_string(V.rows()) + " vertices");
+        throw InputError(path + ": face " + std::to_string(f) + " uses vertex " + std::to_string(F(f, k)) +
+                         "; mesh has " + std::to_string(V.rows()) + " vertices");
 }
 
 void append_double(std::string& out, double x) {
@@ -33,7 +35,8 @@ void append_vertex_lines(std::string& out, const Eigen::MatrixXd& V, const char*
   for (Eigen::Index v = 0; v < V.rows(); ++v) {
     out += prefix;
     for (int k = 0; k < 3; ++k) {
-      if (k > 0) out += ' ';
+      if (k > 0)
+        out += ' ';
       append_double(out, V(v, k));
     }
     out += '\n';
@@ -44,7 +47,8 @@ void append_face_lines(std::string& out, const Eigen::MatrixXi& F, const char* p
   for (Eigen::Index f = 0; f < F.rows(); ++f) {
     out += prefix;
     for (int k = 0; k < 3; ++k) {
-      if (k > 0) out += ' ';
+      if (k > 0)
+        out += ' ';
       append_int(out, static_cast<long long>(F(f, k)) + index_base);
     }
     out += '\n';

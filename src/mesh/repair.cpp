@@ -4,9 +4,9 @@
 #include "iarap/mesh/connected_components.h"
 #include "iarap/mesh/validate.h"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
-#include <Eigen/Geometry>
 #include <cmath>
 #include <cstdint>
 #include <numeric>
@@ -17,11 +17,13 @@ Eigen::VectorXi weld_representatives(const Eigen::MatrixXd& V, double tolerance)
   const int n = static_cast<int>(V.rows());
   Eigen::VectorXi representative(n);
   std::iota(representative.data(), representative.data() + n, 0);
-  if (n == 0 || V.cols() != 3) return representative;
+  if (n == 0 || V.cols() != 3)
+    return representative;
 
   Eigen::RowVector3d lo = Eigen::RowVector3d::Constant(INFINITY);
   for (int v = 0; v < n; ++v)
-    if (V.row(v).allFinite()) lo = lo.cwiseMin(V.row(v));
+    if (V.row(v).allFinite())
+      lo = lo.cwiseMin(V.row(v));
   // Cell size: the tolerance, so any two points within it lie in the same or adjacent cells. A zero tolerance
   // (identical positions only) still needs a positive cell, taken tiny relative to the coordinates.
   const double bbox = bounding_box_diagonal(V);
@@ -30,7 +32,8 @@ Eigen::VectorXi weld_representatives(const Eigen::MatrixXd& V, double tolerance)
   std::vector<Key> keys;
   keys.reserve(static_cast<std::size_t>(n));
   for (int v = 0; v < n; ++v) {
-    if (!V.row(v).allFinite()) continue;
+    if (!V.row(v).allFinite())
+      continue;
     Key key;
     for (int k = 0; k < 3; ++k) {
       // Offsets from the minimum are at most bbox / cell; clamp so absurd ratios cannot overflow.
@@ -48,9 +51,11 @@ Eigen::VectorXi weld_representatives(const Eigen::MatrixXd& V, double tolerance)
       for (std::int64_t dy = -1; dy <= 1; ++dy) {
         const Key from{key[0] + dx, key[1] + dy, key[2] - 1, 0};
         const Key to{key[0] + dx, key[1] + dy, key[2] + 1, INT64_MAX};
-        for (auto it = std::lower_bound(keys.begin(), keys.end(), from); it != keys.end() && *it <= to; ++it) {
+        for (auto it = std::lower_bound(keys.begin(), keys.end(), from); it != keys.end() && *it <= to;
+             ++it) {
           const int j = static_cast<int>((*it)[3]);
-          if (j <= i) continue; // each pair once
+          if (j <= i)
+            continue; // each pair once
           // Zero tolerance compares positions exactly (a norm of 1e-300 differences would underflow to 0).
           const bool close = tolerance > 0 ? (V.row(i) - V.row(j)).norm() <= tolerance : V.row(i) == V.row(j);
           if (close) {
@@ -60,30 +65,36 @@ Eigen::VectorXi weld_representatives(const Eigen::MatrixXd& V, double tolerance)
         }
       }
   }
-  if (pair_a.empty()) return representative;
+  if (pair_a.empty())
+    return representative;
   Eigen::MatrixXi pairs(static_cast<Eigen::Index>(pair_a.size()), 3);
-  for (std::size_t p = 0; p < pair_a.size(); ++p) pairs.row(static_cast<Eigen::Index>(p)) << pair_a[p], pair_b[p], pair_b[p];
+  for (std::size_t p = 0; p < pair_a.size(); ++p)
+    pairs.row(static_cast<Eigen::Index>(p)) << pair_a[p], pair_b[p], pair_b[p];
   int count = 0;
   const Eigen::VectorXi component = vertex_components(pairs, n, &count);
-  // Components are numbered in order of their smallest vertex, so the first vertex met in each is its smallest.
+  // Components are numbered in order of their smallest vertex, so the first vertex met in each is its
+  // smallest.
   std::vector<int> smallest(static_cast<std::size_t>(count), -1);
   for (int v = 0; v < n; ++v) {
     int& s = smallest[static_cast<std::size_t>(component(v))];
-    if (s < 0) s = v;
+    if (s < 0)
+      s = v;
     representative(v) = s;
   }
   return representative;
 }
 
 RepairResult repair_mesh(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const RepairOptions& options) {
-  if (V.cols() != 3) throw InputError("repair_mesh: V has " + std::to_string(V.cols()) + " columns; 3 needed");
-  if (F.cols() != 3) throw InputError("repair_mesh: F has " + std::to_string(F.cols()) + " columns; 3 needed");
+  if (V.cols() != 3)
+    throw InputError("repair_mesh: V has " + std::to_string(V.cols()) + " columns; 3 needed");
+  if (F.cols() != 3)
+    throw InputError("repair_mesh: F has " + std::to_string(F.cols()) + " columns; 3 needed");
   const int nv = static_cast<int>(V.rows()), nf = static_cast<int>(F.rows());
   for (int f = 0; f < nf; ++f)
     for (int k = 0; k < 3; ++k)
       if (F(f, k) < 0 || F(f, k) >= nv)
-        throw InputError("repair_mesh: face " + std::to_string(f) + " uses vertex " + std::to_string(F(f, k)) + "; mesh has " +
-                         std::to_string(nv) + " vertices");
+        throw InputError("repair_mesh: face " + std::to_string(f) + " uses vertex " +
+                         std::to_string(F(f, k)) + "; mesh has " + std::to_string(nv) + " vertices");
   RepairResult result;
   const double diagonal = bounding_box_diagonal(V);
 
@@ -91,9 +102,11 @@ RepairResult repair_mesh(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, con
   std::iota(representative.data(), representative.data() + nv, 0);
   if (options.weld) {
     representative = weld_representatives(V, options.weld_tolerance * diagonal);
-    const int merged = static_cast<int>((representative.array() != Eigen::VectorXi::LinSpaced(nv, 0, nv - 1).array()).count());
+    const int merged = static_cast<int>(
+        (representative.array() != Eigen::VectorXi::LinSpaced(nv, 0, nv - 1).array()).count());
     if (merged > 0)
-      result.actions.push_back("welded " + std::to_string(merged) + " vertices onto coincident ones (tolerance " +
+      result.actions.push_back("welded " + std::to_string(merged) +
+                               " vertices onto coincident ones (tolerance " +
                                std::to_string(options.weld_tolerance) + " x bbox diagonal)");
   }
 
@@ -118,33 +131,41 @@ RepairResult repair_mesh(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, con
     }
     kept_faces.push_back(f);
   }
-  if (collapsed > 0) result.actions.push_back("removed " + std::to_string(collapsed) + " faces that welding collapsed");
-  if (flat > 0) result.actions.push_back("removed " + std::to_string(flat) + " zero-area faces (area <= 1e-12 x bbox diagonal^2)");
+  if (collapsed > 0)
+    result.actions.push_back("removed " + std::to_string(collapsed) + " faces that welding collapsed");
+  if (flat > 0)
+    result.actions.push_back("removed " + std::to_string(flat) +
+                             " zero-area faces (area <= 1e-12 x bbox diagonal^2)");
 
   std::vector<char> used(static_cast<std::size_t>(nv), 0);
   for (int f : kept_faces)
-    for (int k = 0; k < 3; ++k) used[static_cast<std::size_t>(representative(F(f, k)))] = 1;
+    for (int k = 0; k < 3; ++k)
+      used[static_cast<std::size_t>(representative(F(f, k)))] = 1;
   std::vector<int> new_index(static_cast<std::size_t>(nv), -1);
   int count = 0, unreferenced = 0;
   for (int v = 0; v < nv; ++v) {
-    if (representative(v) != v) continue;
+    if (representative(v) != v)
+      continue;
     if (options.remove_unreferenced && !used[static_cast<std::size_t>(v)]) {
       ++unreferenced;
       continue;
     }
     new_index[static_cast<std::size_t>(v)] = count++;
   }
-  if (unreferenced > 0) result.actions.push_back("removed " + std::to_string(unreferenced) + " unreferenced vertices");
+  if (unreferenced > 0)
+    result.actions.push_back("removed " + std::to_string(unreferenced) + " unreferenced vertices");
 
   result.old_to_new.resize(nv);
   result.V.resize(count, 3);
   for (int v = 0; v < nv; ++v) {
     result.old_to_new(v) = new_index[static_cast<std::size_t>(representative(v))];
-    if (representative(v) == v && new_index[static_cast<std::size_t>(v)] >= 0) result.V.row(new_index[static_cast<std::size_t>(v)]) = V.row(v);
+    if (representative(v) == v && new_index[static_cast<std::size_t>(v)] >= 0)
+      result.V.row(new_index[static_cast<std::size_t>(v)]) = V.row(v);
   }
   result.F.resize(static_cast<Eigen::Index>(kept_faces.size()), 3);
   for (std::size_t i = 0; i < kept_faces.size(); ++i)
-    for (int k = 0; k < 3; ++k) result.F(static_cast<Eigen::Index>(i), k) = result.old_to_new(F(kept_faces[i], k));
+    for (int k = 0; k < 3; ++k)
+      result.F(static_cast<Eigen::Index>(i), k) = result.old_to_new(F(kept_faces[i], k));
   return result;
 }
 

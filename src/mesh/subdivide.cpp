@@ -7,19 +7,22 @@ namespace iarap {
 
 void subdivide_midpoint(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, Eigen::MatrixXd& V_out,
                         Eigen::MatrixXi& F_out) {
-  if (V.cols() != 3) throw InputError("subdivide_midpoint: V has " + std::to_string(V.cols()) + " columns; 3 needed");
-  if (F.cols() != 3) throw InputError("subdivide_midpoint: F has " + std::to_string(F.cols()) + " columns; 3 needed");
+  if (V.cols() != 3)
+    throw InputError("subdivide_midpoint: V has " + std::to_string(V.cols()) + " columns; 3 needed");
+  if (F.cols() != 3)
+    throw InputError("subdivide_midpoint: F has " + std::to_string(F.cols()) + " columns; 3 needed");
   const int nv = static_cast<int>(V.rows());
   for (Eigen::Index f = 0; f < F.rows(); ++f)
     for (int k = 0; k < 3; ++k)
       if (F(f, k) < 0 || F(f, k) >= nv)
-        throw InputError("subdivide_midpoint: face " + std::to_string(f) + " uses vertex " + std::to_string(F(f, k)) +
-                         "; mesh has " + std::to_string(nv) + " vertices");
+        throw InputError("subdivide_midpoint: face " + std::to_string(f) + " uses vertex " +
+                         std::to_string(F(f, k)) + "; mesh has " + std::to_string(nv) + " vertices");
   const EdgeTopology t = edge_topology(F, nv);
   const Eigen::Index ne = t.E.rows();
   Eigen::MatrixXd out(nv + ne, 3); // separate buffer: V_out may alias V
   out.topRows(nv) = V;
-  for (Eigen::Index e = 0; e < ne; ++e) out.row(nv + e) = 0.5 * (V.row(t.E(e, 0)) + V.row(t.E(e, 1)));
+  for (Eigen::Index e = 0; e < ne; ++e)
+    out.row(nv + e) = 0.5 * (V.row(t.E(e, 0)) + V.row(t.E(e, 1)));
   Eigen::MatrixXi faces(4 * F.rows(), 3);
   for (Eigen::Index f = 0; f < F.rows(); ++f) {
     const int a = F(f, 0), b = F(f, 1), c = F(f, 2);

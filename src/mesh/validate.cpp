@@ -15,28 +15,34 @@ namespace iarap {
 namespace {
 
 // Relative thresholds of the report, documented in validate.h.
-constexpr double zero_area_factor = 1e-12;   // times bbox_diagonal^2
-constexpr double coincident_factor = 1e-12;  // times bbox_diagonal
+constexpr double zero_area_factor = 1e-12;  // times bbox_diagonal^2
+constexpr double coincident_factor = 1e-12; // times bbox_diagonal
 // Cotangents are dimensionless; exact right angles of regular grids compute to +-1e-16, not a real violation.
 constexpr double delaunay_tolerance = 1e-12;
 
 // Connected groups of the pairs (a_i, b_i) over n items, through vertex_components on degenerate "faces".
 Eigen::VectorXi group_pairs(const std::vector<int>& a, const std::vector<int>& b, int n, int* count) {
   Eigen::MatrixXi pairs(static_cast<Eigen::Index>(a.size()), 3);
-  for (std::size_t i = 0; i < a.size(); ++i) pairs.row(static_cast<Eigen::Index>(i)) << a[i], b[i], b[i];
+  for (std::size_t i = 0; i < a.size(); ++i)
+    pairs.row(static_cast<Eigen::Index>(i)) << a[i], b[i], b[i];
   return vertex_components(pairs, n, count);
 }
 
-std::string plural(int n, const char* one, const char* many) { return std::to_string(n) + " " + (n == 1 ? one : many); }
+std::string plural(int n, const char* one, const char* many) {
+  return std::to_string(n) + " " + (n == 1 ? one : many);
+}
 
 } // namespace
 
 double bounding_box_diagonal(const Eigen::MatrixXd& V) {
-  if (V.cols() != 3) return 0.0;
-  Eigen::RowVector3d lo = Eigen::RowVector3d::Constant(INFINITY), hi = Eigen::RowVector3d::Constant(-INFINITY);
+  if (V.cols() != 3)
+    return 0.0;
+  Eigen::RowVector3d lo = Eigen::RowVector3d::Constant(INFINITY),
+                     hi = Eigen::RowVector3d::Constant(-INFINITY);
   bool any = false;
   for (Eigen::Index v = 0; v < V.rows(); ++v) {
-    if (!V.row(v).allFinite()) continue;
+    if (!V.row(v).allFinite())
+      continue;
     lo = lo.cwiseMin(V.row(v));
     hi = hi.cwiseMax(V.row(v));
     any = true;
@@ -49,18 +55,21 @@ MeshReport check_mesh(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
   r.vertices = static_cast<int>(V.rows());
   r.faces = static_cast<int>(F.rows());
   if (V.cols() != 3 || F.cols() != 3) {
-    r.errors.push_back("V must be #V x 3 and F #F x 3; got V " + std::to_string(V.rows()) + " x " + std::to_string(V.cols()) +
-                       " and F " + std::to_string(F.rows()) + " x " + std::to_string(F.cols()));
+    r.errors.push_back("V must be #V x 3 and F #F x 3; got V " + std::to_string(V.rows()) + " x " +
+                       std::to_string(V.cols()) + " and F " + std::to_string(F.rows()) + " x " +
+                       std::to_string(F.cols()));
     return r;
   }
   const int nv = r.vertices, nf = r.faces;
-  if (nf == 0) r.errors.push_back("mesh has no faces");
+  if (nf == 0)
+    r.errors.push_back("mesh has no faces");
 
   // ---- coordinates
   int first_bad_vertex = -1;
   for (int v = 0; v < nv; ++v)
     if (!V.row(v).allFinite()) {
-      if (r.non_finite_coordinates++ == 0) first_bad_vertex = v;
+      if (r.non_finite_coordinates++ == 0)
+        first_bad_vertex = v;
     }
   if (r.non_finite_coordinates > 0)
     r.errors.push_back(plural(r.non_finite_coordinates, "vertex has", "vertices have") +
@@ -84,32 +93,39 @@ MeshReport check_mesh(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
         }
       }
     }
-    if (!in_range) continue;
-    for (int k = 0; k < 3; ++k) used[static_cast<std::size_t>(F(f, k))] = 1;
+    if (!in_range)
+      continue;
+    for (int k = 0; k < 3; ++k)
+      used[static_cast<std::size_t>(F(f, k))] = 1;
     if (F(f, 0) == F(f, 1) || F(f, 1) == F(f, 2) || F(f, 0) == F(f, 2)) {
-      if (r.repeated_vertex_faces++ == 0) first_repeat_face = f;
+      if (r.repeated_vertex_faces++ == 0)
+        first_repeat_face = f;
       continue;
     }
     good.push_back(f);
   }
   if (r.out_of_range_indices > 0)
-    r.errors.push_back(plural(r.out_of_range_indices, "face index is", "face indices are") + " out of range; first: face " +
-                       std::to_string(first_range_face) + " uses vertex " + std::to_string(first_range_index) +
-                       "; mesh has " + std::to_string(nv) + " vertices");
+    r.errors.push_back(plural(r.out_of_range_indices, "face index is", "face indices are") +
+                       " out of range; first: face " + std::to_string(first_range_face) + " uses vertex " +
+                       std::to_string(first_range_index) + "; mesh has " + std::to_string(nv) + " vertices");
   if (r.repeated_vertex_faces > 0)
-    r.errors.push_back(plural(r.repeated_vertex_faces, "face repeats", "faces repeat") + " a vertex; first: face " +
-                       std::to_string(first_repeat_face) + " (" + std::to_string(F(first_repeat_face, 0)) + ", " +
-                       std::to_string(F(first_repeat_face, 1)) + ", " + std::to_string(F(first_repeat_face, 2)) + ")");
+    r.errors.push_back(
+        plural(r.repeated_vertex_faces, "face repeats", "faces repeat") + " a vertex; first: face " +
+        std::to_string(first_repeat_face) + " (" + std::to_string(F(first_repeat_face, 0)) + ", " +
+        std::to_string(F(first_repeat_face, 1)) + ", " + std::to_string(F(first_repeat_face, 2)) + ")");
   int first_unused = -1;
   for (int v = 0; v < nv; ++v)
-    if (!used[static_cast<std::size_t>(v)] && r.unreferenced_vertices++ == 0) first_unused = v;
+    if (!used[static_cast<std::size_t>(v)] && r.unreferenced_vertices++ == 0)
+      first_unused = v;
   if (r.unreferenced_vertices > 0)
-    r.warnings.push_back(plural(r.unreferenced_vertices, "vertex is", "vertices are") + " used by no face; first: vertex " +
-                         std::to_string(first_unused) + " (repair_mesh removes them)");
+    r.warnings.push_back(plural(r.unreferenced_vertices, "vertex is", "vertices are") +
+                         " used by no face; first: vertex " + std::to_string(first_unused) +
+                         " (repair_mesh removes them)");
 
   const int ng = static_cast<int>(good.size());
   Eigen::MatrixXi G(ng, 3);
-  for (int g = 0; g < ng; ++g) G.row(g) = F.row(good[static_cast<std::size_t>(g)]);
+  for (int g = 0; g < ng; ++g)
+    G.row(g) = F.row(good[static_cast<std::size_t>(g)]);
 
   // ---- zero-area faces
   const double min_area = zero_area_factor * r.bbox_diagonal * r.bbox_diagonal;
@@ -117,10 +133,12 @@ MeshReport check_mesh(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
   for (int g = 0; g < ng; ++g) {
     const Eigen::RowVector3d a = V.row(G(g, 0)), b = V.row(G(g, 1)), c = V.row(G(g, 2));
     const double area = 0.5 * (b - a).cross(c - a).norm();
-    if (area <= min_area && r.zero_area_faces++ == 0) first_flat = good[static_cast<std::size_t>(g)];
+    if (area <= min_area && r.zero_area_faces++ == 0)
+      first_flat = good[static_cast<std::size_t>(g)];
   }
   if (r.zero_area_faces > 0)
-    r.warnings.push_back(plural(r.zero_area_faces, "face has", "faces have") + " zero area (<= 1e-12 x bbox diagonal^2); first: face " +
+    r.warnings.push_back(plural(r.zero_area_faces, "face has", "faces have") +
+                         " zero area (<= 1e-12 x bbox diagonal^2); first: face " +
                          std::to_string(first_flat) + " (repair_mesh with remove_zero_area drops them)");
 
   // ---- edges: boundary, non-manifold, orientation, Delaunay
@@ -130,23 +148,30 @@ MeshReport check_mesh(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
   int first_nm_edge = -1, first_flip_edge = -1;
   for (int e = 0; e < ne; ++e) {
     const int count = t.face_count(e);
-    if (count == 1) ++r.boundary_edges;
-    if (count > 2 && r.non_manifold_edges++ == 0) first_nm_edge = e;
-    if (count != 2) continue;
+    if (count == 1)
+      ++r.boundary_edges;
+    if (count > 2 && r.non_manifold_edges++ == 0)
+      first_nm_edge = e;
+    if (count != 2)
+      continue;
     const int f0 = t.EF(e, 0), f1 = t.EF(e, 1), k0 = t.EK(e, 0), k1 = t.EK(e, 1);
     // Each face runs along the edge from corner k+1 to corner k+2; consistent neighbours run opposite ways.
-    if (G(f0, (k0 + 1) % 3) == G(f1, (k1 + 1) % 3) && r.inconsistently_oriented_edges++ == 0) first_flip_edge = e;
-    if (C(f0, k0) + C(f1, k1) < -delaunay_tolerance) ++r.non_delaunay_edges;
+    if (G(f0, (k0 + 1) % 3) == G(f1, (k1 + 1) % 3) && r.inconsistently_oriented_edges++ == 0)
+      first_flip_edge = e;
+    if (C(f0, k0) + C(f1, k1) < -delaunay_tolerance)
+      ++r.non_delaunay_edges;
   }
   const auto edge_name = [&](int e) {
     return "edge (" + std::to_string(t.E(e, 0)) + ", " + std::to_string(t.E(e, 1)) + ")";
   };
   if (r.non_manifold_edges > 0)
-    r.errors.push_back(plural(r.non_manifold_edges, "edge is", "edges are") + " non-manifold (3 or more faces); first: " +
-                       edge_name(first_nm_edge) + " with " + std::to_string(t.face_count(first_nm_edge)) + " faces");
+    r.errors.push_back(plural(r.non_manifold_edges, "edge is", "edges are") +
+                       " non-manifold (3 or more faces); first: " + edge_name(first_nm_edge) + " with " +
+                       std::to_string(t.face_count(first_nm_edge)) + " faces");
   if (r.inconsistently_oriented_edges > 0)
     r.errors.push_back(plural(r.inconsistently_oriented_edges, "edge joins", "edges join") +
-                       " inconsistently oriented faces; first: " + edge_name(first_flip_edge) + " between faces " +
+                       " inconsistently oriented faces; first: " + edge_name(first_flip_edge) +
+                       " between faces " +
                        std::to_string(good[static_cast<std::size_t>(t.EF(first_flip_edge, 0))]) + " and " +
                        std::to_string(good[static_cast<std::size_t>(t.EF(first_flip_edge, 1))]));
 
@@ -177,22 +202,27 @@ MeshReport check_mesh(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
   for (int c = 0; c < 3 * ng; ++c) {
     const int v = G(c / 3, c % 3);
     int& seen = fan_of[static_cast<std::size_t>(v)];
-    if (seen < 0) seen = fan(c);
-    else if (seen != fan(c)) pinched[static_cast<std::size_t>(v)] = 1;
+    if (seen < 0)
+      seen = fan(c);
+    else if (seen != fan(c))
+      pinched[static_cast<std::size_t>(v)] = 1;
   }
   int first_pinched = -1;
   for (int v = 0; v < nv; ++v)
-    if (pinched[static_cast<std::size_t>(v)] && r.non_manifold_vertices++ == 0) first_pinched = v;
+    if (pinched[static_cast<std::size_t>(v)] && r.non_manifold_vertices++ == 0)
+      first_pinched = v;
   if (r.non_manifold_vertices > 0)
     r.errors.push_back(plural(r.non_manifold_vertices, "vertex is", "vertices are") +
-                       " non-manifold (the faces around one form several fans); first: vertex " + std::to_string(first_pinched));
+                       " non-manifold (the faces around one form several fans); first: vertex " +
+                       std::to_string(first_pinched));
 
   // ---- components and boundary loops
   int raw_components = 0;
   const Eigen::VectorXi component = vertex_components(G, nv, &raw_components);
   std::vector<char> in_mesh(static_cast<std::size_t>(nv), 0);
   for (int g = 0; g < ng; ++g)
-    for (int k = 0; k < 3; ++k) in_mesh[static_cast<std::size_t>(G(g, k))] = 1;
+    for (int k = 0; k < 3; ++k)
+      in_mesh[static_cast<std::size_t>(G(g, k))] = 1;
   std::vector<int> dense(static_cast<std::size_t>(raw_components), -1); // component id among face components
   for (int v = 0; v < nv; ++v)
     if (in_mesh[static_cast<std::size_t>(v)] && dense[static_cast<std::size_t>(component(v))] < 0)
@@ -210,9 +240,11 @@ MeshReport check_mesh(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
   int raw_loops = 0;
   const Eigen::VectorXi loop = group_pairs(bound_a, bound_b, nv, &raw_loops);
   std::vector<char> loop_seen(static_cast<std::size_t>(raw_loops), 0);
-  std::vector<std::int64_t> loops_in(static_cast<std::size_t>(r.components), 0), chi(static_cast<std::size_t>(r.components), 0);
+  std::vector<std::int64_t> loops_in(static_cast<std::size_t>(r.components), 0),
+      chi(static_cast<std::size_t>(r.components), 0);
   for (int v = 0; v < nv; ++v) {
-    if (!in_mesh[static_cast<std::size_t>(v)]) continue;
+    if (!in_mesh[static_cast<std::size_t>(v)])
+      continue;
     ++chi[static_cast<std::size_t>(comp(v))];
     if (on_boundary[static_cast<std::size_t>(v)] && !loop_seen[static_cast<std::size_t>(loop(v))]) {
       loop_seen[static_cast<std::size_t>(loop(v))] = 1;
@@ -222,32 +254,38 @@ MeshReport check_mesh(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
   }
 
   // ---- genus: chi = V - E + F per component, genus = (2 - chi - b) / 2
-  for (int e = 0; e < ne; ++e) --chi[static_cast<std::size_t>(comp(t.E(e, 0)))];
-  for (int g = 0; g < ng; ++g) ++chi[static_cast<std::size_t>(comp(G(g, 0)))];
+  for (int e = 0; e < ne; ++e)
+    --chi[static_cast<std::size_t>(comp(t.E(e, 0)))];
+  for (int g = 0; g < ng; ++g)
+    ++chi[static_cast<std::size_t>(comp(G(g, 0)))];
   if (r.non_manifold_edges == 0 && r.non_manifold_vertices == 0) {
     std::int64_t genus = 0;
     bool orientable = true;
     for (int c = 0; c < r.components; ++c) {
       const std::int64_t twice = 2 - chi[static_cast<std::size_t>(c)] - loops_in[static_cast<std::size_t>(c)];
-      if (twice % 2 != 0 || twice < 0) orientable = false;
+      if (twice % 2 != 0 || twice < 0)
+        orientable = false;
       genus += twice / 2;
     }
-    if (orientable) r.genus = static_cast<int>(genus);
+    if (orientable)
+      r.genus = static_cast<int>(genus);
   }
 
   // ---- coincident vertices
   const Eigen::VectorXi representative = weld_representatives(V, coincident_factor * r.bbox_diagonal);
   int first_coincident = -1;
   for (int v = 0; v < nv; ++v)
-    if (representative(v) != v && r.coincident_vertices++ == 0) first_coincident = v;
+    if (representative(v) != v && r.coincident_vertices++ == 0)
+      first_coincident = v;
   if (r.coincident_vertices > 0)
     r.warnings.push_back(plural(r.coincident_vertices, "vertex coincides", "vertices coincide") +
                          " with an earlier vertex (within 1e-12 x bbox diagonal); first: vertex " +
                          std::to_string(first_coincident) + " at the position of vertex " +
                          std::to_string(representative(first_coincident)) + " (repair_mesh welds them)");
   if (ng > 1 && r.components == ng)
-    r.warnings.push_back("the mesh falls apart into one component per face (" + std::to_string(ng) +
-                         "): faces share no vertices, as in an unwelded triangle soup (STL); repair_mesh welds it");
+    r.warnings.push_back(
+        "the mesh falls apart into one component per face (" + std::to_string(ng) +
+        "): faces share no vertices, as in an unwelded triangle soup (STL); repair_mesh welds it");
   return r;
 }
 

@@ -18,14 +18,14 @@ inline std::string write_temp_file(const std::string& name, const std::string& b
 }
 
 // Runs `read` and expects an InputError whose message contains every one of `parts`.
-template <typename Read>
-void expect_input_error(Read read, std::initializer_list<std::string> parts) {
+template <typename Read> void expect_input_error(Read read, std::initializer_list<std::string> parts) {
   try {
     read();
     ADD_FAILURE() << "expected InputError";
   } catch (const InputError& e) {
     const std::string message = e.what();
-    for (const std::string& part : parts) EXPECT_NE(message.find(part), std::string::npos) << "'" << part << "' not in: " << message;
+    for (const std::string& part : parts)
+      EXPECT_NE(message.find(part), std::string::npos) << "'" << part << "' not in: " << message;
   } catch (const std::exception& e) {
     ADD_FAILURE() << "expected InputError, got another exception: " << e.what();
   }

@@ -8,21 +8,20 @@ using iarap::test::expect_input_error;
 using iarap::test::write_temp_file;
 
 TEST(ReadObj, CornerFormsNegativeIndicesAndPolygons) {
-  const std::string path = write_temp_file("forms.obj",
-                                           "# comment\n"
-                                           "mtllib x.mtl\n"
-                                           "v 0 0 0\n"
-                                           "v 1 0 0 1.0\n"
-                                           "vt 0 0\n"
-                                           "vn 0 0 1\n"
-                                           "v 1 1 0 0.5 0.5 0.5\n"
-                                           "v 0 1 0\n"
-                                           "g part\n"
-                                           "f 1/1/1 2//1 3/1\n"
-                                           "f -4 -2 -1\n"
-                                           "v 2 0.5 0\n"
-                                           "f 2 5 3 # trailing comment\n"
-                                           "f 1 2 5 3 4\n");
+  const std::string path = write_temp_file("forms.obj", "# comment\n"
+                                                        "mtllib x.mtl\n"
+                                                        "v 0 0 0\n"
+                                                        "v 1 0 0 1.0\n"
+                                                        "vt 0 0\n"
+                                                        "vn 0 0 1\n"
+                                                        "v 1 1 0 0.5 0.5 0.5\n"
+                                                        "v 0 1 0\n"
+                                                        "g part\n"
+                                                        "f 1/1/1 2//1 3/1\n"
+                                                        "f -4 -2 -1\n"
+                                                        "v 2 0.5 0\n"
+                                                        "f 2 5 3 # trailing comment\n"
+                                                        "f 1 2 5 3 4\n");
   const iarap::MeshData m = read_obj(path);
   ASSERT_EQ(m.V.rows(), 5);
   EXPECT_EQ(m.V(1, 0), 1.0);
@@ -41,7 +40,8 @@ TEST(ReadObj, CornerFormsNegativeIndicesAndPolygons) {
 }
 
 TEST(ReadObj, NonFiniteTokensLoad) {
-  const iarap::MeshData m = read_obj(write_temp_file("nan.obj", "v nan inf -inf\nv 1 2 3\nv 4 5 6\nf 1 2 3\n"));
+  const iarap::MeshData m =
+      read_obj(write_temp_file("nan.obj", "v nan inf -inf\nv 1 2 3\nv 4 5 6\nf 1 2 3\n"));
   EXPECT_TRUE(std::isnan(m.V(0, 0)));
   EXPECT_TRUE(std::isinf(m.V(0, 1)));
   EXPECT_LT(m.V(0, 2), 0);
@@ -52,7 +52,8 @@ TEST(ReadObj, ErrorsNameTheLine) {
   expect_input_error([&] { read_obj(bad_token); }, {bad_token + ":2:", "'abc'"});
   const std::string short_vertex = write_temp_file("short_vertex.obj", "v 0 0\n");
   expect_input_error([&] { read_obj(short_vertex); }, {":1:", "3 coordinates"});
-  const std::string out_of_range = write_temp_file("range.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 2 9\n");
+  const std::string out_of_range =
+      write_temp_file("range.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 2 9\n");
   expect_input_error([&] { read_obj(out_of_range); }, {":5:", "face 1", "vertex index 9", "3 vertices"});
   const std::string zero = write_temp_file("zero.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n");
   expect_input_error([&] { read_obj(zero); }, {":4:", "index 0"});

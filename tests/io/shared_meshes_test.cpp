@@ -14,14 +14,18 @@ struct Expected {
 // halftunnel: 784 quads -> 1568 triangles; cube_40k: 48000 quads -> 96000 triangles;
 // igea: one `tristrips` element unrolls to 268686 triangles, none degenerate.
 const Expected meshes[] = {
-    {"planexy.off", 25, 32},          {"grid.off", 145, 256},          {"cube.obj", 728, 1452},
-    {"decimated-knight.off", 502, 1000}, {"spike.ply", 1089, 2048},    {"halftunnel.off", 831, 1568},
-    {"bunny.off", 3485, 6966},        {"3holes.off", 3596, 7200},       {"fertility.off", 4494, 9000},
-    {"horse.obj", 4989, 9974},        {"cactus.obj", 5261, 10518},      {"elephant.obj", 6034, 12064},
-    {"cheburashka.off", 6669, 13334}, {"lion.off", 8356, 16674},        {"camelhead.off", 11381, 22704},
-    {"armadillo_30K.obj", 15002, 30000}, {"beetle.off", 19887, 38656},  {"bumpy-cube.obj", 19970, 39936},
-    {"face.obj", 25905, 51712},       {"armadillo.obj", 43243, 86482},  {"ogre.obj", 62194, 124008},
-    {"igea.ply", 134345, 268686},     {"cube_40k.obj", 9261, 96000},
+    {"planexy.off", 25, 32},          {"grid.off", 145, 256},
+    {"cube.obj", 728, 1452},          {"decimated-knight.off", 502, 1000},
+    {"spike.ply", 1089, 2048},        {"halftunnel.off", 831, 1568},
+    {"bunny.off", 3485, 6966},        {"3holes.off", 3596, 7200},
+    {"fertility.off", 4494, 9000},    {"horse.obj", 4989, 9974},
+    {"cactus.obj", 5261, 10518},      {"elephant.obj", 6034, 12064},
+    {"cheburashka.off", 6669, 13334}, {"lion.off", 8356, 16674},
+    {"camelhead.off", 11381, 22704},  {"armadillo_30K.obj", 15002, 30000},
+    {"beetle.off", 19887, 38656},     {"bumpy-cube.obj", 19970, 39936},
+    {"face.obj", 25905, 51712},       {"armadillo.obj", 43243, 86482},
+    {"ogre.obj", 62194, 124008},      {"igea.ply", 134345, 268686},
+    {"cube_40k.obj", 9261, 96000},
 };
 
 } // namespace
@@ -30,7 +34,8 @@ TEST(SharedMeshes, LoadWithReadmeCounts) {
   int found = 0;
   for (const Expected& e : meshes) {
     const std::string path = iarap::test::shared_mesh_path(e.name);
-    if (path.empty()) continue;
+    if (path.empty())
+      continue;
     ++found;
     const iarap::MeshData m = iarap::read_mesh(path);
     EXPECT_EQ(m.V.rows(), e.vertices) << e.name;
@@ -38,5 +43,6 @@ TEST(SharedMeshes, LoadWithReadmeCounts) {
     EXPECT_EQ(m.F.minCoeff(), 0) << e.name;
     EXPECT_LT(m.F.maxCoeff(), m.V.rows()) << e.name;
   }
-  if (found == 0) GTEST_SKIP() << "shared meshes not found (set IARAP_SHARED_MESHES)";
+  if (found == 0)
+    GTEST_SKIP() << "shared meshes not found (set IARAP_SHARED_MESHES)";
 }

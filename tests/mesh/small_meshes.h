@@ -24,9 +24,9 @@ inline SmallMesh octahedron() {
 inline SmallMesh two_cones_sharing_a_tip() {
   SmallMesh m;
   m.V.resize(9, 3);
-  m.V << 0, 0, 0,                                    // shared tip
-      1, 0, 1, 0, 1, 1, -1, 0, 1, 0, -1, 1,         // upper base ring (z = 1)
-      1, 0, -1, 0, 1, -1, -1, 0, -1, 0, -1, -1;     // lower base ring (z = -1)
+  m.V << 0, 0, 0,                               // shared tip
+      1, 0, 1, 0, 1, 1, -1, 0, 1, 0, -1, 1,     // upper base ring (z = 1)
+      1, 0, -1, 0, 1, -1, -1, 0, -1, 0, -1, -1; // lower base ring (z = -1)
   m.F.resize(12, 3);
   // Upper cone: sides (tip, b_{i+1}, b_i) facing outward (down/out), base (1,2,3),(1,3,4) facing up.
   m.F << 0, 2, 1, 0, 3, 2, 0, 4, 3, 0, 1, 4, 1, 2, 3, 1, 3, 4,

@@ -14,13 +14,15 @@ namespace {
 
 bool any_contains(const std::vector<std::string>& lines, const std::string& part) {
   for (const std::string& line : lines)
-    if (line.find(part) != std::string::npos) return true;
+    if (line.find(part) != std::string::npos)
+      return true;
   return false;
 }
 
 std::string joined(const std::vector<std::string>& lines) {
   std::string out;
-  for (const std::string& line : lines) out += line + "\n";
+  for (const std::string& line : lines)
+    out += line + "\n";
   return out;
 }
 
@@ -30,7 +32,8 @@ MeshReport check_shared(const char* name) {
 }
 
 #define SKIP_WITHOUT(name)                                                                                   \
-  if (iarap::test::shared_mesh_path(name).empty()) GTEST_SKIP() << name << " not found in the shared meshes"
+  if (iarap::test::shared_mesh_path(name).empty())                                                           \
+  GTEST_SKIP() << name << " not found in the shared meshes"
 
 } // namespace
 
@@ -120,7 +123,8 @@ TEST(CheckMesh, NonFiniteCoordinate) {
   m.V(5, 2) = INFINITY;
   const MeshReport r = check_mesh(m.V, m.F);
   EXPECT_EQ(r.non_finite_coordinates, 2);
-  EXPECT_TRUE(any_contains(r.errors, "2 vertices have a NaN or Inf coordinate; first: vertex 4")) << joined(r.errors);
+  EXPECT_TRUE(any_contains(r.errors, "2 vertices have a NaN or Inf coordinate; first: vertex 4"))
+      << joined(r.errors);
   EXPECT_TRUE(std::isfinite(r.bbox_diagonal));
 }
 

@@ -4,10 +4,10 @@
 
 namespace iarap {
 
-// Splits every face of (V #V x 3, F #F x 3) into four by its edge midpoints. V_out keeps the #V input vertices
-// first, in order, followed by one midpoint per unique edge; every new face keeps its parent's orientation:
-// (a, b, c) -> (a, m_ab, m_ca), (b, m_bc, m_ab), (c, m_ca, m_bc), (m_ab, m_bc, m_ca).
-// Throws InputError for wrong column counts or out-of-range indices (naming the face).
+// Splits every face of (V #V x 3, F #F x 3) into four by its edge midpoints. V_out keeps the #V input
+// vertices first, in order, followed by one midpoint per unique edge; every new face keeps its parent's
+// orientation: (a, b, c) -> (a, m_ab, m_ca), (b, m_bc, m_ab), (c, m_ca, m_bc), (m_ab, m_bc, m_ca). Throws
+// InputError for wrong column counts or out-of-range indices (naming the face).
 void subdivide_midpoint(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, Eigen::MatrixXd& V_out,
                         Eigen::MatrixXi& F_out);
 

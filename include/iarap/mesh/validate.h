@@ -1,4 +1,5 @@
-// Validation of a triangle mesh before ARAP: what is wrong with it, what cannot be handled, what repair fixes.
+// Validation of a triangle mesh before ARAP: what is wrong with it, what cannot be handled, what repair
+// fixes.
 #pragma once
 #include <Eigen/Core>
 #include <optional>
@@ -18,14 +19,14 @@ struct MeshReport {
   int non_manifold_vertices = 0; // vertices whose faces form more than one edge-connected fan
   int zero_area_faces = 0;       // area <= 1e-12 * bbox_diagonal^2
   int unreferenced_vertices = 0;
-  int non_delaunay_edges = 0;    // interior edges with cot a + cot b < -1e-12 (negative cotan weight)
+  int non_delaunay_edges = 0;            // interior edges with cot a + cot b < -1e-12 (negative cotan weight)
   int inconsistently_oriented_edges = 0; // interior edges both faces traverse in the same direction
   int repeated_vertex_faces = 0;
-  int out_of_range_indices = 0;  // face entries outside 0..#V-1
+  int out_of_range_indices = 0;   // face entries outside 0..#V-1
   int non_finite_coordinates = 0; // vertices with a NaN or Inf coordinate
-  int coincident_vertices = 0;   // vertices within 1e-12 * bbox_diagonal of a vertex with a smaller index
+  int coincident_vertices = 0;    // vertices within 1e-12 * bbox_diagonal of a vertex with a smaller index
   int boundary_edges = 0;
-  double bbox_diagonal = 0.0;    // of the finite vertices
+  double bbox_diagonal = 0.0;                // of the finite vertices
   std::vector<std::string> errors, warnings; // each names the first offending element and the count
   bool usable() const { return errors.empty(); }
 };
