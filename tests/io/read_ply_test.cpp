@@ -2,6 +2,7 @@
 #include "mesh_file_fixtures.h"
 
 #include <chrono>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 
@@ -157,4 +158,25 @@ TEST(ReadPly, GarbageIsAnError) {
   expect_input_error([&] { read_ply(garbage); }, {garbage + ":1:", "not a PLY file"});
   const std::string no_end = write_temp_file("no_end.ply", "ply\nformat ascii 1.0\nelement vertex 0\n");
   expect_input_error([&] { read_ply(no_end); }, {":3:", "end_header"});
+}
+
+TEST(ReadPly, AsciiHugeCountAndFacesBeforeVertices) {
+  const std::string huge =
+      write_temp_file("huge_ascii.ply", "ply\nformat ascii 1.0\nelement vertex 1000000000000\n"
+                                        "property float x\nproperty float y\nproperty float z\n"
+                                        "end_header\n0 0 0\n1 0 0\n");
+  const auto start = std::chrono::steady_clock::now();
+  expect_input_error([&] { read_ply(huge); }, {huge + ":9:", "2 of 1000000000000 vertex records"});
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 1.0);
+  // Faces may come first; their indices are checked once the vertex count is known.
+  const std::string first =
+      write_temp_file("faces_first.PLY", "ply\nformat ascii 1.0\nelement face 1\n"
+                                         "property list uchar int vertex_indices\n"
+                                         "element vertex 3\nproperty float x\nproperty float y\n"
+                                         "property float z\nend_header\n3 2 1 0\n"
+                                         "0 0 0\n1 0 0\nnan inf 0\n");
+  const iarap::MeshData m = iarap::read_mesh(first);
+  EXPECT_EQ(m.F.row(0), Eigen::RowVector3i(2, 1, 0));
+  EXPECT_TRUE(std::isnan(m.V(2, 0)));
+  EXPECT_TRUE(std::isinf(m.V(2, 1)));
 }
