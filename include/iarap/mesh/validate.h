@@ -10,7 +10,7 @@ namespace iarap {
 
 struct MeshReport {
   int vertices = 0, faces = 0;
-  int components = 0;     // pieces of the faces connected through shared vertices (unused vertices not counted)
+  int components = 0; // pieces of the faces connected through shared vertices (unused vertices not counted)
   int boundary_loops = 0; // connected chains of boundary edges
   // Per component chi = V - E + F and genus = (2 - chi - b) / 2, summed; null when the mesh is non-manifold
   // or a component is non-orientable (odd 2 - chi - b).
