@@ -1,0 +1,58 @@
+// The properties of a discrete Laplacian (Wardetzky et al. 2007) measured on one mesh, one row of the
+// paper's Table 3.
+#pragma once
+#include "iarap/intrinsic/intrinsic_delaunay.h"
+#include "iarap/laplacian/laplacians.h"
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+#include <string>
+
+namespace iarap {
+
+struct LaplacianProperties {
+  std::string kind;
+  bool symmetric = false;    // symmetry_error <= 1e-12
+  double symmetry_error = 0; // max |L - L^T| / max |L_ii|
+  // Weak: L(i,j) != 0 only for neighbours i, j (input or intrinsic). Strong: in addition the weights
+  // depend only on the geometry near i and j. Decided by construction, not measured: the intrinsic
+  // Delaunay triangulation is global (a flip far away can change an edge's trace and weight), so only
+  // the extrinsic cotan Laplacian is strongly local, and only when its sparsity is within input adjacency.
+  // (The iARAP matrix is measured equal to the cotan one, see iarap_laplacian.h, yet it is assembled from
+  // the global triangulation; the flag reports the construction, as the paper's Table 3 does.)
+  bool weakly_local = false, strongly_local = false;
+  bool sparsity_within_input_adjacency = false; // measured: nonzeros on input edges and the diagonal
+  bool sparsity_within_intrinsic_adjacency =
+      false; // measured against intrinsic edges (false when not computed)
+  // On a flat mesh (all vertices within 1e-12 * bbox diagonal of a plane): max over interior vertices of
+  // |(L x)_i|, |(L y)_i| for in-plane coordinates x, y, over max |L_ii| * bbox diagonal. NaN when not flat.
+  double linear_precision_residual = 0;
+  bool positive_weights = false;  // no wrong-signed off-diagonal entry
+  int negative_offdiag_count = 0; // wrong-signed: L(i,j) > 1e-12 max |L_ii| for i != j (our sign convention)
+  double negative_offdiag_max_abs = 0; // the largest such entry
+  double negative_offdiag_sum_abs = 0; // their sum
+  // x^T L x >= 0 for all x, i.e. the symmetric part (L + L^T)/2 has min_eigenvalue >= -1e-9 max |L_ii|.
+  bool psd = false;
+  double min_eigenvalue = 0; // smallest eigenvalue of (L + L^T)/2 (Spectra, shift-invert)
+  // Eigenvalues of L itself (they differ from the symmetric part's only for asymmetric L): a Gershgorin
+  // lower bound on their real parts, min_i (L_ii - sum_{j != i} |L_ij|) / max |L_ii|; >= 0 proves every
+  // eigenvalue has a non-negative real part. min_real_part: the smallest real part among the eigenvalues
+  // Spectra finds nearest to a shift below that bound (equals min_eigenvalue when L is symmetric).
+  double gershgorin_real_part_bound = 0;
+  double min_real_part = 0;
+  double row_sum_max_abs = 0;  // max_i |sum_j L_ij| (absolute)
+  double diagonal_max_abs = 0; // max |L_ii|, the scale of the relative figures
+};
+
+// Measures the properties of L (#V x #V) built for (V, F) with the given kind. V: #V x 3, F: #F x 3.
+// idt (the intrinsic Delaunay triangulation of (V, F)) sets the intrinsic adjacency; when null and the
+// kind needs it, it is computed. Throws SolverError when the eigenvalue solver fails.
+LaplacianProperties laplacian_properties(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
+                                         const Eigen::SparseMatrix<double>& L, const std::string& kind,
+                                         const IntrinsicDelaunay* idt);
+
+// Builds the operator of the given kind (laplacians.h) and measures it.
+LaplacianProperties laplacian_properties(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
+                                         LaplacianKind kind, const IntrinsicDelaunay* precomputed = nullptr);
+
+} // namespace iarap
