@@ -65,9 +65,16 @@ std::vector<FirstSegment> first_segments(const Eigen::MatrixXd& V, const Intrins
   return result;
 }
 
-Eigen::SparseMatrix<double> from_triplets(Eigen::Index num_vertices,
-                                          const std::vector<Eigen::Triplet<double>>& triplets) {
-  Eigen::SparseMatrix<double> L(num_vertices, num_vertices);
+// #V x #V matrix from the triplets emit(s, triplets) appends for each first segment s.
+template <typename Emit>
+Eigen::SparseMatrix<double> assemble(const Eigen::MatrixXd& V, const IntrinsicDelaunay& idt,
+                                     size_t entries_per_segment, Emit emit) {
+  const std::vector<FirstSegment> segments = first_segments(V, idt);
+  std::vector<Eigen::Triplet<double>> triplets;
+  triplets.reserve(entries_per_segment * segments.size());
+  for (const FirstSegment& s : segments)
+    emit(s, triplets);
+  Eigen::SparseMatrix<double> L(V.rows(), V.rows());
   L.setFromTriplets(triplets.begin(), triplets.end());
   return L;
 }
@@ -75,26 +82,20 @@ Eigen::SparseMatrix<double> from_triplets(Eigen::Index num_vertices,
 } // namespace
 
 Eigen::SparseMatrix<double> iarap_plus_laplacian(const Eigen::MatrixXd& V, const IntrinsicDelaunay& idt) {
-  const std::vector<FirstSegment> segments = first_segments(V, idt);
-  std::vector<Eigen::Triplet<double>> triplets;
-  triplets.reserve(3 * segments.size());
   // Row i gets omega (f_i - f_p) = omega beta^T f: the finite-volume flux through *e_ij, f_j replaced by f_p.
-  for (const FirstSegment& s : segments)
+  return assemble(V, idt, 3, [](const FirstSegment& s, std::vector<Eigen::Triplet<double>>& triplets) {
     for (int k = 0; k < s.n; ++k)
       triplets.emplace_back(s.i, s.index[k], s.omega * s.beta[k]);
-  return from_triplets(V.rows(), triplets);
+  });
 }
 
 Eigen::SparseMatrix<double> iarap_sym_laplacian(const Eigen::MatrixXd& V, const IntrinsicDelaunay& idt) {
-  const std::vector<FirstSegment> segments = first_segments(V, idt);
-  std::vector<Eigen::Triplet<double>> triplets;
-  triplets.reserve(9 * segments.size());
   // Hessian of (omega / 2) |V beta - R V_hat beta|^2: each end carries half the edge, as in Eq. 9.
-  for (const FirstSegment& s : segments)
+  return assemble(V, idt, 9, [](const FirstSegment& s, std::vector<Eigen::Triplet<double>>& triplets) {
     for (int r = 0; r < s.n; ++r)
       for (int k = 0; k < s.n; ++k)
         triplets.emplace_back(s.index[r], s.index[k], 0.5 * s.omega * s.beta[r] * s.beta[k]);
-  return from_triplets(V.rows(), triplets);
+  });
 }
 
 } // namespace iarap
