@@ -1,0 +1,274 @@
+// The ARAP class: arap_precompute once per mesh and constrained set, arap_solve for every new set of
+// targets. Heavy work runs without the GIL; a mutex keeps two Python threads off one solver at a time.
+#include "bindings.h"
+#include "numpy_arrays.h"
+
+#include "iarap/solver/arap.h"
+
+#include <pybind11/stl.h>
+
+#include <chrono>
+#include <memory>
+#include <mutex>
+#include <optional>
+
+namespace iarap::python {
+namespace {
+
+// One ARAP problem: the precomputed data, the last solve's report and how often L_ff was factorized.
+class ArapSolver {
+public:
+  ArapSolver(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const Eigen::VectorXi& fixed,
+             const ArapOptions& options)
+      : data_(arap_precompute(V, F, fixed, options)) {}
+
+  // Everything below locks mutex_; callers release the GIL first so that a waiting thread never holds it.
+  Eigen::MatrixXd solve(const Eigen::MatrixXd& targets, Eigen::MatrixXd U, const ArapSolveOptions& options) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    const auto start = std::chrono::steady_clock::now();
+    ArapReport report = arap_solve(data_, targets, U, options);
+    solve_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    report_ = std::move(report);
+    return U;
+  }
+
+  void set_fixed(const Eigen::VectorXi& fixed) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    arap_set_fixed(data_, fixed);
+    ++factorizations_;
+  }
+
+  template <typename Function> auto with_data(Function&& f) const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return f(data_);
+  }
+
+  std::optional<ArapReport> report() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return report_;
+  }
+  double solve_ms() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return solve_ms_;
+  }
+  int factorizations() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return factorizations_;
+  }
+
+private:
+  mutable std::mutex mutex_;
+  ArapData data_;
+  std::optional<ArapReport> report_;
+  double solve_ms_ = 0;
+  int factorizations_ = 1; // arap_precompute factorizes once
+};
+
+// Runs f(data) under the solver's lock with the GIL released and returns its (C++) result.
+template <typename Function> auto without_gil(const ArapSolver& solver, Function&& f) {
+  py::gil_scoped_release release;
+  return solver.with_data(std::forward<Function>(f));
+}
+
+Eigen::Index vertex_count(const ArapSolver& solver) {
+  return without_gil(solver, [](const ArapData& d) { return d.V.rows(); });
+}
+
+std::unique_ptr<ArapSolver> make_solver(const py::object& V, const py::object& F, const py::object& fixed,
+                                        const std::string& method, bool pin_unconstrained_components) {
+  const Eigen::MatrixXd positions = to_points(V, "V");
+  const Eigen::MatrixXi faces = to_faces(F, "F", positions.rows());
+  const Eigen::VectorXi constrained = to_indices(fixed, "fixed", positions.rows());
+  ArapOptions options;
+  options.method = parse_arap_method(method);
+  options.pin_unconstrained_components = pin_unconstrained_components;
+  py::gil_scoped_release release;
+  return std::make_unique<ArapSolver>(positions, faces, constrained, options);
+}
+
+py::array_t<double> solve_py(ArapSolver& solver, const py::object& targets, const py::object& U0,
+                             int iterations, double tolerance) {
+  const auto [n, fixed_count] =
+      without_gil(solver, [](const ArapData& d) { return std::make_pair(d.V.rows(), d.fixed.size()); });
+  const Eigen::MatrixXd target_rows = to_points(targets, "targets", true, fixed_count, "#fixed");
+  Eigen::MatrixXd U = U0.is_none()
+                          ? without_gil(solver, [](const ArapData& d) { return Eigen::MatrixXd(d.V); })
+                          : to_points(U0, "U0", true, n, "#V");
+  ArapSolveOptions options;
+  options.max_iterations = iterations;
+  options.tolerance = tolerance;
+  {
+    py::gil_scoped_release release;
+    U = solver.solve(target_rows, std::move(U), options);
+  }
+  return to_numpy(U);
+}
+
+py::object report_py(const ArapSolver& solver) {
+  std::optional<ArapReport> report;
+  double solve_ms = 0;
+  ArapPrecomputeTimings timings;
+  {
+    py::gil_scoped_release release;
+    report = solver.report();
+    solve_ms = solver.solve_ms();
+    timings = solver.with_data([](const ArapData& d) { return d.timings; });
+  }
+  if (!report)
+    return py::none();
+  py::dict d;
+  d["iterations"] = report->iterations;
+  d["converged"] = report->converged;
+  d["initial_energy"] = report->initial_energy;
+  d["energies"] = to_numpy(report->energies);
+  d["local_ms"] = report->local_ms;
+  d["global_ms"] = report->global_ms;
+  d["local_ms_per_iteration"] = to_numpy(report->local_ms_per_iteration);
+  d["global_ms_per_iteration"] = to_numpy(report->global_ms_per_iteration);
+  d["solve_ms"] = solve_ms;
+  d["intrinsic_ms"] = timings.intrinsic_ms;
+  d["assembly_ms"] = timings.assembly_ms;
+  d["factor_ms"] = timings.factor_ms;
+  return std::move(d);
+}
+
+py::array_t<double> rotations_py(const ArapSolver& solver) {
+  const std::vector<Eigen::Matrix3d> R =
+      without_gil(solver, [](const ArapData& d) { return std::vector<Eigen::Matrix3d>(arap_rotations(d)); });
+  py::array_t<double> out({static_cast<py::ssize_t>(R.size()), py::ssize_t{3}, py::ssize_t{3}});
+  auto o = out.mutable_unchecked<3>();
+  for (std::size_t v = 0; v < R.size(); ++v)
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j)
+        o(static_cast<py::ssize_t>(v), i, j) = R[v](i, j);
+  return out;
+}
+
+py::dict intrinsic_py(const ArapSolver& solver) {
+  const ArapIntrinsicSummary s = without_gil(solver, [](const ArapData& d) { return d.intrinsic; });
+  py::dict d;
+  d["flips"] = s.flips;
+  d["non_delaunay_before"] = s.non_delaunay_before;
+  d["non_delaunay_after"] = s.non_delaunay_after;
+  d["mollify_delta"] = s.mollify_delta;
+  d["intrinsic_edges"] = s.intrinsic_edges;
+  d["segments"] = s.segments;
+  return d;
+}
+
+// Applies f(data, U) to a checked #V x 3 U without the GIL.
+template <typename Function> auto on_positions(const ArapSolver& solver, const py::object& U, Function&& f) {
+  const Eigen::MatrixXd positions = to_points(U, "U", true, vertex_count(solver), "#V");
+  return without_gil(solver, [&](const ArapData& d) { return f(d, positions); });
+}
+
+} // namespace
+
+void bind_arap(py::module_& m) {
+  py::class_<ArapSolver>(m, "ARAP", R"(As-rigid-as-possible deformation of a triangle mesh.
+
+Set up once per constrained set, solve for many targets:
+
+    solver = iarap.ARAP(V, F, fixed=handles, method="iarap")
+    U = solver.solve(targets)            # targets[k] is where vertex fixed[k] goes
+    solver.report["energies"]            # energy after each iteration
+
+Methods: "iarap" (intrinsic ARAP, paper Eq. 9), "spokes-rims" (Chao et al. 2010, Eq. 2), "arap" (Sorkine
+and Alexa 2007, Eq. 1). New targets reuse the factorization of L_ff; assigning `fixed` refactorizes.
+Energies are in squared mesh units. Methods release the GIL; one solver serves one thread at a time.)")
+      .def(py::init(&make_solver), py::arg("V"), py::arg("F"), py::arg("fixed"), py::arg("method") = "iarap",
+           py::kw_only(), py::arg("pin_unconstrained_components") = false,
+           R"(Precomputes the elements of `method`, the system matrix L and the factorization of L_ff.
+
+V: (#V, 3) rest positions. F: (#F, 3) faces of a manifold, consistently oriented triangle mesh (boundary
+allowed). fixed: (#fixed,) distinct constrained vertex indices. pin_unconstrained_components: pin the first
+vertex of every connected component without a constrained vertex (else such a component raises SolverError).
+Raises ValueError (InputError, TopologyError) for bad arrays, indices or meshes; SolverError (a RuntimeError)
+for an unconstrained component or a failed factorization.)")
+      .def("solve", &solve_py, py::arg("targets"), py::arg("U0") = py::none(), py::arg("iterations") = 50,
+           py::arg("tolerance") = 1e-6,
+           R"(Deforms the mesh: returns U, float64 (#V, 3), with U[fixed] == targets.
+
+targets: (#fixed, 3) positions of the constrained vertices, in the order of `fixed`.
+U0: (#V, 3) initial guess (None: the rest positions); its constrained rows are replaced by the targets.
+iterations: at most this many local/global iterations (>= 0).
+tolerance: stop when one iteration lowers the energy by at most tolerance * energy; negative: always run
+`iterations` iterations. The run is described by `report`; rotations of U by `rotations`.)")
+      .def_property(
+          "fixed",
+          [](const ArapSolver& s) {
+            return to_numpy(without_gil(s, [](const ArapData& d) { return Eigen::VectorXi(d.fixed); }));
+          },
+          [](ArapSolver& s, const py::object& fixed) {
+            const Eigen::VectorXi constrained = to_indices(fixed, "fixed", vertex_count(s));
+            py::gil_scoped_release release;
+            s.set_fixed(constrained);
+          },
+          "(#fixed,) int64 constrained vertices. Assigning a new set refactorizes L_ff (only).")
+      .def_property_readonly("report", &report_py,
+                             R"(The last solve as a dict (None before the first solve): iterations, converged,
+initial_energy, energies (float64 (iterations,), energy after each iteration), local_ms, global_ms,
+local_ms_per_iteration, global_ms_per_iteration, solve_ms (the whole C++ solve), and the precomputation's
+intrinsic_ms, assembly_ms, factor_ms. Times in milliseconds.)")
+      .def_property_readonly(
+          "rotations", &rotations_py,
+          "float64 (#V, 3, 3): the rotation of each vertex's cell fitted to the last solution "
+          "(identities before the first solve).")
+      .def_property_readonly(
+          "method",
+          [](const ArapSolver& s) {
+            return arap_method_name(without_gil(s, [](const ArapData& d) { return d.method; }));
+          },
+          "The energy: \"iarap\", \"spokes-rims\" or \"arap\".")
+      .def_property_readonly(
+          "factorization",
+          [](const ArapSolver& s) {
+            return factorization_name(
+                without_gil(s, [](const ArapData& d) { return arap_factorization(d); }));
+          },
+          "The factorization L_ff got: \"cholmod-supernodal-llt\", \"simplicial-ldlt\" or \"empty\".")
+      .def_property_readonly("factorizations", &ArapSolver::factorizations,
+                             "How many times L_ff was factorized (1 after construction, +1 per new `fixed`).")
+      .def_property_readonly(
+          "pinned",
+          [](const ArapSolver& s) {
+            return to_numpy(without_gil(s, [](const ArapData& d) { return Eigen::VectorXi(d.pinned); }));
+          },
+          "(#pinned,) vertices pinned by pin_unconstrained_components (empty otherwise).")
+      .def_property_readonly(
+          "intrinsic", &intrinsic_py,
+          "Summary of the intrinsic Delaunay triangulation (iarap only; zeros otherwise): "
+          "flips, non_delaunay_before, non_delaunay_after, mollify_delta, intrinsic_edges, "
+          "segments.")
+      .def(
+          "energy",
+          [](const ArapSolver& s, const py::object& U) {
+            return on_positions(
+                s, U, [](const ArapData& d, const Eigen::MatrixXd& P) { return arap_energy(d, P); });
+          },
+          py::arg("U"), "The energy of positions U (#V, 3), minimized over rotations (squared mesh units).")
+      .def(
+          "cell_energy",
+          [](const ArapSolver& s, const py::object& U) {
+            return to_numpy(on_positions(
+                s, U, [](const ArapData& d, const Eigen::MatrixXd& P) { return arap_cell_energy(d, P); }));
+          },
+          py::arg("U"),
+          "float64 (#V,): the energy of each vertex's cell at U (#V, 3); they sum to energy(U).")
+      .def(
+          "gradient",
+          [](const ArapSolver& s, const py::object& U) {
+            return to_numpy(on_positions(
+                s, U, [](const ArapData& d, const Eigen::MatrixXd& P) { return arap_gradient(d, P); }));
+          },
+          py::arg("U"), "float64 (#V, 3): dE/dU at U (#V, 3) (Eq. 14).")
+      .def(
+          "system_matrix",
+          [](const ArapSolver& s) {
+            return to_csr(without_gil(s, [](const ArapData& d) { return arap_system_matrix(d); }));
+          },
+          "scipy.sparse.csr_matrix (#V, #V): the matrix L of the global step.");
+  m.attr("ARAP_METHODS") = py::make_tuple("iarap", "spokes-rims", "arap");
+}
+
+} // namespace iarap::python

@@ -1,0 +1,95 @@
+// Mesh files and mesh validation: read_mesh, write_mesh, check_mesh.
+#include "bindings.h"
+#include "numpy_arrays.h"
+
+#include "iarap/io/read_mesh.h"
+#include "iarap/io/write_mesh.h"
+#include "iarap/mesh/validate.h"
+
+#include <pybind11/stl.h>
+
+namespace iarap::python {
+namespace {
+
+py::tuple read_mesh_py(const py::object& path) {
+  const std::string file = to_path(path);
+  MeshData mesh;
+  {
+    py::gil_scoped_release release;
+    mesh = read_mesh(file);
+  }
+  return py::make_tuple(to_numpy(mesh.V), to_numpy(mesh.F));
+}
+
+void write_mesh_py(const py::object& path, const py::object& V, const py::object& F) {
+  const std::string file = to_path(path);
+  const Eigen::MatrixXd positions = to_points(V, "V");
+  const Eigen::MatrixXi faces = to_faces(F, "F", positions.rows());
+  py::gil_scoped_release release;
+  write_mesh(file, positions, faces);
+}
+
+py::dict report_to_dict(const MeshReport& report) {
+  py::dict d;
+  d["usable"] = report.usable();
+  d["vertices"] = report.vertices;
+  d["faces"] = report.faces;
+  d["components"] = report.components;
+  d["boundary_loops"] = report.boundary_loops;
+  d["genus"] = report.genus ? py::object(py::int_(*report.genus)) : py::object(py::none());
+  d["non_manifold_edges"] = report.non_manifold_edges;
+  d["non_manifold_vertices"] = report.non_manifold_vertices;
+  d["zero_area_faces"] = report.zero_area_faces;
+  d["unreferenced_vertices"] = report.unreferenced_vertices;
+  d["non_delaunay_edges"] = report.non_delaunay_edges;
+  d["inconsistently_oriented_edges"] = report.inconsistently_oriented_edges;
+  d["repeated_vertex_faces"] = report.repeated_vertex_faces;
+  d["out_of_range_indices"] = report.out_of_range_indices;
+  d["non_finite_coordinates"] = report.non_finite_coordinates;
+  d["coincident_vertices"] = report.coincident_vertices;
+  d["boundary_edges"] = report.boundary_edges;
+  d["bbox_diagonal"] = report.bbox_diagonal;
+  d["errors"] = report.errors;
+  d["warnings"] = report.warnings;
+  return d;
+}
+
+py::dict check_mesh_py(const py::object& V, const py::object& F) {
+  // The validator reports NaN coordinates, bad indices and wrong column counts itself; only what cannot
+  // be represented (not 2-D, not numeric, indices beyond int) is a ValueError here.
+  const Eigen::MatrixXd positions = to_points(V, "V", /*require_finite=*/false);
+  const Eigen::MatrixXi faces = to_faces(F, "F", /*vertex_count=*/-1, /*columns=*/-1);
+  MeshReport report;
+  {
+    py::gil_scoped_release release;
+    report = check_mesh(positions, faces);
+  }
+  return report_to_dict(report);
+}
+
+} // namespace
+
+void bind_io(py::module_& m) {
+  m.def("read_mesh", &read_mesh_py, py::arg("path"),
+        R"(Reads a triangle mesh from an .obj, .off, .ply (ASCII or binary) or .stl file.
+
+Returns (V, F): V float64 (#V, 3) positions in the file's units and vertex order, F int64 (#F, 3) 0-based
+vertex indices (polygons fan-triangulated). STL vertices are welded by identical position.
+Raises InputError (a ValueError) naming path:line for unreadable or malformed files.)");
+  m.def("write_mesh", &write_mesh_py, py::arg("path"), py::arg("V"), py::arg("F"),
+        R"(Writes V (#V, 3) and F (#F, 3) to an .obj, .off or .ply (ASCII) file, atomically, coordinates
+printed with 17 significant digits (a read gives back the same doubles).
+Raises ValueError for bad arrays or an unsupported extension or an unwritable path.)");
+  m.def("check_mesh", &check_mesh_py, py::arg("V"), py::arg("F"),
+        R"(Validation report of a triangle mesh before ARAP, as a dict.
+
+V (#V, 3) positions (NaN / Inf allowed: they are reported), F (#F, k) integer vertex indices (out-of-range
+entries and k != 3 are reported). Keys: usable (bool: no errors), vertices, faces, components,
+boundary_loops, genus (None when non-manifold or non-orientable), non_manifold_edges,
+non_manifold_vertices, zero_area_faces, unreferenced_vertices, non_delaunay_edges,
+inconsistently_oriented_edges, repeated_vertex_faces, out_of_range_indices, non_finite_coordinates,
+coincident_vertices, boundary_edges, bbox_diagonal (mesh units), errors and warnings (lists of messages
+naming the first offending element).)");
+}
+
+} // namespace iarap::python

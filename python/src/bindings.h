@@ -1,0 +1,20 @@
+// The parts of the `iarap` Python module, each defined in its own bind_*.cpp and called from module.cpp.
+#pragma once
+#include <pybind11/pybind11.h>
+
+namespace iarap::python {
+
+namespace py = pybind11;
+
+// InputError, TopologyError (ValueError subclasses), SolverError (a RuntimeError subclass), Error.
+void bind_errors(py::module_& m);
+// read_mesh, write_mesh, check_mesh.
+void bind_io(py::module_& m);
+// The ARAP class (precompute once, solve often).
+void bind_arap(py::module_& m);
+// laplacian(V, F, kind) as scipy.sparse.csr_matrix.
+void bind_laplacian(py::module_& m);
+// intrinsic_delaunay(V, F): intrinsic triangulation, traced segments and B.
+void bind_intrinsic(py::module_& m);
+
+} // namespace iarap::python
