@@ -71,13 +71,25 @@ int krylov_dimension(Eigen::Index n, int nev) {
   return static_cast<int>(std::min<Eigen::Index>(n, std::max(2 * nev + 1, 30)));
 }
 
-// Smallest eigenvalue of the symmetric S: the one nearest to a shift below the whole spectrum.
-double smallest_eigenvalue(const Eigen::SparseMatrix<double>& S, double scale) {
+// True when S + margin I is positive definite, i.e. every eigenvalue of S exceeds -margin: by Sylvester's
+// law of inertia, when its LDL^T factorization has a positive D.
+bool exceeds(const Eigen::SparseMatrix<double>& S, double margin) {
+  Eigen::SparseMatrix<double> I(S.rows(), S.cols());
+  I.setIdentity();
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(S + margin * I);
+  return ldlt.info() == Eigen::Success && (ldlt.vectorD().array() > 0.0).all();
+}
+
+// Smallest eigenvalue of the symmetric S: the one nearest to a shift below the whole spectrum. When S is
+// PSD up to margin the shift -margin is below it and next to the (near-)zero eigenvalue, so shift-invert
+// converges in a few steps; otherwise the Gershgorin bound gives a (slower) shift below the spectrum.
+double smallest_eigenvalue(const Eigen::SparseMatrix<double>& S, double scale, bool psd_up_to_margin,
+                           double margin) {
   if (S.rows() < 3) {
     Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> dense{Eigen::MatrixXd(S)};
     return dense.eigenvalues().minCoeff();
   }
-  const double sigma = std::min(gershgorin_lower_bound(S), 0.0) - 1e-3 * scale;
+  const double sigma = psd_up_to_margin ? -margin : std::min(gershgorin_lower_bound(S), 0.0) - 1e-3 * scale;
   SymShiftInverse op(S);
   Spectra::SymEigsShiftSolver<SymShiftInverse> eigs(op, 1, krylov_dimension(S.rows(), 1), sigma);
   eigs.init();
@@ -208,8 +220,8 @@ LaplacianProperties laplacian_properties(const Eigen::MatrixXd& V, const Eigen::
   p.linear_precision_residual = linear_precision_residual(V, F, L, scale);
 
   const Eigen::SparseMatrix<double> S = 0.5 * (L + Lt);
-  p.min_eigenvalue = V.rows() == 0 ? 0.0 : smallest_eigenvalue(S, scale);
-  p.psd = p.min_eigenvalue >= -kPsdTolerance * scale;
+  p.psd = V.rows() == 0 || exceeds(S, kPsdTolerance * scale);
+  p.min_eigenvalue = V.rows() == 0 ? 0.0 : smallest_eigenvalue(S, scale, p.psd, kPsdTolerance * scale);
   const double bound = gershgorin_lower_bound(L);
   p.gershgorin_real_part_bound = bound / scale;
   if (p.symmetric || V.rows() == 0)

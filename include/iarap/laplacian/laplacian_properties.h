@@ -31,7 +31,8 @@ struct LaplacianProperties {
   int negative_offdiag_count = 0; // wrong-signed: L(i,j) > 1e-12 max |L_ii| for i != j (our sign convention)
   double negative_offdiag_max_abs = 0; // the largest such entry
   double negative_offdiag_sum_abs = 0; // their sum
-  // x^T L x >= 0 for all x, i.e. the symmetric part (L + L^T)/2 has min_eigenvalue >= -1e-9 max |L_ii|.
+  // x^T L x >= 0 for all x, i.e. every eigenvalue of the symmetric part (L + L^T)/2 is >= -1e-9 max |L_ii|:
+  // decided exactly by the inertia of an LDL^T factorization of (L + L^T)/2 + 1e-9 max |L_ii| I.
   bool psd = false;
   double min_eigenvalue = 0; // smallest eigenvalue of (L + L^T)/2 (Spectra, shift-invert)
   // Eigenvalues of L itself (they differ from the symmetric part's only for asymmetric L): a Gershgorin
