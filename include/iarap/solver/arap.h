@@ -1,0 +1,139 @@
+// As-rigid-as-possible deformation with the three energies of the paper: original ARAP (Eq. 1),
+// spokes-and-rims (Eq. 2) and intrinsic ARAP (Eq. 9), by local/global block descent (Sec. 4.2).
+//
+// Set up once, solve often (libigl style):
+//   ArapData data = arap_precompute(V, F, fixed);          // elements, L, factorization of L_ff
+//   Eigen::MatrixXd U = V;                                  // initial guess
+//   ArapReport report = arap_solve(data, targets, U);       // U now holds the deformation
+// New targets for the same fixed set reuse the factorization; arap_set_fixed refactorizes.
+#pragma once
+#include "iarap/intrinsic/intrinsic_delaunay.h"
+#include "iarap/solver/arap_elements.h"
+#include "iarap/solver/sparse_cholesky.h"
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+#include <string>
+#include <vector>
+
+namespace iarap {
+
+enum class ArapMethod {
+  Arap,       // original ARAP (Sorkine & Alexa 2007), cotan weights, negative ones kept (Eq. 1)
+  SpokesRims, // spokes-and-rims (Chao et al. 2010), per-triangle cotangents (Eq. 2)
+  Iarap,      // intrinsic ARAP: segments of the traced intrinsic Delaunay edges (Eq. 9, 11)
+};
+
+// "arap" | "spokes-rims" | "iarap"; anything else throws InputError naming the value and the choices.
+ArapMethod parse_arap_method(const std::string& name);
+// The inverse of parse_arap_method.
+std::string arap_method_name(ArapMethod method);
+
+struct ArapOptions {
+  ArapMethod method = ArapMethod::Iarap;
+  IntrinsicOptions intrinsic; // used by ArapMethod::Iarap only
+  // A connected component without a constrained vertex makes L_ff singular. false: SolverError naming
+  // it; true: its first (smallest-index) vertex is pinned where the initial guess of arap_solve puts it.
+  bool pin_unconstrained_components = false;
+};
+
+struct ArapPrecomputeTimings {
+  double intrinsic_ms = 0; // intrinsic Delaunay flips, tracing and segments (iARAP only)
+  double assembly_ms = 0;  // elements and L
+  double factor_ms = 0;    // components check, L_ff / L_fc extraction and factorization
+};
+
+// What the intrinsic triangulation looked like (iARAP only; zeros otherwise).
+struct ArapIntrinsicSummary {
+  long flips = 0;
+  int non_delaunay_before = 0;
+  int non_delaunay_after = 0;
+  double mollify_delta = 0.0;
+  Eigen::Index intrinsic_edges = 0;
+  Eigen::Index segments = 0;
+};
+
+// Everything arap_solve needs, owned by value (copyable: a copy refactorizes; movable: cheap).
+// Fields are public for inspection; change them only through the functions below.
+struct ArapData {
+  ArapMethod method = ArapMethod::Iarap;
+  bool pin_unconstrained_components = false;
+  Eigen::MatrixXd V;            // #V x 3 rest positions
+  Eigen::MatrixXi F;            // #F x 3 faces
+  ArapElements elements;        // the variant's elements (arap_elements.h)
+  Eigen::SparseMatrix<double> L; // #V x #V system matrix, sum_e |cells(e)| w_e b_e b_e^T
+  Eigen::VectorXi component;    // #V connected component of each vertex
+  int component_count = 0;
+  Eigen::VectorXi fixed;        // #fixed user-constrained vertices, in the order of the targets rows
+  Eigen::VectorXi pinned;       // vertices pinned by pin_unconstrained_components (empty otherwise)
+  Eigen::VectorXi free;         // #free the unconstrained vertices, increasing
+  Eigen::VectorXi free_slot;    // #V position of v in free, or -1 for constrained vertices
+  Eigen::SparseMatrix<double> L_fc; // #free x (#fixed + #pinned): coupling to the constrained vertices
+  SparseCholesky solver;        // factorization of L_ff (#free x #free)
+  std::vector<Eigen::Matrix3d> R; // #V cell rotations fitted to the last iterate of arap_solve
+  ArapPrecomputeTimings timings;
+  ArapIntrinsicSummary intrinsic;
+};
+
+// Builds the elements of options.method on the rest mesh (V #V x 3, F #F x 3, a manifold triangle mesh),
+// assembles L and factorizes L_ff for the constrained vertices `fixed` (#fixed, 0-based).
+// Throws InputError (bad shapes, face indices, non-finite V, bad fixed set: see arap_set_fixed),
+// TopologyError (non-manifold edge, degenerate face without mollification), SolverError (a component
+// without constrained vertex, failed factorization).
+ArapData arap_precompute(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const Eigen::VectorXi& fixed,
+                         const ArapOptions& options = {});
+
+// Replaces the constrained set and refactorizes L_ff only. Throws InputError for an empty set, an index
+// out of range or a duplicate (naming the position and the index), SolverError for a connected component
+// without constrained vertex (naming the component id, its vertex count and one vertex) unless
+// pin_unconstrained_components. On a throw, data keeps its previous constrained set.
+void arap_set_fixed(ArapData& data, const Eigen::VectorXi& fixed);
+
+struct ArapSolveOptions {
+  int max_iterations = 50;
+  // Stop when E_prev - E <= tolerance * |E_prev| (relative energy decrease) or E == 0. A negative
+  // tolerance disables the rule: exactly max_iterations iterations (benchmarks, stability tests).
+  double tolerance = 1e-6;
+};
+
+struct ArapReport {
+  int iterations = 0;           // global steps taken
+  double initial_energy = 0;    // E of the initial guess once the constrained rows are set to the targets
+  std::vector<double> energies; // E(U_k) = min_R energy after each iteration k (size iterations)
+  double local_ms = 0;          // all local steps, including the one that evaluates the last iterate
+  double global_ms = 0;         // all global steps (right-hand side and solve)
+  bool converged = false;       // the tolerance rule stopped the iteration (false: max_iterations)
+  std::vector<double> local_ms_per_iteration;  // the local step evaluating U_k (size iterations)
+  std::vector<double> global_ms_per_iteration; // the global step producing U_k (size iterations)
+};
+
+// Runs local/global iterations. targets: #fixed x 3 positions of data.fixed (same order). U: #V x 3,
+// in: the initial guess (its constrained rows are overwritten by the targets first), out: the result.
+// Iteration k: rhs from the rotations fitted to U_{k-1} (Eq. 16), U_k,f = L_ff^{-1}(rhs_f - L_fc U_c),
+// then the local step on U_k gives E(U_k) and the rotations for the next iteration.
+// data.R holds the rotations of the returned U. Throws InputError for a wrong targets / U shape or a
+// non-finite entry (naming the row), negative max_iterations or a NaN tolerance; SolverError when the energy
+// becomes non-finite.
+ArapReport arap_solve(ArapData& data, const Eigen::MatrixXd& targets, Eigen::MatrixXd& U,
+                      const ArapSolveOptions& options = {});
+
+// E(U) = min_R sum_e sum_{c in cells(e)} (w_e / 2) ||U^T b_e - R_c s_hat_e||^2 for U #V x 3.
+double arap_energy(const ArapData& data, const Eigen::MatrixXd& U);
+
+// #V per-cell energies of U (they sum to arap_energy), e.g. for colour maps.
+Eigen::VectorXd arap_cell_energy(const ArapData& data, const Eigen::MatrixXd& U);
+
+// dE/dU (#V x 3) = L U - rhs(R*(U)) with R*(U) the optimal rotations (Eq. 14; the envelope theorem makes
+// it the gradient of the minimized energy).
+Eigen::MatrixXd arap_gradient(const ArapData& data, const Eigen::MatrixXd& U);
+
+// The #V cell rotations fitted to the last iterate of arap_solve (identity after arap_precompute).
+const std::vector<Eigen::Matrix3d>& arap_rotations(const ArapData& data);
+
+// The #V x #V system matrix L of the global step.
+const Eigen::SparseMatrix<double>& arap_system_matrix(const ArapData& data);
+
+// Which factorization L_ff got (CHOLMOD LLT, or LDLT when L_ff is not positive definite).
+FactorizationKind arap_factorization(const ArapData& data);
+
+} // namespace iarap

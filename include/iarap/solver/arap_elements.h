@@ -1,0 +1,61 @@
+// The weighted edge elements shared by the three ARAP energies (paper Eq. 1, 2, 9), as flat arrays.
+//
+// Every variant is a set of rotation cells (one per vertex) and elements e, each with a sparse
+// vector b_e over the input vertices (2 or 3 non-zeros summing to 0), a rest vector s_hat_e = V_rest^T b_e,
+// a weight w_e and the cells whose rotation it is compared against:
+//   E(V) = min_R sum_e sum_{c in cells(e)} (w_e / 2) || V^T b_e - R_c s_hat_e ||^2.
+// (An element seen from its other end has -b and -s_hat; the sign cancels.)
+#pragma once
+#include "iarap/intrinsic/intrinsic_delaunay.h"
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+#include <vector>
+
+namespace iarap {
+
+struct ArapElements {
+  using IndexRows = Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor>;
+  using ValueRows = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
+
+  int num_vertices = 0;    // #V; also the number of rotation cells
+  IndexRows b_index;       // #E x 3 vertices of b_e; an unused slot repeats slot 0 with value 0
+  ValueRows b_value;       // #E x 3 coefficients of b_e (sum 0)
+  ValueRows s_hat;         // #E x 3 rest vectors V_rest^T b_e (Eq. 8), summed in slot order like V^T b_e
+  Eigen::VectorXd w;       // #E weights; negative where the variant says so (never clamped)
+  std::vector<int> cell_start;         // #E + 1: cells of element e are cell[cell_start[e] .. cell_start[e+1])
+  std::vector<int> cell;               // cell (vertex) indices; a cell may repeat (intrinsic loop edges)
+  std::vector<int> cell_element_start; // #V + 1: CSR transpose, the elements of cell c (with repetition)
+  std::vector<int> cell_element;
+  std::vector<int> vertex_slot_start;  // #V + 1: where vertex v is a non-zero of some b_e ...
+  std::vector<int> vertex_slot;        // ... as 3 * e + slot; lets the right-hand side be gathered per vertex
+
+  Eigen::Index size() const { return w.size(); }
+};
+
+// Checks a rest mesh for the builders: V #V x 3 finite, F #F x 3 with indices in 0..#V-1.
+// Throws InputError naming the vertex or the face and index.
+void check_arap_mesh(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F);
+
+// Original ARAP (Eq. 1): one element per undirected mesh edge (i, j), b = e_j - e_i, cells {i, j},
+// w_ij = (cot a + cot b) / 2 (one term on boundary edges), negative on non-Delaunay edges.
+// Throws TopologyError naming the edge when it has more than two faces, or the face when a face is
+// degenerate (non-finite cotangent); InputError for bad shapes or face indices.
+ArapElements arap_edge_elements(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F);
+
+// Spokes-and-rims (Chao et al. 2010, Eq. 2): one element per (face, edge) pair, w = cot(opposite angle) / 2,
+// cells = the face's three vertices. Throws TopologyError naming a degenerate face; InputError for bad input.
+ArapElements spokes_rims_elements(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F);
+
+// iARAP (Eq. 9, 11): one element per segment of a traced intrinsic Delaunay edge, b and w = w_ij |e|/|s|
+// from the segments, cells = the two endpoints of the segment's intrinsic edge. s_hat is recomputed as
+// V^T b so that the undeformed mesh has exactly zero energy. V is the rest mesh the triangulation was
+// built on; zero-length segments (b = 0) are left out. Throws InputError when the segments do not match V
+// or the triangulation.
+ArapElements iarap_elements(const Eigen::MatrixXd& V, const IntrinsicDelaunay& intrinsic);
+
+// The system matrix of the global step, L = sum_e |cells(e)| w_e b_e b_e^T (#V x #V, Eq. 16-17):
+// 2 x cotan Laplacian for original ARAP, 3 x for spokes-and-rims, 2 B^T D_w B for iARAP.
+Eigen::SparseMatrix<double> element_system_matrix(const ArapElements& elements);
+
+} // namespace iarap

@@ -1,0 +1,52 @@
+// Factorization of a sparse symmetric system matrix, reused for many right-hand sides (the ARAP global step).
+#pragma once
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+#include <memory>
+#include <string>
+
+namespace iarap {
+
+// Which factorization a SparseCholesky ended up with.
+enum class FactorizationKind {
+  None,                 // nothing factorized yet
+  Empty,                // a 0 x 0 matrix (e.g. every vertex constrained): solves return 0 rows
+  CholmodSupernodalLLT, // CHOLMOD supernodal Cholesky: the matrix is positive definite
+  SimplicialLDLT,       // Eigen's LDL^T: the fallback for symmetric matrices that are not positive definite
+};
+
+// "none", "empty", "cholmod-supernodal-llt", "simplicial-ldlt".
+std::string factorization_name(FactorizationKind kind);
+
+// Owns the factorization of a symmetric matrix A (only its lower triangle is read). CHOLMOD stays
+// behind a pimpl so that no public header includes SuiteSparse. A value type: copying refactorizes the
+// stored matrix, moving is cheap.
+class SparseCholesky {
+public:
+  SparseCholesky();
+  // Factorizes A; see factorize().
+  explicit SparseCholesky(const Eigen::SparseMatrix<double>& A);
+  SparseCholesky(const SparseCholesky& other);
+  SparseCholesky& operator=(const SparseCholesky& other);
+  SparseCholesky(SparseCholesky&&) noexcept;
+  SparseCholesky& operator=(SparseCholesky&&) noexcept;
+  ~SparseCholesky();
+
+  // Factorizes the n x n symmetric A: CHOLMOD supernodal LLT first; if A is not positive definite,
+  // Eigen's SimplicialLDLT. Throws SolverError when A is not square, has non-finite entries, or both
+  // factorizations fail (a zero or numerically zero pivot: A is singular); the object is then empty.
+  void factorize(const Eigen::SparseMatrix<double>& A);
+
+  // X with A X = B for B n x k (all columns in one call). Throws SolverError when nothing is factorized
+  // or B has the wrong number of rows.
+  Eigen::MatrixXd solve(const Eigen::MatrixXd& B) const;
+
+  FactorizationKind kind() const;
+  Eigen::Index rows() const;
+
+private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+} // namespace iarap

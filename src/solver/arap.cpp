@@ -1,0 +1,242 @@
+#include "iarap/solver/arap.h"
+
+#include "iarap/core/errors.h"
+#include "iarap/mesh/connected_components.h"
+#include "iarap/solver/arap_rhs.h"
+#include "iarap/solver/fit_rotations.h"
+
+#include <chrono>
+#include <cmath>
+#include <string>
+
+namespace iarap {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double ms_since(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+void check_positions(const Eigen::MatrixXd& U, Eigen::Index rows, const std::string& what) {
+  if (U.rows() != rows || U.cols() != 3)
+    throw InputError("ARAP: " + what + " must be " + std::to_string(rows) + " x 3, got " + std::to_string(U.rows()) +
+                     " x " + std::to_string(U.cols()));
+  for (Eigen::Index r = 0; r < rows; ++r)
+    if (!U.row(r).allFinite()) throw InputError("ARAP: " + what + " row " + std::to_string(r) + " is not finite");
+}
+
+} // namespace
+
+ArapMethod parse_arap_method(const std::string& name) {
+  if (name == "arap") return ArapMethod::Arap;
+  if (name == "spokes-rims") return ArapMethod::SpokesRims;
+  if (name == "iarap") return ArapMethod::Iarap;
+  throw InputError("unknown ARAP method '" + name + "'; expected arap, spokes-rims or iarap");
+}
+
+std::string arap_method_name(ArapMethod method) {
+  switch (method) {
+  case ArapMethod::Arap: return "arap";
+  case ArapMethod::SpokesRims: return "spokes-rims";
+  case ArapMethod::Iarap: return "iarap";
+  }
+  return "unknown";
+}
+
+ArapData arap_precompute(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const Eigen::VectorXi& fixed,
+                         const ArapOptions& options) {
+  check_arap_mesh(V, F);
+  ArapData data;
+  data.method = options.method;
+  data.pin_unconstrained_components = options.pin_unconstrained_components;
+  data.V = V;
+  data.F = F;
+
+  auto start = Clock::now();
+  switch (options.method) {
+  case ArapMethod::Arap: data.elements = arap_edge_elements(V, F); break;
+  case ArapMethod::SpokesRims: data.elements = spokes_rims_elements(V, F); break;
+  case ArapMethod::Iarap: {
+    const IntrinsicDelaunay intrinsic = intrinsic_delaunay(V, F, options.intrinsic);
+    data.timings.intrinsic_ms = ms_since(start);
+    start = Clock::now();
+    data.elements = iarap_elements(V, intrinsic);
+    const IntrinsicTriangulation& t = intrinsic.triangulation;
+    data.intrinsic = {t.flips,      t.non_delaunay_before, t.non_delaunay_after, t.mollify_delta,
+                      t.E.rows(), intrinsic.segments.edge.size()};
+    break;
+  }
+  }
+  data.L = element_system_matrix(data.elements);
+  data.timings.assembly_ms = ms_since(start);
+
+  data.component = vertex_components(F, static_cast<int>(V.rows()), &data.component_count);
+  data.R.assign(static_cast<size_t>(V.rows()), Eigen::Matrix3d::Identity());
+  arap_set_fixed(data, fixed);
+  return data;
+}
+
+void arap_set_fixed(ArapData& data, const Eigen::VectorXi& fixed) {
+  const auto start = Clock::now();
+  const int n = static_cast<int>(data.V.rows());
+  if (fixed.size() == 0) throw InputError("ARAP: the constrained (fixed) vertex set is empty");
+  // position in the constrained list [fixed; pinned], or -1 for a free vertex
+  std::vector<int> constrained_slot(static_cast<size_t>(n), -1);
+  for (Eigen::Index k = 0; k < fixed.size(); ++k) {
+    const int v = fixed(k);
+    if (v < 0 || v >= n)
+      throw InputError("ARAP: fixed[" + std::to_string(k) + "] = " + std::to_string(v) + " is out of range; mesh has " +
+                       std::to_string(n) + " vertices");
+    if (constrained_slot[v] >= 0)
+      throw InputError("ARAP: fixed[" + std::to_string(k) + "] = " + std::to_string(v) + " repeats fixed[" +
+                       std::to_string(constrained_slot[v]) + "]");
+    constrained_slot[v] = static_cast<int>(k);
+  }
+
+  // A component with no constrained vertex leaves L_ff singular (translations are free).
+  std::vector<int> constrained_in(static_cast<size_t>(data.component_count), 0);
+  std::vector<int> size_of(static_cast<size_t>(data.component_count), 0);
+  std::vector<int> first_of(static_cast<size_t>(data.component_count), -1);
+  for (int v = 0; v < n; ++v) {
+    const int c = data.component(v);
+    ++size_of[c];
+    if (first_of[c] < 0) first_of[c] = v;
+    if (constrained_slot[v] >= 0) ++constrained_in[c];
+  }
+  std::vector<int> pinned;
+  for (int c = 0; c < data.component_count; ++c) {
+    if (constrained_in[c] > 0) continue;
+    if (!data.pin_unconstrained_components)
+      throw SolverError("ARAP: connected component " + std::to_string(c) + " (" + std::to_string(size_of[c]) +
+                        " vertices, e.g. vertex " + std::to_string(first_of[c]) +
+                        ") has no constrained vertex, so the system is singular; constrain one of its vertices "
+                        "or enable pin_unconstrained_components");
+    constrained_slot[first_of[c]] = static_cast<int>(fixed.size() + static_cast<Eigen::Index>(pinned.size()));
+    pinned.push_back(first_of[c]);
+  }
+
+  Eigen::VectorXi free_slot = Eigen::VectorXi::Constant(n, -1);
+  std::vector<int> free;
+  free.reserve(static_cast<size_t>(n));
+  for (int v = 0; v < n; ++v)
+    if (constrained_slot[v] < 0) {
+      free_slot(v) = static_cast<int>(free.size());
+      free.push_back(v);
+    }
+  const int num_constrained = static_cast<int>(fixed.size()) + static_cast<int>(pinned.size());
+
+  // Split L by columns into L_ff and L_fc (rows: free vertices only).
+  std::vector<Eigen::Triplet<double>> ff, fc;
+  for (int j = 0; j < data.L.outerSize(); ++j)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(data.L, j); it; ++it) {
+      const int i = static_cast<int>(it.row());
+      if (free_slot(i) < 0) continue;
+      if (free_slot(j) >= 0)
+        ff.emplace_back(free_slot(i), free_slot(j), it.value());
+      else
+        fc.emplace_back(free_slot(i), constrained_slot[j], it.value());
+    }
+  const int num_free = static_cast<int>(free.size());
+  Eigen::SparseMatrix<double> L_ff(num_free, num_free), L_fc(num_free, num_constrained);
+  L_ff.setFromTriplets(ff.begin(), ff.end());
+  L_fc.setFromTriplets(fc.begin(), fc.end());
+  SparseCholesky solver(L_ff); // throws SolverError; data is untouched until here
+
+  data.solver = std::move(solver);
+  data.L_fc = std::move(L_fc);
+  data.fixed = fixed;
+  data.pinned = Eigen::Map<const Eigen::VectorXi>(pinned.data(), static_cast<Eigen::Index>(pinned.size()));
+  data.free = Eigen::Map<const Eigen::VectorXi>(free.data(), num_free);
+  data.free_slot = std::move(free_slot);
+  data.timings.factor_ms = ms_since(start);
+}
+
+ArapReport arap_solve(ArapData& data, const Eigen::MatrixXd& targets, Eigen::MatrixXd& U,
+                      const ArapSolveOptions& options) {
+  if (options.max_iterations < 0)
+    throw InputError("ARAP: max_iterations must be >= 0, got " + std::to_string(options.max_iterations));
+  if (std::isnan(options.tolerance)) throw InputError("ARAP: tolerance is NaN");
+  check_positions(targets, data.fixed.size(), "targets");
+  check_positions(U, data.V.rows(), "initial guess U");
+  const ArapElements& el = data.elements;
+
+  // Constrained positions in L_fc's column order: targets, then pinned vertices where the guess has them.
+  Eigen::MatrixXd U_c(data.fixed.size() + data.pinned.size(), 3);
+  U_c.topRows(data.fixed.size()) = targets;
+  for (Eigen::Index k = 0; k < data.pinned.size(); ++k) U_c.row(data.fixed.size() + k) = U.row(data.pinned(k));
+  for (Eigen::Index k = 0; k < data.fixed.size(); ++k) U.row(data.fixed(k)) = targets.row(k);
+  const Eigen::MatrixXd Lfc_Uc = data.L_fc * U_c;
+
+  ArapReport report;
+  ArapElements::ValueRows s, q;
+  Eigen::VectorXd cell_energy;
+  Eigen::MatrixXd rhs, B(data.free.size(), 3);
+
+  auto start = Clock::now();
+  double energy = fit_rotations(el, U, s, data.R, cell_energy);
+  report.local_ms += ms_since(start);
+  report.initial_energy = energy;
+  if (!std::isfinite(energy)) throw SolverError("ARAP: the energy of the initial guess is not finite");
+
+  for (int k = 0; k < options.max_iterations; ++k) {
+    start = Clock::now();
+    arap_rhs(el, data.R, q, rhs); // Eq. 16
+    for (Eigen::Index i = 0; i < data.free.size(); ++i) B.row(i) = rhs.row(data.free(i)) - Lfc_Uc.row(i);
+    const Eigen::MatrixXd X = data.solver.solve(B); // three coordinates at once
+    for (Eigen::Index i = 0; i < data.free.size(); ++i) U.row(data.free(i)) = X.row(i);
+    const double global_ms = ms_since(start);
+
+    start = Clock::now();
+    const double next = fit_rotations(el, U, s, data.R, cell_energy);
+    const double local_ms = ms_since(start);
+
+    report.iterations = k + 1;
+    report.energies.push_back(next);
+    report.global_ms += global_ms;
+    report.local_ms += local_ms;
+    report.global_ms_per_iteration.push_back(global_ms);
+    report.local_ms_per_iteration.push_back(local_ms);
+    if (!std::isfinite(next))
+      throw SolverError("ARAP: the energy became non-finite at iteration " + std::to_string(k + 1) +
+                        " (factorization " + factorization_name(data.solver.kind()) + ")");
+    const double previous = energy;
+    energy = next;
+    if (options.tolerance >= 0 && (energy == 0.0 || previous - energy <= options.tolerance * std::abs(previous))) {
+      report.converged = true;
+      break;
+    }
+  }
+  return report;
+}
+
+double arap_energy(const ArapData& data, const Eigen::MatrixXd& U) { return arap_cell_energy(data, U).sum(); }
+
+Eigen::VectorXd arap_cell_energy(const ArapData& data, const Eigen::MatrixXd& U) {
+  check_positions(U, data.V.rows(), "positions U");
+  ArapElements::ValueRows s;
+  std::vector<Eigen::Matrix3d> R;
+  Eigen::VectorXd cell_energy;
+  fit_rotations(data.elements, U, s, R, cell_energy);
+  return cell_energy;
+}
+
+Eigen::MatrixXd arap_gradient(const ArapData& data, const Eigen::MatrixXd& U) {
+  check_positions(U, data.V.rows(), "positions U");
+  ArapElements::ValueRows s, q;
+  std::vector<Eigen::Matrix3d> R;
+  Eigen::VectorXd cell_energy;
+  Eigen::MatrixXd rhs;
+  fit_rotations(data.elements, U, s, R, cell_energy);
+  arap_rhs(data.elements, R, q, rhs);
+  return data.L * U - rhs; // Eq. 14
+}
+
+const std::vector<Eigen::Matrix3d>& arap_rotations(const ArapData& data) { return data.R; }
+
+const Eigen::SparseMatrix<double>& arap_system_matrix(const ArapData& data) { return data.L; }
+
+FactorizationKind arap_factorization(const ArapData& data) { return data.solver.kind(); }
+
+} // namespace iarap

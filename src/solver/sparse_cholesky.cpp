@@ -1,0 +1,113 @@
+#include "iarap/solver/sparse_cholesky.h"
+
+#include "iarap/core/errors.h"
+
+#include <Eigen/CholmodSupport>
+#include <Eigen/SparseCholesky>
+#include <cmath>
+
+namespace iarap {
+
+namespace {
+// An LDL^T pivot this small relative to the largest means A is singular to working precision.
+constexpr double kPivotTolerance = 1e-14;
+} // namespace
+
+struct SparseCholesky::Impl {
+  Eigen::SparseMatrix<double> A; // kept so that copies can refactorize
+  FactorizationKind kind = FactorizationKind::None;
+  std::unique_ptr<Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>>> llt;
+  std::unique_ptr<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>> ldlt;
+};
+
+std::string factorization_name(FactorizationKind kind) {
+  switch (kind) {
+  case FactorizationKind::None: return "none";
+  case FactorizationKind::Empty: return "empty";
+  case FactorizationKind::CholmodSupernodalLLT: return "cholmod-supernodal-llt";
+  case FactorizationKind::SimplicialLDLT: return "simplicial-ldlt";
+  }
+  return "unknown";
+}
+
+SparseCholesky::SparseCholesky() : impl_(std::make_unique<Impl>()) {}
+
+SparseCholesky::SparseCholesky(const Eigen::SparseMatrix<double>& A) : SparseCholesky() { factorize(A); }
+
+SparseCholesky::SparseCholesky(const SparseCholesky& other) : SparseCholesky() {
+  if (other.impl_ && other.impl_->kind != FactorizationKind::None) factorize(other.impl_->A);
+}
+
+SparseCholesky& SparseCholesky::operator=(const SparseCholesky& other) {
+  if (this != &other) *this = SparseCholesky(other);
+  return *this;
+}
+
+SparseCholesky::SparseCholesky(SparseCholesky&&) noexcept = default;
+SparseCholesky& SparseCholesky::operator=(SparseCholesky&&) noexcept = default;
+SparseCholesky::~SparseCholesky() = default;
+
+void SparseCholesky::factorize(const Eigen::SparseMatrix<double>& A) {
+  if (!impl_) impl_ = std::make_unique<Impl>();
+  *impl_ = Impl{};
+  if (A.rows() != A.cols())
+    throw SolverError("sparse Cholesky: matrix is " + std::to_string(A.rows()) + " x " +
+                      std::to_string(A.cols()) + ", not square");
+  for (int k = 0; k < A.outerSize(); ++k)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(A, k); it; ++it)
+      if (!std::isfinite(it.value()))
+        throw SolverError("sparse Cholesky: entry (" + std::to_string(it.row()) + ", " +
+                          std::to_string(it.col()) + ") is not finite");
+  Impl next;
+  next.A = A;
+  next.A.makeCompressed();
+  if (A.rows() == 0) {
+    next.kind = FactorizationKind::Empty;
+    *impl_ = std::move(next);
+    return;
+  }
+
+  next.llt = std::make_unique<Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>>>();
+  next.llt->cholmod().print = 0; // "not positive definite" is an expected outcome, not a warning to print
+  next.llt->compute(next.A);
+  if (next.llt->info() == Eigen::Success) {
+    next.kind = FactorizationKind::CholmodSupernodalLLT;
+    *impl_ = std::move(next);
+    return;
+  }
+  next.llt.reset();
+
+  // Indefinite but possibly nonsingular (negative cotan or iARAP boundary weights): LDL^T.
+  next.ldlt = std::make_unique<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>>(next.A);
+  if (next.ldlt->info() != Eigen::Success)
+    throw SolverError("sparse Cholesky: the " + std::to_string(A.rows()) +
+                      " x " + std::to_string(A.rows()) + " matrix is singular (zero pivot in LDL^T)");
+  const Eigen::VectorXd D = next.ldlt->vectorD();
+  const double largest = D.cwiseAbs().maxCoeff();
+  Eigen::Index row = 0;
+  const double smallest = D.cwiseAbs().minCoeff(&row);
+  if (!(smallest > kPivotTolerance * largest))
+    throw SolverError("sparse Cholesky: the " + std::to_string(A.rows()) + " x " + std::to_string(A.rows()) +
+                      " matrix is numerically singular (LDL^T pivot " + std::to_string(smallest) +
+                      " vs largest " + std::to_string(largest) + ", permuted row " + std::to_string(row) + ")");
+  next.kind = FactorizationKind::SimplicialLDLT;
+  *impl_ = std::move(next);
+}
+
+Eigen::MatrixXd SparseCholesky::solve(const Eigen::MatrixXd& B) const {
+  const FactorizationKind k = kind();
+  if (k == FactorizationKind::None) throw SolverError("sparse Cholesky: solve called before a factorization");
+  if (B.rows() != impl_->A.rows())
+    throw SolverError("sparse Cholesky: right-hand side has " + std::to_string(B.rows()) + " rows, matrix has " +
+                      std::to_string(impl_->A.rows()));
+  if (k == FactorizationKind::Empty) return Eigen::MatrixXd(0, B.cols());
+  Eigen::MatrixXd X = k == FactorizationKind::CholmodSupernodalLLT ? Eigen::MatrixXd(impl_->llt->solve(B))
+                                                                  : Eigen::MatrixXd(impl_->ldlt->solve(B));
+  return X;
+}
+
+FactorizationKind SparseCholesky::kind() const { return impl_ ? impl_->kind : FactorizationKind::None; }
+
+Eigen::Index SparseCholesky::rows() const { return impl_ ? impl_->A.rows() : 0; }
+
+} // namespace iarap

@@ -1,0 +1,93 @@
+#include "iarap/solver/sparse_cholesky.h"
+
+#include "iarap/core/errors.h"
+
+#include <gtest/gtest.h>
+#include <vector>
+
+namespace {
+
+using iarap::FactorizationKind;
+using iarap::SparseCholesky;
+
+// 1D Laplacian of a path with n vertices, end 0 fixed (Dirichlet), plus `shift` on the diagonal.
+Eigen::SparseMatrix<double> path_laplacian(int n, double shift) {
+  std::vector<Eigen::Triplet<double>> t;
+  for (int i = 0; i < n; ++i) {
+    t.emplace_back(i, i, 2.0 + shift);
+    if (i + 1 < n) {
+      t.emplace_back(i, i + 1, -1.0);
+      t.emplace_back(i + 1, i, -1.0);
+    }
+  }
+  Eigen::SparseMatrix<double> A(n, n);
+  A.setFromTriplets(t.begin(), t.end());
+  return A;
+}
+
+double residual(const Eigen::SparseMatrix<double>& A, const Eigen::MatrixXd& X, const Eigen::MatrixXd& B) {
+  return (A * X - B).norm() / B.norm();
+}
+
+TEST(SparseCholesky, PositiveDefiniteUsesCholmod) {
+  const auto A = path_laplacian(200, 0.0);
+  const SparseCholesky chol(A);
+  EXPECT_EQ(chol.kind(), FactorizationKind::CholmodSupernodalLLT);
+  const Eigen::MatrixXd B = Eigen::MatrixXd::Random(200, 3);
+  EXPECT_LT(residual(A, chol.solve(B), B), 1e-12);
+}
+
+TEST(SparseCholesky, IndefiniteFallsBackToLdlt) {
+  // Eigenvalues of the path Laplacian lie in (0, 4); shifting by -1 makes it indefinite but nonsingular.
+  const auto A = path_laplacian(50, -1.0 + 1e-3);
+  const SparseCholesky chol(A);
+  EXPECT_EQ(chol.kind(), FactorizationKind::SimplicialLDLT);
+  EXPECT_EQ(iarap::factorization_name(chol.kind()), "simplicial-ldlt");
+  const Eigen::MatrixXd B = Eigen::MatrixXd::Random(50, 3);
+  EXPECT_LT(residual(A, chol.solve(B), B), 1e-8);
+}
+
+TEST(SparseCholesky, SingularThrows) {
+  // Pure Neumann path Laplacian: constants are in the kernel.
+  auto A = path_laplacian(20, 0.0);
+  A.coeffRef(0, 0) = 1.0;
+  A.coeffRef(19, 19) = 1.0;
+  try {
+    SparseCholesky chol(A);
+    FAIL() << "expected SolverError, got " << iarap::factorization_name(chol.kind());
+  } catch (const iarap::SolverError& e) {
+    EXPECT_NE(std::string(e.what()).find("singular"), std::string::npos) << e.what();
+  }
+}
+
+TEST(SparseCholesky, NonFiniteAndMisuseThrow) {
+  auto A = path_laplacian(5, 0.0);
+  A.coeffRef(2, 3) = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(SparseCholesky{A}, iarap::SolverError);
+  const SparseCholesky empty;
+  EXPECT_EQ(empty.kind(), FactorizationKind::None);
+  EXPECT_THROW(empty.solve(Eigen::MatrixXd::Ones(5, 1)), iarap::SolverError);
+  const SparseCholesky chol(path_laplacian(5, 0.0));
+  EXPECT_THROW(chol.solve(Eigen::MatrixXd::Ones(4, 1)), iarap::SolverError);
+  EXPECT_THROW(SparseCholesky{Eigen::SparseMatrix<double>(3, 4)}, iarap::SolverError);
+}
+
+TEST(SparseCholesky, EmptyMatrixSolvesToNoRows) {
+  const SparseCholesky chol{Eigen::SparseMatrix<double>(0, 0)};
+  EXPECT_EQ(chol.kind(), FactorizationKind::Empty);
+  EXPECT_EQ(chol.solve(Eigen::MatrixXd(0, 3)).rows(), 0);
+}
+
+TEST(SparseCholesky, CopiesAreIndependentAndMovesKeepTheFactor) {
+  const auto A = path_laplacian(30, 0.0);
+  SparseCholesky a(A);
+  const SparseCholesky b = a; // refactorizes
+  const Eigen::MatrixXd B = Eigen::MatrixXd::Random(30, 2);
+  const Eigen::MatrixXd X = a.solve(B);
+  SparseCholesky c = std::move(a);
+  EXPECT_LT((b.solve(B) - X).norm(), 1e-12 * X.norm());
+  EXPECT_LT((c.solve(B) - X).norm(), 1e-12 * X.norm());
+  EXPECT_EQ(b.kind(), FactorizationKind::CholmodSupernodalLLT);
+}
+
+} // namespace
