@@ -7,6 +7,7 @@ packages=(
   libcli11-dev nlohmann-json3-dev libcpp-httplib-dev libtinyobjloader-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   pybind11-dev python3-dev python3-numpy python3-scipy python3-pytest python3-matplotlib
+  python3-vtk9 xvfb xauth
 )
 missing=()
 for p in "${packages[@]}"; do

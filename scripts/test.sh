@@ -7,7 +7,7 @@ bash scripts/install_deps.sh
 bash scripts/build.sh
 ctest --test-dir build --output-on-failure -j"$(nproc)"
 if [ -d python/tests ] && [ -n "$(ls build/python/iarap*.so 2>/dev/null)" ]; then
-  PYTHONPATH="$PWD/build/python" /usr/bin/python3 -m pytest -q python/tests
+  PYTHONPATH="$PWD/build/python" /usr/bin/python3 -m pytest -q python/tests experiments/tests
 fi
 if [ "${CI:-}" = "true" ] || [ "${1:-}" = "--sanitize" ]; then
   IARAP_BUILD_DIR=build-asan bash scripts/build.sh -DIARAP_SANITIZE=ON -DIARAP_BUILD_PYTHON=OFF -DCMAKE_BUILD_TYPE=RelWithDebInfo

@@ -1,0 +1,1 @@
+"""The experiments report of the iARAP paper, driven through the `iarap` CLI (see experiments/README.md)."""
