@@ -267,7 +267,14 @@ intrinsic_ms, assembly_ms, factor_ms. Times in milliseconds.)")
           [](const ArapSolver& s) {
             return to_csr(without_gil(s, [](const ArapData& d) { return arap_system_matrix(d); }));
           },
-          "scipy.sparse.csr_matrix (#V, #V): the matrix L of the global step.");
+          "scipy.sparse.csr_matrix (#V, #V): the matrix L of the global step.")
+      .def("__repr__", [](const ArapSolver& s) {
+        return without_gil(s, [](const ArapData& d) {
+          return "<iarap.ARAP " + arap_method_name(d.method) + ", " + std::to_string(d.V.rows()) +
+                 " vertices, " + std::to_string(d.F.rows()) + " faces, " + std::to_string(d.fixed.size()) +
+                 " fixed>";
+        });
+      });
   m.attr("ARAP_METHODS") = py::make_tuple("iarap", "spokes-rims", "arap");
 }
 

@@ -103,6 +103,7 @@ def test_energy_decreases_and_report(bunny, method):
     solver = iarap.ARAP(V, F, fixed=fixed, method=method)
     assert solver.report is None
     assert solver.method == method
+    assert repr(solver) == f"<iarap.ARAP {method}, {len(V)} vertices, {len(F)} faces, {len(fixed)} fixed>"
     U = solver.solve(targets, iterations=15, tolerance=-1)
     report = solver.report
     energies = report["energies"]
@@ -235,3 +236,24 @@ def test_solve_releases_the_gil(bunny):
     # only pauses for scheduling and the short Python parts of solve().
     assert duration > 0.05, "solve too short to tell"
     assert gaps.max() < 0.5 * duration
+
+
+def test_one_solver_shared_by_threads(bunny):
+    V, F = bunny
+    fixed, targets = handle_scene(V)
+    solver = iarap.ARAP(V, F, fixed=fixed, method="spokes-rims")
+    shifts = [0.0, 0.01, 0.02, 0.03]
+    expected = [solver.solve(targets + s, iterations=5) for s in shifts]
+    results = [None] * len(shifts)
+
+    def work(k):
+        results[k] = solver.solve(targets + shifts[k], iterations=5)
+
+    threads = [threading.Thread(target=work, args=(k,)) for k in range(len(shifts))]
+    for thread in threads:
+        thread.start()
+    for thread in threads:
+        thread.join()
+    # The solver's lock serializes the solves: each thread gets exactly its serial result.
+    for result, reference in zip(results, expected):
+        np.testing.assert_array_equal(result, reference)
