@@ -1,6 +1,7 @@
 // End-to-end tests of the iarap tool: exit codes (0 ok, 1 runtime error, 2 usage error), JSON output,
 // output files. They run the built binary (IARAP_CLI_PATH) through the shell.
 #include "iarap/io/read_mesh.h"
+#include "iarap/io/write_mesh.h"
 #include "iarap/scene/read_constraints.h"
 #include "test_support.h"
 
@@ -319,6 +320,26 @@ TEST(Cli, BenchSubdivideAndTable) {
   EXPECT_NE(run.out.find(" 13934 "), std::string::npos) << run.out;
   EXPECT_NE(run.out.find("spokes-rims"), std::string::npos) << run.out;
   EXPECT_NE(run.out.find("cpu: "), std::string::npos) << run.out;
+}
+
+// A bunny with one zero-area face: original ARAP refuses it (infinite cotangents), iARAP mollifies it.
+// bench reports the failure, still times iARAP, and exits 1.
+TEST(Cli, BenchReportsAFailingMethodAndGoesOn) {
+  const auto dir = iarap::test::temp_dir("cli_bench_fail");
+  auto mesh = iarap::read_mesh(bunny);
+  const Eigen::Vector3i face = mesh.F.row(100);
+  mesh.V.row(face(2)) = 0.5 * (mesh.V.row(face(0)) + mesh.V.row(face(1)));
+  const fs::path flat = dir / "flat_face.off";
+  iarap::write_mesh(flat.string(), mesh.V, mesh.F);
+  const CliRun run =
+      iarap_cli("bench '" + flat.string() + "' --methods arap,iarap --iterations 1 --threads 1 --json");
+  EXPECT_EQ(run.code, 1);
+  const json j = parse_json(run);
+  ASSERT_EQ(j["results"].size(), 2u) << run.out;
+  EXPECT_TRUE(j["results"][0].contains("error")) << run.out;
+  EXPECT_FALSE(j["results"][1].contains("error")) << run.out;
+  EXPECT_GT(j["results"][1]["iteration_ms"].get<double>(), 0.0);
+  fs::remove_all(dir);
 }
 
 } // namespace
