@@ -6,7 +6,7 @@ namespace iarap::python {
 
 namespace py = pybind11;
 
-// InputError, TopologyError (ValueError subclasses), SolverError (a RuntimeError subclass), Error.
+// Error, and its subclasses InputError, TopologyError (also ValueError) and SolverError (also RuntimeError).
 void bind_errors(py::module_& m);
 // read_mesh, write_mesh, check_mesh.
 void bind_io(py::module_& m);
