@@ -38,7 +38,8 @@ Problem make_problem(const std::string& path) {
   p.targets.resize(p.fixed.size(), 3);
   for (Eigen::Index k = 0; k < p.fixed.size(); ++k) {
     p.targets.row(k) = V.row(p.fixed(k));
-    if (top[static_cast<size_t>(k)]) p.targets(k, 1) += 0.1 * diag;
+    if (top[static_cast<size_t>(k)])
+      p.targets(k, 1) += 0.1 * diag;
   }
   return p;
 }
@@ -77,7 +78,8 @@ void BM_ArapIteration(benchmark::State& state, const std::string& path, iarap::A
 std::string shared_mesh(const std::string& name) {
   const char* env = std::getenv("IARAP_SHARED_MESHES");
   const std::filesystem::path dir =
-      env ? std::filesystem::path(env) : std::filesystem::path(IARAP_SOURCE_DIR).parent_path() / "shared" / "meshes";
+      env ? std::filesystem::path(env)
+          : std::filesystem::path(IARAP_SOURCE_DIR).parent_path() / "shared" / "meshes";
   const std::filesystem::path p = dir / name;
   return std::filesystem::exists(p) ? p.string() : std::string();
 }
@@ -85,8 +87,10 @@ std::string shared_mesh(const std::string& name) {
 } // namespace
 
 int main(int argc, char** argv) {
-  std::vector<std::pair<std::string, std::string>> meshes = {{"bunny", std::string(IARAP_SOURCE_DIR) + "/data/bunny.off"}};
-  if (const std::string beetle = shared_mesh("beetle.off"); !beetle.empty()) meshes.emplace_back("beetle", beetle);
+  std::vector<std::pair<std::string, std::string>> meshes = {
+      {"bunny", std::string(IARAP_SOURCE_DIR) + "/data/bunny.off"}};
+  if (const std::string beetle = shared_mesh("beetle.off"); !beetle.empty())
+    meshes.emplace_back("beetle", beetle);
   for (const auto& [name, path] : meshes)
     for (iarap::ArapMethod method :
          {iarap::ArapMethod::Arap, iarap::ArapMethod::SpokesRims, iarap::ArapMethod::Iarap})

@@ -17,23 +17,31 @@ std::vector<Eigen::Matrix3d> matrices(Kind kind) {
   std::normal_distribution<double> n;
   auto random = [&] {
     Eigen::Matrix3d A;
-    for (int i = 0; i < 9; ++i) A(i) = n(rng);
+    for (int i = 0; i < 9; ++i)
+      A(i) = n(rng);
     return A;
   };
   std::vector<Eigen::Matrix3d> out(1024);
   for (Eigen::Matrix3d& S : out) {
     const Eigen::Matrix3d A = random();
     switch (kind) {
-    case General: S = A; break;
+    case General:
+      S = A;
+      break;
     case NearRotation: {
       Eigen::HouseholderQR<Eigen::Matrix3d> qr(A);
       Eigen::Matrix3d Q = qr.householderQ();
-      if (Q.determinant() < 0) Q.col(0) = -Q.col(0);
+      if (Q.determinant() < 0)
+        Q.col(0) = -Q.col(0);
       S = Q * (Eigen::Matrix3d::Identity() + 0.05 * random());
       break;
     }
-    case SymmetricPD: S = A * A.transpose() + 0.1 * Eigen::Matrix3d::Identity(); break;
-    case Rank2: S = A.col(0) * A.col(1).transpose() + A.col(2) * random().col(0).transpose(); break;
+    case SymmetricPD:
+      S = A * A.transpose() + 0.1 * Eigen::Matrix3d::Identity();
+      break;
+    case Rank2:
+      S = A.col(0) * A.col(1).transpose() + A.col(2) * random().col(0).transpose();
+      break;
     }
   }
   return out;
@@ -54,7 +62,8 @@ void BM_JacobiSvdRotation(benchmark::State& state) {
   for (auto _ : state) {
     const Eigen::JacobiSVD<Eigen::Matrix3d> svd(S[i++ & 1023], Eigen::ComputeFullU | Eigen::ComputeFullV);
     Eigen::Matrix3d U = svd.matrixU();
-    if (U.determinant() * svd.matrixV().determinant() < 0) U.col(2) = -U.col(2);
+    if (U.determinant() * svd.matrixV().determinant() < 0)
+      U.col(2) = -U.col(2);
     benchmark::DoNotOptimize(Eigen::Matrix3d(U * svd.matrixV().transpose()));
   }
   state.SetItemsProcessed(state.iterations());
@@ -62,7 +71,8 @@ void BM_JacobiSvdRotation(benchmark::State& state) {
 
 void kinds(benchmark::internal::Benchmark* b) {
   b->ArgName("kind(0=general,1=near-rotation,2=spd,3=rank2)");
-  for (int k = 0; k < 4; ++k) b->Arg(k);
+  for (int k = 0; k < 4; ++k)
+    b->Arg(k);
 }
 
 } // namespace

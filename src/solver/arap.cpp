@@ -21,26 +21,33 @@ double ms_since(Clock::time_point start) {
 
 void check_positions(const Eigen::MatrixXd& U, Eigen::Index rows, const std::string& what) {
   if (U.rows() != rows || U.cols() != 3)
-    throw InputError("ARAP: " + what + " must be " + std::to_string(rows) + " x 3, got " + std::to_string(U.rows()) +
-                     " x " + std::to_string(U.cols()));
+    throw InputError("ARAP: " + what + " must be " + std::to_string(rows) + " x 3, got " +
+                     std::to_string(U.rows()) + " x " + std::to_string(U.cols()));
   for (Eigen::Index r = 0; r < rows; ++r)
-    if (!U.row(r).allFinite()) throw InputError("ARAP: " + what + " row " + std::to_string(r) + " is not finite");
+    if (!U.row(r).allFinite())
+      throw InputError("ARAP: " + what + " row " + std::to_string(r) + " is not finite");
 }
 
 } // namespace
 
 ArapMethod parse_arap_method(const std::string& name) {
-  if (name == "arap") return ArapMethod::Arap;
-  if (name == "spokes-rims") return ArapMethod::SpokesRims;
-  if (name == "iarap") return ArapMethod::Iarap;
+  if (name == "arap")
+    return ArapMethod::Arap;
+  if (name == "spokes-rims")
+    return ArapMethod::SpokesRims;
+  if (name == "iarap")
+    return ArapMethod::Iarap;
   throw InputError("unknown ARAP method '" + name + "'; expected arap, spokes-rims or iarap");
 }
 
 std::string arap_method_name(ArapMethod method) {
   switch (method) {
-  case ArapMethod::Arap: return "arap";
-  case ArapMethod::SpokesRims: return "spokes-rims";
-  case ArapMethod::Iarap: return "iarap";
+  case ArapMethod::Arap:
+    return "arap";
+  case ArapMethod::SpokesRims:
+    return "spokes-rims";
+  case ArapMethod::Iarap:
+    return "iarap";
   }
   return "unknown";
 }
@@ -56,15 +63,19 @@ ArapData arap_precompute(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, con
 
   auto start = Clock::now();
   switch (options.method) {
-  case ArapMethod::Arap: data.elements = arap_edge_elements(V, F); break;
-  case ArapMethod::SpokesRims: data.elements = spokes_rims_elements(V, F); break;
+  case ArapMethod::Arap:
+    data.elements = arap_edge_elements(V, F);
+    break;
+  case ArapMethod::SpokesRims:
+    data.elements = spokes_rims_elements(V, F);
+    break;
   case ArapMethod::Iarap: {
     const IntrinsicDelaunay intrinsic = intrinsic_delaunay(V, F, options.intrinsic);
     data.timings.intrinsic_ms = ms_since(start);
     start = Clock::now();
     data.elements = iarap_elements(V, intrinsic);
     const IntrinsicTriangulation& t = intrinsic.triangulation;
-    data.intrinsic = {t.flips,      t.non_delaunay_before, t.non_delaunay_after, t.mollify_delta,
+    data.intrinsic = {t.flips,    t.non_delaunay_before,         t.non_delaunay_after, t.mollify_delta,
                       t.E.rows(), intrinsic.segments.edge.size()};
     break;
   }
@@ -73,7 +84,7 @@ ArapData arap_precompute(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, con
   data.timings.assembly_ms = ms_since(start);
 
   data.component = vertex_components(F, static_cast<int>(V.rows()), &data.component_count);
-  data.R.assign(static_cast<size_t>(V.rows()), Eigen::Matrix3d::Identity());
+  data.R.assign(static_cast<size_t>(data.elements.num_cells), Eigen::Matrix3d::Identity());
   arap_set_fixed(data, fixed);
   return data;
 }
@@ -81,14 +92,15 @@ ArapData arap_precompute(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, con
 void arap_set_fixed(ArapData& data, const Eigen::VectorXi& fixed) {
   const auto start = Clock::now();
   const int n = static_cast<int>(data.V.rows());
-  if (fixed.size() == 0) throw InputError("ARAP: the constrained (fixed) vertex set is empty");
+  if (fixed.size() == 0)
+    throw InputError("ARAP: the constrained (fixed) vertex set is empty");
   // position in the constrained list [fixed; pinned], or -1 for a free vertex
   std::vector<int> constrained_slot(static_cast<size_t>(n), -1);
   for (Eigen::Index k = 0; k < fixed.size(); ++k) {
     const int v = fixed(k);
     if (v < 0 || v >= n)
-      throw InputError("ARAP: fixed[" + std::to_string(k) + "] = " + std::to_string(v) + " is out of range; mesh has " +
-                       std::to_string(n) + " vertices");
+      throw InputError("ARAP: fixed[" + std::to_string(k) + "] = " + std::to_string(v) +
+                       " is out of range; mesh has " + std::to_string(n) + " vertices");
     if (constrained_slot[v] >= 0)
       throw InputError("ARAP: fixed[" + std::to_string(k) + "] = " + std::to_string(v) + " repeats fixed[" +
                        std::to_string(constrained_slot[v]) + "]");
@@ -102,17 +114,21 @@ void arap_set_fixed(ArapData& data, const Eigen::VectorXi& fixed) {
   for (int v = 0; v < n; ++v) {
     const int c = data.component(v);
     ++size_of[c];
-    if (first_of[c] < 0) first_of[c] = v;
-    if (constrained_slot[v] >= 0) ++constrained_in[c];
+    if (first_of[c] < 0)
+      first_of[c] = v;
+    if (constrained_slot[v] >= 0)
+      ++constrained_in[c];
   }
   std::vector<int> pinned;
   for (int c = 0; c < data.component_count; ++c) {
-    if (constrained_in[c] > 0) continue;
+    if (constrained_in[c] > 0)
+      continue;
     if (!data.pin_unconstrained_components)
-      throw SolverError("ARAP: connected component " + std::to_string(c) + " (" + std::to_string(size_of[c]) +
-                        " vertices, e.g. vertex " + std::to_string(first_of[c]) +
-                        ") has no constrained vertex, so the system is singular; constrain one of its vertices "
-                        "or enable pin_unconstrained_components");
+      throw SolverError(
+          "ARAP: connected component " + std::to_string(c) + " (" + std::to_string(size_of[c]) +
+          " vertices, e.g. vertex " + std::to_string(first_of[c]) +
+          ") has no constrained vertex, so the system is singular; constrain one of its vertices "
+          "or enable pin_unconstrained_components");
     constrained_slot[first_of[c]] = static_cast<int>(fixed.size() + static_cast<Eigen::Index>(pinned.size()));
     pinned.push_back(first_of[c]);
   }
@@ -132,7 +148,8 @@ void arap_set_fixed(ArapData& data, const Eigen::VectorXi& fixed) {
   for (int j = 0; j < data.L.outerSize(); ++j)
     for (Eigen::SparseMatrix<double>::InnerIterator it(data.L, j); it; ++it) {
       const int i = static_cast<int>(it.row());
-      if (free_slot(i) < 0) continue;
+      if (free_slot(i) < 0)
+        continue;
       if (free_slot(j) >= 0)
         ff.emplace_back(free_slot(i), free_slot(j), it.value());
       else
@@ -157,7 +174,8 @@ ArapReport arap_solve(ArapData& data, const Eigen::MatrixXd& targets, Eigen::Mat
                       const ArapSolveOptions& options) {
   if (options.max_iterations < 0)
     throw InputError("ARAP: max_iterations must be >= 0, got " + std::to_string(options.max_iterations));
-  if (std::isnan(options.tolerance)) throw InputError("ARAP: tolerance is NaN");
+  if (std::isnan(options.tolerance))
+    throw InputError("ARAP: tolerance is NaN");
   check_positions(targets, data.fixed.size(), "targets");
   check_positions(U, data.V.rows(), "initial guess U");
   const ArapElements& el = data.elements;
@@ -165,8 +183,10 @@ ArapReport arap_solve(ArapData& data, const Eigen::MatrixXd& targets, Eigen::Mat
   // Constrained positions in L_fc's column order: targets, then pinned vertices where the guess has them.
   Eigen::MatrixXd U_c(data.fixed.size() + data.pinned.size(), 3);
   U_c.topRows(data.fixed.size()) = targets;
-  for (Eigen::Index k = 0; k < data.pinned.size(); ++k) U_c.row(data.fixed.size() + k) = U.row(data.pinned(k));
-  for (Eigen::Index k = 0; k < data.fixed.size(); ++k) U.row(data.fixed(k)) = targets.row(k);
+  for (Eigen::Index k = 0; k < data.pinned.size(); ++k)
+    U_c.row(data.fixed.size() + k) = U.row(data.pinned(k));
+  for (Eigen::Index k = 0; k < data.fixed.size(); ++k)
+    U.row(data.fixed(k)) = targets.row(k);
   const Eigen::MatrixXd Lfc_Uc = data.L_fc * U_c;
 
   ArapReport report;
@@ -178,14 +198,17 @@ ArapReport arap_solve(ArapData& data, const Eigen::MatrixXd& targets, Eigen::Mat
   double energy = fit_rotations(el, U, s, data.R, cell_energy);
   report.local_ms += ms_since(start);
   report.initial_energy = energy;
-  if (!std::isfinite(energy)) throw SolverError("ARAP: the energy of the initial guess is not finite");
+  if (!std::isfinite(energy))
+    throw SolverError("ARAP: the energy of the initial guess is not finite");
 
   for (int k = 0; k < options.max_iterations; ++k) {
     start = Clock::now();
     arap_rhs(el, data.R, q, rhs); // Eq. 16
-    for (Eigen::Index i = 0; i < data.free.size(); ++i) B.row(i) = rhs.row(data.free(i)) - Lfc_Uc.row(i);
+    for (Eigen::Index i = 0; i < data.free.size(); ++i)
+      B.row(i) = rhs.row(data.free(i)) - Lfc_Uc.row(i);
     const Eigen::MatrixXd X = data.solver.solve(B); // three coordinates at once
-    for (Eigen::Index i = 0; i < data.free.size(); ++i) U.row(data.free(i)) = X.row(i);
+    for (Eigen::Index i = 0; i < data.free.size(); ++i)
+      U.row(data.free(i)) = X.row(i);
     const double global_ms = ms_since(start);
 
     start = Clock::now();
@@ -203,7 +226,8 @@ ArapReport arap_solve(ArapData& data, const Eigen::MatrixXd& targets, Eigen::Mat
                         " (factorization " + factorization_name(data.solver.kind()) + ")");
     const double previous = energy;
     energy = next;
-    if (options.tolerance >= 0 && (energy == 0.0 || previous - energy <= options.tolerance * std::abs(previous))) {
+    if (options.tolerance >= 0 &&
+        (energy == 0.0 || previous - energy <= options.tolerance * std::abs(previous))) {
       report.converged = true;
       break;
     }
@@ -211,7 +235,9 @@ ArapReport arap_solve(ArapData& data, const Eigen::MatrixXd& targets, Eigen::Mat
   return report;
 }
 
-double arap_energy(const ArapData& data, const Eigen::MatrixXd& U) { return arap_cell_energy(data, U).sum(); }
+double arap_energy(const ArapData& data, const Eigen::MatrixXd& U) {
+  return arap_cell_energy(data, U).sum();
+}
 
 Eigen::VectorXd arap_cell_energy(const ArapData& data, const Eigen::MatrixXd& U) {
   check_positions(U, data.V.rows(), "positions U");
@@ -233,10 +259,16 @@ Eigen::MatrixXd arap_gradient(const ArapData& data, const Eigen::MatrixXd& U) {
   return data.L * U - rhs; // Eq. 14
 }
 
-const std::vector<Eigen::Matrix3d>& arap_rotations(const ArapData& data) { return data.R; }
+const std::vector<Eigen::Matrix3d>& arap_rotations(const ArapData& data) {
+  return data.R;
+}
 
-const Eigen::SparseMatrix<double>& arap_system_matrix(const ArapData& data) { return data.L; }
+const Eigen::SparseMatrix<double>& arap_system_matrix(const ArapData& data) {
+  return data.L;
+}
 
-FactorizationKind arap_factorization(const ArapData& data) { return data.solver.kind(); }
+FactorizationKind arap_factorization(const ArapData& data) {
+  return data.solver.kind();
+}
 
 } // namespace iarap

@@ -4,6 +4,7 @@
 #include "iarap/mesh/cotan.h"
 #include "iarap/mesh/edge_topology.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -12,14 +13,17 @@ namespace iarap {
 namespace {
 
 // Counting sort of (key, value) pairs into CSR form: start has num_keys + 1 entries.
-void build_csr(int num_keys, const std::vector<int>& keys, const std::vector<int>& values, std::vector<int>& start,
-               std::vector<int>& out) {
+void build_csr(int num_keys, const std::vector<int>& keys, const std::vector<int>& values,
+               std::vector<int>& start, std::vector<int>& out) {
   start.assign(static_cast<size_t>(num_keys) + 1, 0);
-  for (int k : keys) ++start[static_cast<size_t>(k) + 1];
-  for (int k = 0; k < num_keys; ++k) start[k + 1] += start[k];
+  for (int k : keys)
+    ++start[static_cast<size_t>(k) + 1];
+  for (int k = 0; k < num_keys; ++k)
+    start[k + 1] += start[k];
   out.resize(keys.size());
   std::vector<int> next(start.begin(), start.end() - 1);
-  for (size_t i = 0; i < keys.size(); ++i) out[static_cast<size_t>(next[keys[i]]++)] = values[i];
+  for (size_t i = 0; i < keys.size(); ++i)
+    out[static_cast<size_t>(next[keys[i]]++)] = values[i];
 }
 
 // Rest vectors and the two transposed incidences, from b, w and the element -> cell CSR.
@@ -29,7 +33,8 @@ void finish_elements(const Eigen::MatrixXd& V, ArapElements& el) {
   for (Eigen::Index e = 0; e < m; ++e)
     for (int d = 0; d < 3; ++d) {
       double s = 0.0;
-      for (int k = 0; k < 3; ++k) s += el.b_value(e, k) * V(el.b_index(e, k), d);
+      for (int k = 0; k < 3; ++k)
+        s += el.b_value(e, k) * V(el.b_index(e, k), d);
       el.s_hat(e, d) = s;
     }
   std::vector<int> keys, values;
@@ -40,7 +45,7 @@ void finish_elements(const Eigen::MatrixXd& V, ArapElements& el) {
       keys.push_back(el.cell[c]);
       values.push_back(static_cast<int>(e));
     }
-  build_csr(el.num_vertices, keys, values, el.cell_element_start, el.cell_element);
+  build_csr(el.num_cells, keys, values, el.cell_element_start, el.cell_element);
   keys.clear();
   values.clear();
   for (Eigen::Index e = 0; e < m; ++e)
@@ -68,10 +73,13 @@ void set_edge_vector(ArapElements& el, Eigen::Index e, int i, int j) {
 } // namespace
 
 void check_arap_mesh(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
-  if (V.cols() != 3) throw InputError("ARAP: V must be #V x 3, got " + std::to_string(V.cols()) + " columns");
-  if (F.cols() != 3) throw InputError("ARAP: F must be #F x 3, got " + std::to_string(F.cols()) + " columns");
+  if (V.cols() != 3)
+    throw InputError("ARAP: V must be #V x 3, got " + std::to_string(V.cols()) + " columns");
+  if (F.cols() != 3)
+    throw InputError("ARAP: F must be #F x 3, got " + std::to_string(F.cols()) + " columns");
   for (Eigen::Index v = 0; v < V.rows(); ++v)
-    if (!V.row(v).allFinite()) throw InputError("ARAP: vertex " + std::to_string(v) + " has a non-finite coordinate");
+    if (!V.row(v).allFinite())
+      throw InputError("ARAP: vertex " + std::to_string(v) + " has a non-finite coordinate");
   for (Eigen::Index f = 0; f < F.rows(); ++f)
     for (int k = 0; k < 3; ++k)
       if (F(f, k) < 0 || F(f, k) >= V.rows())
@@ -86,7 +94,7 @@ ArapElements arap_edge_elements(const Eigen::MatrixXd& V, const Eigen::MatrixXi&
   const Eigen::MatrixXd C = face_cotangents(V, F);
   check_face_cotangents(C);
   ArapElements el;
-  el.num_vertices = n;
+  el.num_vertices = el.num_cells = n;
   const Eigen::Index m = topo.E.rows();
   el.b_index.resize(m, 3);
   el.b_value.resize(m, 3);
@@ -96,11 +104,13 @@ ArapElements arap_edge_elements(const Eigen::MatrixXd& V, const Eigen::MatrixXi&
   for (Eigen::Index e = 0; e < m; ++e) {
     const int i = topo.E(e, 0), j = topo.E(e, 1);
     if (topo.face_count(e) > 2)
-      throw TopologyError("ARAP: edge " + std::to_string(e) + " (" + std::to_string(i) + ", " + std::to_string(j) +
-                          ") has " + std::to_string(topo.face_count(e)) + " faces; the mesh must be manifold");
+      throw TopologyError("ARAP: edge " + std::to_string(e) + " (" + std::to_string(i) + ", " +
+                          std::to_string(j) + ") has " + std::to_string(topo.face_count(e)) +
+                          " faces; the mesh must be manifold");
     double w = 0.0; // Eq. 1: w_ij = (cot a + cot b) / 2, kept negative where the mesh is not Delaunay
     for (int s = 0; s < 2; ++s)
-      if (topo.EF(e, s) >= 0) w += 0.5 * C(topo.EF(e, s), topo.EK(e, s));
+      if (topo.EF(e, s) >= 0)
+        w += 0.5 * C(topo.EF(e, s), topo.EK(e, s));
     set_edge_vector(el, e, i, j);
     el.w(e) = w;
     el.cell_start[e] = static_cast<int>(2 * e);
@@ -117,7 +127,7 @@ ArapElements spokes_rims_elements(const Eigen::MatrixXd& V, const Eigen::MatrixX
   const Eigen::MatrixXd C = face_cotangents(V, F);
   check_face_cotangents(C);
   ArapElements el;
-  el.num_vertices = static_cast<int>(V.rows());
+  el.num_vertices = el.num_cells = static_cast<int>(V.rows());
   const Eigen::Index m = 3 * F.rows();
   el.b_index.resize(m, 3);
   el.b_value.resize(m, 3);
@@ -130,7 +140,8 @@ ArapElements spokes_rims_elements(const Eigen::MatrixXd& V, const Eigen::MatrixX
       set_edge_vector(el, e, F(f, (k + 1) % 3), F(f, (k + 2) % 3));
       el.w(e) = 0.5 * C(f, k); // Eq. 2: cot of the angle opposite the edge, over 2 per cell term
       el.cell_start[e] = static_cast<int>(3 * e);
-      for (int c = 0; c < 3; ++c) el.cell[3 * e + c] = F(f, c);
+      for (int c = 0; c < 3; ++c)
+        el.cell[3 * e + c] = F(f, c);
     }
   el.cell_start[m] = static_cast<int>(3 * m);
   finish_elements(V, el);
@@ -142,11 +153,19 @@ ArapElements iarap_elements(const Eigen::MatrixXd& V, const IntrinsicDelaunay& i
   const Eigen::MatrixXi& E = intrinsic.triangulation.E;
   const int n = static_cast<int>(V.rows());
   const Eigen::Index count = seg.edge.size();
-  if (V.cols() != 3) throw InputError("iARAP: V must be #V x 3, got " + std::to_string(V.cols()) + " columns");
+  if (V.cols() != 3)
+    throw InputError("iARAP: V must be #V x 3, got " + std::to_string(V.cols()) + " columns");
   if (seg.b_index.rows() != count || seg.b_value.rows() != count || seg.weight.size() != count)
     throw InputError("iARAP: segment arrays disagree in length (" + std::to_string(count) + " segments)");
   ArapElements el;
-  el.num_vertices = n;
+  el.num_vertices = el.num_cells = n;
+  for (Eigen::Index e = 0; e < E.rows(); ++e)
+    for (int k = 0; k < 2; ++k) {
+      if (E(e, k) < 0)
+        throw InputError("iARAP: intrinsic edge " + std::to_string(e) + " has endpoint " +
+                         std::to_string(E(e, k)));
+      el.num_cells = std::max(el.num_cells, E(e, k) + 1); // inserted boundary points get their own cells
+    }
   el.b_index.resize(count, 3);
   el.b_value.resize(count, 3);
   el.w.resize(count);
@@ -156,8 +175,8 @@ ArapElements iarap_elements(const Eigen::MatrixXd& V, const IntrinsicDelaunay& i
   for (Eigen::Index s = 0; s < count; ++s) {
     const int edge = seg.edge(s);
     if (edge < 0 || edge >= E.rows())
-      throw InputError("iARAP: segment " + std::to_string(s) + " names intrinsic edge " + std::to_string(edge) +
-                       "; the triangulation has " + std::to_string(E.rows()));
+      throw InputError("iARAP: segment " + std::to_string(s) + " names intrinsic edge " +
+                       std::to_string(edge) + "; the triangulation has " + std::to_string(E.rows()));
     if (!std::isfinite(seg.weight(s)))
       throw InputError("iARAP: segment " + std::to_string(s) + " has a non-finite weight");
     int first = -1;
@@ -167,9 +186,11 @@ ArapElements iarap_elements(const Eigen::MatrixXd& V, const IntrinsicDelaunay& i
       if (value != 0.0 && (index < 0 || index >= n))
         throw InputError("iARAP: segment " + std::to_string(s) + " uses vertex " + std::to_string(index) +
                          "; mesh has " + std::to_string(n));
-      if (value != 0.0 && first < 0) first = index;
+      if (value != 0.0 && first < 0)
+        first = index;
     }
-    if (first < 0) continue; // a zero-length segment (b = 0) adds nothing to E, L or the rotations
+    if (first < 0)
+      continue; // a zero-length segment (b = 0) adds nothing to E, L or the rotations
     for (int k = 0; k < 3; ++k) {
       const double value = seg.b_value(s, k);
       el.b_index(m, k) = value != 0.0 ? seg.b_index(s, k) : first; // unused slots may hold any index
@@ -196,7 +217,8 @@ Eigen::SparseMatrix<double> element_system_matrix(const ArapElements& el) {
     for (int k = 0; k < 3; ++k)
       for (int l = 0; l < 3; ++l) {
         const double v = cw * (el.b_value(e, k) * el.b_value(e, l)); // bitwise symmetric
-        if (v != 0.0) triplets.emplace_back(el.b_index(e, k), el.b_index(e, l), v);
+        if (v != 0.0)
+          triplets.emplace_back(el.b_index(e, k), el.b_index(e, l), v);
       }
   }
   Eigen::SparseMatrix<double> L(el.num_vertices, el.num_vertices);

@@ -13,7 +13,8 @@ void arap_rhs(const ArapElements& el, const std::vector<Eigen::Matrix3d>& R, Ara
 #pragma omp parallel for schedule(static)
   for (Eigen::Index e = 0; e < m; ++e) {
     Eigen::Matrix3d Rsum = Eigen::Matrix3d::Zero();
-    for (int c = el.cell_start[e]; c < el.cell_start[e + 1]; ++c) Rsum += R[static_cast<size_t>(el.cell[c])];
+    for (int c = el.cell_start[e]; c < el.cell_start[e + 1]; ++c)
+      Rsum += R[static_cast<size_t>(el.cell[c])];
     q.row(e) = (el.w(e) * (Rsum * el.s_hat.row(e).transpose())).transpose();
   }
 
@@ -25,9 +26,11 @@ void arap_rhs(const ArapElements& el, const std::vector<Eigen::Matrix3d>& R, Ara
       const int slot = el.vertex_slot[k];
       const int e = slot / 3;
       const double b = el.b_value(e, slot % 3);
-      for (int d = 0; d < 3; ++d) acc[d] += b * q(e, d);
+      for (int d = 0; d < 3; ++d)
+        acc[d] += b * q(e, d);
     }
-    for (int d = 0; d < 3; ++d) rhs(v, d) = acc[d];
+    for (int d = 0; d < 3; ++d)
+      rhs(v, d) = acc[d];
   }
 }
 

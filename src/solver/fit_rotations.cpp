@@ -7,7 +7,7 @@ namespace iarap {
 double fit_rotations(const ArapElements& el, const Eigen::MatrixXd& U, ArapElements::ValueRows& s,
                      std::vector<Eigen::Matrix3d>& R, Eigen::VectorXd& cell_energy) {
   const Eigen::Index m = el.size();
-  const int n = el.num_vertices;
+  const int n = el.num_cells;
   s.resize(m, 3);
   R.resize(static_cast<size_t>(n));
   cell_energy.resize(n);
@@ -17,7 +17,8 @@ double fit_rotations(const ArapElements& el, const Eigen::MatrixXd& U, ArapEleme
   for (Eigen::Index e = 0; e < m; ++e)
     for (int d = 0; d < 3; ++d) {
       double v = 0.0;
-      for (int k = 0; k < 3; ++k) v += el.b_value(e, k) * U(el.b_index(e, k), d);
+      for (int k = 0; k < 3; ++k)
+        v += el.b_value(e, k) * U(el.b_index(e, k), d);
       s(e, d) = v;
     }
 
@@ -31,7 +32,8 @@ double fit_rotations(const ArapElements& el, const Eigen::MatrixXd& U, ArapEleme
       // w (s_i s_hat_j) rather than (w s_i) s_hat_j: at rest S is then bitwise symmetric, which
       // polar_rotation turns into exactly R = I when S is positive definite.
       for (int j = 0; j < 3; ++j)
-        for (int i = 0; i < 3; ++i) S(i, j) += w * (s(e, i) * el.s_hat(e, j));
+        for (int i = 0; i < 3; ++i)
+          S(i, j) += w * (s(e, i) * el.s_hat(e, j));
     }
     const Eigen::Matrix3d Rc = polar_rotation(S);
     double energy = 0.0;

@@ -44,7 +44,8 @@ Eigen::Matrix3d refine_rotation(const Eigen::Matrix3d& R, const Eigen::Matrix3d&
   const Eigen::Vector3d w = G.inverse() * a;
   const double angle = w.norm();
   // A singular G (rank <= 1: the optimum is not unique) or a large step: nothing to refine.
-  if (!(angle > 0.0) || !(angle < kRefineMaxAngle)) return R;
+  if (!(angle > 0.0) || !(angle < kRefineMaxAngle))
+    return R;
   return R * Eigen::AngleAxisd(angle, w / angle).toRotationMatrix();
 }
 
@@ -53,17 +54,20 @@ Eigen::Matrix3d rotation_by_svd(const Eigen::Matrix3d& X) {
   Eigen::Matrix3d U = svd.matrixU();
   const Eigen::Matrix3d& V = svd.matrixV();
   // Singular values are sorted decreasingly: flipping the last column costs the least (sigma_3).
-  if (U.determinant() * V.determinant() < 0) U.col(2) = -U.col(2);
+  if (U.determinant() * V.determinant() < 0)
+    U.col(2) = -U.col(2);
   return refine_rotation(U * V.transpose(), X);
 }
 
 } // namespace
 
 Eigen::Matrix3d polar_rotation(const Eigen::Matrix3d& S) {
-  if (!S.allFinite()) return Eigen::Matrix3d::Constant(std::numeric_limits<double>::quiet_NaN());
+  if (!S.allFinite())
+    return Eigen::Matrix3d::Constant(std::numeric_limits<double>::quiet_NaN());
   // Scaling by the largest entry (not the Frobenius norm) cannot underflow or overflow.
   const double scale = S.cwiseAbs().maxCoeff();
-  if (scale == 0.0) return Eigen::Matrix3d::Identity();
+  if (scale == 0.0)
+    return Eigen::Matrix3d::Identity();
   const Eigen::Matrix3d S0 = S / scale;
   Eigen::Matrix3d X = S0;
   const double n = X.norm();
@@ -74,7 +78,8 @@ Eigen::Matrix3d polar_rotation(const Eigen::Matrix3d& S) {
   if (X(0, 1) == X(1, 0) && X(0, 2) == X(2, 0) && X(1, 2) == X(2, 1) && X(0, 0) > 0 &&
       X(0, 0) * X(1, 1) - X(0, 1) * X(1, 0) > 0 && det > 0)
     return Eigen::Matrix3d::Identity();
-  if (!(det > kNewtonDeterminant * n * n * n)) return rotation_by_svd(X);
+  if (!(det > kNewtonDeterminant * n * n * n))
+    return rotation_by_svd(X);
 
   // Scaled Newton iteration X <- (g X + (g X)^{-T}) / 2 (Higham 1986); det X stays positive.
   double step = 1.0;
@@ -83,7 +88,8 @@ Eigen::Matrix3d polar_rotation(const Eigen::Matrix3d& S) {
     const Eigen::Matrix3d next = 0.5 * (g * X + C / (g * det));
     step = (next - X).norm();
     X = next;
-    if (step < kNewtonStep) return refine_rotation(X, S0);
+    if (step < kNewtonStep)
+      return refine_rotation(X, S0);
     C = cofactor(X);
     det = X.col(0).dot(C.col(0));
   }

@@ -22,24 +22,32 @@ struct SparseCholesky::Impl {
 
 std::string factorization_name(FactorizationKind kind) {
   switch (kind) {
-  case FactorizationKind::None: return "none";
-  case FactorizationKind::Empty: return "empty";
-  case FactorizationKind::CholmodSupernodalLLT: return "cholmod-supernodal-llt";
-  case FactorizationKind::SimplicialLDLT: return "simplicial-ldlt";
+  case FactorizationKind::None:
+    return "none";
+  case FactorizationKind::Empty:
+    return "empty";
+  case FactorizationKind::CholmodSupernodalLLT:
+    return "cholmod-supernodal-llt";
+  case FactorizationKind::SimplicialLDLT:
+    return "simplicial-ldlt";
   }
   return "unknown";
 }
 
 SparseCholesky::SparseCholesky() : impl_(std::make_unique<Impl>()) {}
 
-SparseCholesky::SparseCholesky(const Eigen::SparseMatrix<double>& A) : SparseCholesky() { factorize(A); }
+SparseCholesky::SparseCholesky(const Eigen::SparseMatrix<double>& A) : SparseCholesky() {
+  factorize(A);
+}
 
 SparseCholesky::SparseCholesky(const SparseCholesky& other) : SparseCholesky() {
-  if (other.impl_ && other.impl_->kind != FactorizationKind::None) factorize(other.impl_->A);
+  if (other.impl_ && other.impl_->kind != FactorizationKind::None)
+    factorize(other.impl_->A);
 }
 
 SparseCholesky& SparseCholesky::operator=(const SparseCholesky& other) {
-  if (this != &other) *this = SparseCholesky(other);
+  if (this != &other)
+    *this = SparseCholesky(other);
   return *this;
 }
 
@@ -48,7 +56,8 @@ SparseCholesky& SparseCholesky::operator=(SparseCholesky&&) noexcept = default;
 SparseCholesky::~SparseCholesky() = default;
 
 void SparseCholesky::factorize(const Eigen::SparseMatrix<double>& A) {
-  if (!impl_) impl_ = std::make_unique<Impl>();
+  if (!impl_)
+    impl_ = std::make_unique<Impl>();
   *impl_ = Impl{};
   if (A.rows() != A.cols())
     throw SolverError("sparse Cholesky: matrix is " + std::to_string(A.rows()) + " x " +
@@ -80,8 +89,8 @@ void SparseCholesky::factorize(const Eigen::SparseMatrix<double>& A) {
   // Indefinite but possibly nonsingular (negative cotan or iARAP boundary weights): LDL^T.
   next.ldlt = std::make_unique<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>>(next.A);
   if (next.ldlt->info() != Eigen::Success)
-    throw SolverError("sparse Cholesky: the " + std::to_string(A.rows()) +
-                      " x " + std::to_string(A.rows()) + " matrix is singular (zero pivot in LDL^T)");
+    throw SolverError("sparse Cholesky: the " + std::to_string(A.rows()) + " x " + std::to_string(A.rows()) +
+                      " matrix is singular (zero pivot in LDL^T)");
   const Eigen::VectorXd D = next.ldlt->vectorD();
   const double largest = D.cwiseAbs().maxCoeff();
   Eigen::Index row = 0;
@@ -89,25 +98,32 @@ void SparseCholesky::factorize(const Eigen::SparseMatrix<double>& A) {
   if (!(smallest > kPivotTolerance * largest))
     throw SolverError("sparse Cholesky: the " + std::to_string(A.rows()) + " x " + std::to_string(A.rows()) +
                       " matrix is numerically singular (LDL^T pivot " + std::to_string(smallest) +
-                      " vs largest " + std::to_string(largest) + ", permuted row " + std::to_string(row) + ")");
+                      " vs largest " + std::to_string(largest) + ", permuted row " + std::to_string(row) +
+                      ")");
   next.kind = FactorizationKind::SimplicialLDLT;
   *impl_ = std::move(next);
 }
 
 Eigen::MatrixXd SparseCholesky::solve(const Eigen::MatrixXd& B) const {
   const FactorizationKind k = kind();
-  if (k == FactorizationKind::None) throw SolverError("sparse Cholesky: solve called before a factorization");
+  if (k == FactorizationKind::None)
+    throw SolverError("sparse Cholesky: solve called before a factorization");
   if (B.rows() != impl_->A.rows())
-    throw SolverError("sparse Cholesky: right-hand side has " + std::to_string(B.rows()) + " rows, matrix has " +
-                      std::to_string(impl_->A.rows()));
-  if (k == FactorizationKind::Empty) return Eigen::MatrixXd(0, B.cols());
+    throw SolverError("sparse Cholesky: right-hand side has " + std::to_string(B.rows()) +
+                      " rows, matrix has " + std::to_string(impl_->A.rows()));
+  if (k == FactorizationKind::Empty)
+    return Eigen::MatrixXd(0, B.cols());
   Eigen::MatrixXd X = k == FactorizationKind::CholmodSupernodalLLT ? Eigen::MatrixXd(impl_->llt->solve(B))
-                                                                  : Eigen::MatrixXd(impl_->ldlt->solve(B));
+                                                                   : Eigen::MatrixXd(impl_->ldlt->solve(B));
   return X;
 }
 
-FactorizationKind SparseCholesky::kind() const { return impl_ ? impl_->kind : FactorizationKind::None; }
+FactorizationKind SparseCholesky::kind() const {
+  return impl_ ? impl_->kind : FactorizationKind::None;
+}
 
-Eigen::Index SparseCholesky::rows() const { return impl_ ? impl_->A.rows() : 0; }
+Eigen::Index SparseCholesky::rows() const {
+  return impl_ ? impl_->A.rows() : 0;
+}
 
 } // namespace iarap

@@ -19,19 +19,22 @@ void expect_consistent(const ArapElements& el, const Eigen::MatrixXd& V) {
   for (Eigen::Index e = 0; e < el.size(); ++e) {
     EXPECT_NEAR(el.b_value.row(e).sum(), 0.0, 1e-12) << "element " << e; // b encodes a vector
     Eigen::RowVector3d s = Eigen::RowVector3d::Zero();
-    for (int k = 0; k < 3; ++k) s += el.b_value(e, k) * V.row(el.b_index(e, k));
+    for (int k = 0; k < 3; ++k)
+      s += el.b_value(e, k) * V.row(el.b_index(e, k));
     EXPECT_LT((s - el.s_hat.row(e)).norm(), 1e-15 * test::bbox_diagonal(V));
   }
   // The transposed incidences list every (element, cell) and (element, slot) pair once.
   EXPECT_EQ(el.cell_element.size(), el.cell.size());
   size_t nonzeros = 0;
   for (Eigen::Index e = 0; e < el.size(); ++e)
-    for (int k = 0; k < 3; ++k) nonzeros += el.b_value(e, k) != 0.0;
+    for (int k = 0; k < 3; ++k)
+      nonzeros += el.b_value(e, k) != 0.0;
   EXPECT_EQ(el.vertex_slot.size(), nonzeros);
 }
 
 // The element sum reproduces the cotan Laplacian: 2 x for original ARAP (each edge in 2 cells),
-// 3 x for spokes-and-rims (each face edge in the face's 3 cells). Relative 1e-13: only summation order differs.
+// 3 x for spokes-and-rims (each face edge in the face's 3 cells). Relative 1e-13: only summation order
+// differs.
 TEST(ArapElements, EdgeElementsGiveTwiceTheCotanLaplacian) {
   const auto m = test::bunny();
   const ArapElements el = arap_edge_elements(m.V, m.F);
@@ -59,7 +62,8 @@ TEST(ArapElements, IarapElementsGiveTwiceBtDwB) {
   // Recomputed rest vectors agree with the segments' own (they differ only in summation order).
   double largest = 0.0;
   for (Eigen::Index s = 0, e = 0; s < seg.edge.size(); ++s) {
-    if (seg.b_value.row(s).cwiseAbs().maxCoeff() == 0.0) continue;
+    if (seg.b_value.row(s).cwiseAbs().maxCoeff() == 0.0)
+      continue;
     largest = std::max(largest, (seg.s_hat.row(s) - el.s_hat.row(e++)).norm());
   }
   EXPECT_LT(largest, 1e-14 * test::bbox_diagonal(m.V));

@@ -43,7 +43,8 @@ template <class F> void expect_error_mentions(F&& call, const std::string& words
 }
 
 TEST(Arap, MethodNamesRoundTrip) {
-  for (ArapMethod m : kAllMethods) EXPECT_EQ(parse_arap_method(arap_method_name(m)), m);
+  for (ArapMethod m : kAllMethods)
+    EXPECT_EQ(parse_arap_method(arap_method_name(m)), m);
   expect_error_mentions([] { parse_arap_method("spokes"); }, "unknown ARAP method 'spokes'");
 }
 
@@ -69,7 +70,8 @@ TEST(Arap, RestHasZeroEnergyAndGradient) {
 
 TEST(Arap, OriginalArapHasNonZeroRestGradientOnBunny) {
   const SolverMesh m = test::bunny();
-  const ArapData data = arap_precompute(m.V, m.F, Eigen::VectorXi::Constant(1, 0), with_method(ArapMethod::Arap));
+  const ArapData data =
+      arap_precompute(m.V, m.F, Eigen::VectorXi::Constant(1, 0), with_method(ArapMethod::Arap));
   const double scale = (data.L.cwiseAbs() * m.V.cwiseAbs()).norm();
   EXPECT_GT(arap_gradient(data, m.V).norm(), 1e-6 * scale);
 }
@@ -98,7 +100,8 @@ TEST(Arap, RigidMotionOfConstraintsMovesTheMeshRigidly) {
     EXPECT_TRUE(report.converged) << arap_method_name(method);
     EXPECT_LT(max_row_distance(U, moved), 1e-8 * diag)
         << arap_method_name(method) << " after " << report.iterations << " iterations";
-    for (const Eigen::Matrix3d& R : arap_rotations(data)) EXPECT_LT((R - Q).norm(), 1e-6);
+    for (const Eigen::Matrix3d& R : arap_rotations(data))
+      EXPECT_LT((R - Q).norm(), 1e-6);
   }
 }
 
@@ -133,7 +136,8 @@ TEST(Arap, RestStabilityOnBunny) {
 // sigma = 1 and iARAP is original ARAP (paper Fig. 11).
 TEST(Arap, IarapEqualsArapOnDelaunayCube) {
   const std::string path = test::shared_mesh_path("cube.obj");
-  if (path.empty()) GTEST_SKIP() << "shared mesh cube.obj not found (set IARAP_SHARED_MESHES)";
+  if (path.empty())
+    GTEST_SKIP() << "shared mesh cube.obj not found (set IARAP_SHARED_MESHES)";
   const MeshData m = read_mesh(path);
   const double diag = test::bbox_diagonal(m.V);
   std::vector<int> bottom = test::axis_band(m.V, 1, 0.05, -1), top = test::axis_band(m.V, 1, 0.05, +1);
@@ -167,7 +171,8 @@ TEST(Arap, EnergyNeverIncreases) {
   Eigen::MatrixXd targets = test::rows_of(m.V, fixed);
   const Eigen::Matrix3d Q = Eigen::AngleAxisd(0.5, Eigen::Vector3d::UnitZ()).toRotationMatrix();
   for (Eigen::Index k = static_cast<Eigen::Index>(bottom.size()); k < fixed.size(); ++k)
-    targets.row(k) = (Q * targets.row(k).transpose()).transpose() + Eigen::RowVector3d(0.15 * diag, 0.1 * diag, 0);
+    targets.row(k) =
+        (Q * targets.row(k).transpose()).transpose() + Eigen::RowVector3d(0.15 * diag, 0.1 * diag, 0);
   for (ArapMethod method : {ArapMethod::SpokesRims, ArapMethod::Iarap}) {
     ArapData data = arap_precompute(m.V, m.F, fixed, with_method(method));
     Eigen::MatrixXd U = m.V;
@@ -178,7 +183,8 @@ TEST(Arap, EnergyNeverIncreases) {
     double previous = report.initial_energy;
     ASSERT_GT(previous, 0.0);
     for (size_t k = 0; k < report.energies.size(); ++k) {
-      EXPECT_LE(report.energies[k], previous * (1 + 1e-12)) << arap_method_name(method) << " iteration " << k + 1;
+      EXPECT_LE(report.energies[k], previous * (1 + 1e-12))
+          << arap_method_name(method) << " iteration " << k + 1;
       previous = report.energies[k];
     }
     EXPECT_LT(report.energies.back(), 0.5 * report.energies.front());
@@ -195,7 +201,8 @@ TEST(Arap, GradientMatchesFiniteDifferences) {
   std::mt19937 rng(17);
   std::normal_distribution<double> noise(0.0, 0.05 * diag);
   Eigen::MatrixXd U = m.V;
-  for (Eigen::Index i = 0; i < U.size(); ++i) U(i) += noise(rng);
+  for (Eigen::Index i = 0; i < U.size(); ++i)
+    U(i) += noise(rng);
   const double h = 1e-5 * diag;
   for (ArapMethod method : kAllMethods) {
     const ArapData data = arap_precompute(m.V, m.F, Eigen::VectorXi::Constant(1, 0), with_method(method));
@@ -221,7 +228,8 @@ TEST(Arap, BadConstraintSetsAreNamed) {
                         "fixed[2] = 5 repeats fixed[1]");
   ArapData data = arap_precompute(m.V, m.F, Eigen::Vector2i(0, 5), options);
   Eigen::MatrixXd U = m.V;
-  expect_error_mentions([&] { arap_solve(data, Eigen::MatrixXd::Zero(3, 3), U); }, "targets must be 2 x 3, got 3 x 3");
+  expect_error_mentions([&] { arap_solve(data, Eigen::MatrixXd::Zero(3, 3), U); },
+                        "targets must be 2 x 3, got 3 x 3");
   Eigen::MatrixXd targets = test::rows_of(m.V, Eigen::Vector2i(0, 5));
   targets(1, 2) = std::numeric_limits<double>::quiet_NaN();
   expect_error_mentions([&] { arap_solve(data, targets, U); }, "targets row 1 is not finite");
@@ -261,7 +269,8 @@ TEST(Arap, ReuseCopyAndThreadsGiveTheSameResult) {
   const SolverMesh m = test::bunny();
   const Eigen::VectorXi fixed = bottom_and_top(m.V);
   Eigen::MatrixXd targets = test::rows_of(m.V, fixed);
-  targets.col(0).array() += 0.05 * test::bbox_diagonal(m.V) * (targets.col(1).array() - m.V.col(1).mean()).sign();
+  targets.col(0).array() +=
+      0.05 * test::bbox_diagonal(m.V) * (targets.col(1).array() - m.V.col(1).mean()).sign();
   ArapSolveOptions options;
   options.max_iterations = 10;
   options.tolerance = -1.0;

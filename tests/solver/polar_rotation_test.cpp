@@ -12,14 +12,16 @@ using iarap::polar_rotation;
 Matrix3d random_matrix(std::mt19937& rng) {
   std::normal_distribution<double> n;
   Matrix3d A;
-  for (int i = 0; i < 9; ++i) A(i) = n(rng);
+  for (int i = 0; i < 9; ++i)
+    A(i) = n(rng);
   return A;
 }
 
 Matrix3d random_rotation(std::mt19937& rng) {
   Eigen::HouseholderQR<Matrix3d> qr(random_matrix(rng));
   Matrix3d Q = qr.householderQ();
-  if (Q.determinant() < 0) Q.col(0) = -Q.col(0);
+  if (Q.determinant() < 0)
+    Q.col(0) = -Q.col(0);
   return Q;
 }
 
@@ -27,7 +29,8 @@ Matrix3d random_rotation(std::mt19937& rng) {
 Matrix3d svd_rotation(const Matrix3d& S) {
   Eigen::JacobiSVD<Matrix3d> svd(S, Eigen::ComputeFullU | Eigen::ComputeFullV);
   Matrix3d U = svd.matrixU();
-  if ((U * svd.matrixV().transpose()).determinant() < 0) U.col(2) = -U.col(2);
+  if ((U * svd.matrixV().transpose()).determinant() < 0)
+    U.col(2) = -U.col(2);
   return U * svd.matrixV().transpose();
 }
 
@@ -46,7 +49,8 @@ TEST(PolarRotation, RandomMatricesMatchSvdAndBeatRandomRotations) {
     const Eigen::Vector3d sigma = Eigen::JacobiSVD<Matrix3d>(S).singularValues();
     EXPECT_LT((R - svd_rotation(S)).norm(), 1e-13 * sigma(0) / (sigma(1) + sigma(2))) << "trial " << t;
     const double best = (R.transpose() * S).trace();
-    for (int k = 0; k < 5; ++k) EXPECT_GE(best + 1e-12, (random_rotation(rng).transpose() * S).trace());
+    for (int k = 0; k < 5; ++k)
+      EXPECT_GE(best + 1e-12, (random_rotation(rng).transpose() * S).trace());
   }
 }
 
@@ -91,7 +95,8 @@ TEST(PolarRotation, NearIdentityAndScaleFree) {
     const Matrix3d R = polar_rotation(S);
     expect_rotation(R);
     EXPECT_LT((R - svd_rotation(S)).norm(), 1e-14);
-    for (double scale : {1e-150, 1e150}) EXPECT_LT((polar_rotation(scale * S) - R).norm(), 1e-14);
+    for (double scale : {1e-150, 1e150})
+      EXPECT_LT((polar_rotation(scale * S) - R).norm(), 1e-14);
   }
 }
 
@@ -125,7 +130,8 @@ TEST(PolarRotation, NearlySymmetricGivesTheExactPolarFactor) {
   for (int t = 0; t < 2000; ++t) {
     const Matrix3d Q = random_rotation(rng);
     const Eigen::Vector3d d = Eigen::Vector3d::Ones() + 0.5 * random_matrix(rng).col(0).cwiseAbs();
-    const Matrix3d S = Q * d.asDiagonal() * Q.transpose(); // products round differently above and below the diagonal
+    const Matrix3d S =
+        Q * d.asDiagonal() * Q.transpose(); // products round differently above and below the diagonal
     const Matrix3d R = polar_rotation(S);
     expect_rotation(R);
     EXPECT_LT((R - svd_rotation(S)).norm(), 1e-14) << "trial " << t;

@@ -32,7 +32,8 @@ inline SolverMesh bumpy_patch(int n, unsigned seed = 3) {
   m.V.resize((n + 1) * (n + 1), 3);
   for (int j = 0; j <= n; ++j)
     for (int i = 0; i <= n; ++i) {
-      const double x = (i + (i > 0 && i < n ? u(rng) : 0.0)) / n, y = (j + (j > 0 && j < n ? u(rng) : 0.0)) / n;
+      const double x = (i + (i > 0 && i < n ? u(rng) : 0.0)) / n,
+                   y = (j + (j > 0 && j < n ? u(rng) : 0.0)) / n;
       m.V.row(j * (n + 1) + i) << x, y, 0.3 * std::sin(3 * x) * std::cos(2 * y);
     }
   m.F.resize(2 * n * n, 3);
@@ -96,7 +97,8 @@ inline std::vector<int> axis_band(const Eigen::MatrixXd& V, int axis, double fra
   std::vector<int> out;
   for (int v = 0; v < V.rows(); ++v) {
     const double t = (V(v, axis) - lo) / (hi - lo);
-    if ((side < 0 && t <= fraction) || (side > 0 && t >= 1.0 - fraction)) out.push_back(v);
+    if ((side < 0 && t <= fraction) || (side > 0 && t >= 1.0 - fraction))
+      out.push_back(v);
   }
   return out;
 }
@@ -108,7 +110,8 @@ inline Eigen::VectorXi to_vector(const std::vector<int>& v) {
 // Rows `idx` of V.
 inline Eigen::MatrixXd rows_of(const Eigen::MatrixXd& V, const Eigen::VectorXi& idx) {
   Eigen::MatrixXd out(idx.size(), V.cols());
-  for (Eigen::Index k = 0; k < idx.size(); ++k) out.row(k) = V.row(idx(k));
+  for (Eigen::Index k = 0; k < idx.size(); ++k)
+    out.row(k) = V.row(idx(k));
   return out;
 }
 

@@ -58,19 +58,19 @@ struct ArapIntrinsicSummary {
 struct ArapData {
   ArapMethod method = ArapMethod::Iarap;
   bool pin_unconstrained_components = false;
-  Eigen::MatrixXd V;            // #V x 3 rest positions
-  Eigen::MatrixXi F;            // #F x 3 faces
-  ArapElements elements;        // the variant's elements (arap_elements.h)
+  Eigen::MatrixXd V;             // #V x 3 rest positions
+  Eigen::MatrixXi F;             // #F x 3 faces
+  ArapElements elements;         // the variant's elements (arap_elements.h)
   Eigen::SparseMatrix<double> L; // #V x #V system matrix, sum_e |cells(e)| w_e b_e b_e^T
-  Eigen::VectorXi component;    // #V connected component of each vertex
+  Eigen::VectorXi component;     // #V connected component of each vertex
   int component_count = 0;
-  Eigen::VectorXi fixed;        // #fixed user-constrained vertices, in the order of the targets rows
-  Eigen::VectorXi pinned;       // vertices pinned by pin_unconstrained_components (empty otherwise)
-  Eigen::VectorXi free;         // #free the unconstrained vertices, increasing
-  Eigen::VectorXi free_slot;    // #V position of v in free, or -1 for constrained vertices
+  Eigen::VectorXi fixed;            // #fixed user-constrained vertices, in the order of the targets rows
+  Eigen::VectorXi pinned;           // vertices pinned by pin_unconstrained_components (empty otherwise)
+  Eigen::VectorXi free;             // #free the unconstrained vertices, increasing
+  Eigen::VectorXi free_slot;        // #V position of v in free, or -1 for constrained vertices
   Eigen::SparseMatrix<double> L_fc; // #free x (#fixed + #pinned): coupling to the constrained vertices
-  SparseCholesky solver;        // factorization of L_ff (#free x #free)
-  std::vector<Eigen::Matrix3d> R; // #V cell rotations fitted to the last iterate of arap_solve
+  SparseCholesky solver;            // factorization of L_ff (#free x #free)
+  std::vector<Eigen::Matrix3d> R;   // one per cell (arap_rotations) for the last iterate of arap_solve
   ArapPrecomputeTimings timings;
   ArapIntrinsicSummary intrinsic;
 };
@@ -120,14 +120,16 @@ ArapReport arap_solve(ArapData& data, const Eigen::MatrixXd& targets, Eigen::Mat
 // E(U) = min_R sum_e sum_{c in cells(e)} (w_e / 2) ||U^T b_e - R_c s_hat_e||^2 for U #V x 3.
 double arap_energy(const ArapData& data, const Eigen::MatrixXd& U);
 
-// #V per-cell energies of U (they sum to arap_energy), e.g. for colour maps.
+// Per-cell energies of U (they sum to arap_energy), e.g. for colour maps: #V entries, one per vertex, then
+// (iARAP with refine_boundary only) one per inserted boundary point.
 Eigen::VectorXd arap_cell_energy(const ArapData& data, const Eigen::MatrixXd& U);
 
 // dE/dU (#V x 3) = L U - rhs(R*(U)) with R*(U) the optimal rotations (Eq. 14; the envelope theorem makes
 // it the gradient of the minimized energy).
 Eigen::MatrixXd arap_gradient(const ArapData& data, const Eigen::MatrixXd& U);
 
-// The #V cell rotations fitted to the last iterate of arap_solve (identity after arap_precompute).
+// The cell rotations fitted to the last iterate of arap_solve (identity after arap_precompute): #V, one
+// per vertex, then (iARAP with refine_boundary only) one per inserted boundary point.
 const std::vector<Eigen::Matrix3d>& arap_rotations(const ArapData& data);
 
 // The #V x #V system matrix L of the global step.

@@ -18,17 +18,20 @@ struct ArapElements {
   using IndexRows = Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor>;
   using ValueRows = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
 
-  int num_vertices = 0;    // #V; also the number of rotation cells
-  IndexRows b_index;       // #E x 3 vertices of b_e; an unused slot repeats slot 0 with value 0
-  ValueRows b_value;       // #E x 3 coefficients of b_e (sum 0)
-  ValueRows s_hat;         // #E x 3 rest vectors V_rest^T b_e (Eq. 8), summed in slot order like V^T b_e
-  Eigen::VectorXd w;       // #E weights; negative where the variant says so (never clamped)
-  std::vector<int> cell_start;         // #E + 1: cells of element e are cell[cell_start[e] .. cell_start[e+1])
-  std::vector<int> cell;               // cell (vertex) indices; a cell may repeat (intrinsic loop edges)
-  std::vector<int> cell_element_start; // #V + 1: CSR transpose, the elements of cell c (with repetition)
+  int num_vertices = 0;        // #V
+  int num_cells = 0;           // rotation cells: one per vertex, plus (iARAP with refine_boundary) one per
+                               // inserted boundary point, numbered #V, #V + 1, ... as in the triangulation
+  IndexRows b_index;           // #E x 3 vertices of b_e; an unused slot repeats slot 0 with value 0
+  ValueRows b_value;           // #E x 3 coefficients of b_e (sum 0)
+  ValueRows s_hat;             // #E x 3 rest vectors V_rest^T b_e (Eq. 8), summed in slot order like V^T b_e
+  Eigen::VectorXd w;           // #E weights; negative where the variant says so (never clamped)
+  std::vector<int> cell_start; // #E + 1: cells of element e are cell[cell_start[e] .. cell_start[e+1])
+  std::vector<int> cell;       // cell (vertex) indices; a cell may repeat (intrinsic loop edges)
+  std::vector<int>
+      cell_element_start; // num_cells + 1: CSR transpose, the elements of cell c (with repetition)
   std::vector<int> cell_element;
-  std::vector<int> vertex_slot_start;  // #V + 1: where vertex v is a non-zero of some b_e ...
-  std::vector<int> vertex_slot;        // ... as 3 * e + slot; lets the right-hand side be gathered per vertex
+  std::vector<int> vertex_slot_start; // #V + 1: where vertex v is a non-zero of some b_e ...
+  std::vector<int> vertex_slot;       // ... as 3 * e + slot; lets the right-hand side be gathered per vertex
 
   Eigen::Index size() const { return w.size(); }
 };

@@ -9,10 +9,11 @@ namespace iarap {
 
 // For deformed positions U (#V x 3): the element vectors s_e = U^T b_e (#E x 3, written to s), the cell
 // covariances S_c = sum_{e in c} w_e s_e s_hat_e^T (Eq. 15), the rotations R_c = polar_rotation(S_c)
-// (#V, written to R) and the cell energies E_c = sum_{e in c} (w_e / 2) ||s_e - R_c s_hat_e||^2 (#V,
-// written to cell_energy). Returns E(U) = sum_c E_c, the variant's energy minimized over the rotations
-// (summed in cell order, so the value does not depend on the thread count). OpenMP-parallel over elements
-// and cells, without atomics. U must be #V x 3 with #V = elements.num_vertices (not checked: hot path).
+// (elements.num_cells, written to R) and the cell energies E_c = sum_{e in c} (w_e / 2) ||s_e - R_c
+// s_hat_e||^2 (elements.num_cells, written to cell_energy; cells 0..#V-1 are the vertices). Returns E(U) =
+// sum_c E_c, the variant's energy minimized over the rotations (summed in cell order, so the value does not
+// depend on the thread count). OpenMP-parallel over elements and cells, without atomics. U must be #V x 3
+// with #V = elements.num_vertices (not checked: hot path).
 double fit_rotations(const ArapElements& elements, const Eigen::MatrixXd& U, ArapElements::ValueRows& s,
                      std::vector<Eigen::Matrix3d>& R, Eigen::VectorXd& cell_energy);
 
