@@ -79,6 +79,15 @@ def sphere():
 
 
 @pytest.fixture(scope="session")
+def spike():
+    """A shared mesh with a boundary (binary PLY, flat disk-like patch); skipped when absent."""
+    path = shared_mesh("spike.ply")
+    if path is None:
+        pytest.skip("shared mesh spike.ply not found (../shared/meshes or $IARAP_SHARED_MESHES)")
+    return iarap.read_mesh(path)
+
+
+@pytest.fixture(scope="session")
 def bunny():
     return iarap.read_mesh(REPO / "data" / "bunny.off")
 
