@@ -31,7 +31,20 @@ struct IntrinsicArgs {
   int subdivide = 0;
   bool compare_factorization = false;
   bool no_mollify = false;
+  bool refine_boundary = false;
 };
+
+// Peak resident memory of this process (VmHWM), in MiB; 0 where /proc is not available.
+double peak_rss_mib() {
+  std::FILE* status = std::fopen("/proc/self/status", "r");
+  if (!status) return 0.0;
+  char line[256];
+  double kib = 0.0;
+  while (std::fgets(line, sizeof line, status))
+    if (std::sscanf(line, "VmHWM: %lf kB", &kib) == 1) break;
+  std::fclose(status);
+  return kib / 1024.0;
+}
 
 double ms_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
@@ -104,9 +117,11 @@ void run(const IntrinsicArgs& args) {
   }
   IntrinsicOptions options;
   options.mollify = !args.no_mollify;
+  options.refine_boundary = args.refine_boundary;
   const auto t0 = std::chrono::steady_clock::now();
   const IntrinsicDelaunay idt = intrinsic_delaunay(mesh.V, mesh.F, options);
   const double total_ms = ms_since(t0);
+  const double rss_mib = peak_rss_mib();
 
   nlohmann::json j = intrinsic_summary_json(idt);
   j["file"] = args.mesh;
@@ -117,6 +132,11 @@ void run(const IntrinsicArgs& args) {
   j["flip_ms"] = idt.flip_ms;
   j["trace_ms"] = idt.trace_ms;
   j["segment_ms"] = idt.segment_ms;
+  j["peak_rss_mib"] = rss_mib; // after reading, (subdividing) and the intrinsic preprocess
+  j["input_faces_mib"] = static_cast<double>(mesh.F.size() * sizeof(int) + mesh.V.size() * sizeof(double)) / (1 << 20);
+  j["obtuse_boundary_before"] = idt.triangulation.obtuse_boundary_before;
+  j["obtuse_boundary_after"] = idt.triangulation.obtuse_boundary_after;
+  j["inserted_points"] = idt.triangulation.inserted_t.size();
   if (args.compare_factorization) {
     const double factor_ms = cotan_factorization_ms(mesh.V, mesh.F);
     j["cotan_factorization_ms"] = factor_ms;
@@ -138,11 +158,14 @@ void run(const IntrinsicArgs& args) {
   std::printf("flips %ld, non-Delaunay edges %d -> %d, mollify delta %.3g\n", idt.triangulation.flips,
               idt.triangulation.non_delaunay_before, idt.triangulation.non_delaunay_after,
               idt.triangulation.mollify_delta);
+  std::printf("boundary edges with an obtuse opposite angle: %d -> %d (%ld points inserted)\n",
+              idt.triangulation.obtuse_boundary_before, idt.triangulation.obtuse_boundary_after,
+              static_cast<long>(idt.triangulation.inserted_t.size()));
   std::printf("segments %ld over %ld edges (%.4f per edge, max %d)\n", static_cast<long>(idt.segments.edge.size()),
               static_cast<long>(idt.triangulation.E.rows()), j["segments_per_edge"].get<double>(),
               j["max_segments_per_edge"].get<int>());
-  std::printf("time %.1f ms (flip %.1f, trace %.1f, segments %.1f)\n", total_ms, idt.flip_ms, idt.trace_ms,
-              idt.segment_ms);
+  std::printf("time %.1f ms (flip %.1f, trace %.1f, segments %.1f); peak memory %.1f MiB (input V+F %.1f MiB)\n",
+              total_ms, idt.flip_ms, idt.trace_ms, idt.segment_ms, rss_mib, j["input_faces_mib"].get<double>());
   if (args.compare_factorization)
     std::printf("cotan Laplacian CHOLMOD factorization %.1f ms; intrinsic preprocess / factorization = %.3f\n",
                 j["cotan_factorization_ms"].get<double>(), j["intrinsic_over_factorization"].get<double>());
@@ -163,6 +186,8 @@ const bool registered = register_command(
        sub->add_flag("--compare-factorization", args->compare_factorization,
                      "Also time a CHOLMOD factorization of the mesh's cotan Laplacian");
        sub->add_flag("--no-mollify", args->no_mollify, "Fail on degenerate triangles instead of mollifying");
+       sub->add_flag("--refine-boundary", args->refine_boundary,
+                     "Split boundary edges with an obtuse opposite angle (boundary-robust iARAP)");
        sub->callback([args] { run(*args); });
      }});
 

@@ -16,7 +16,8 @@ double ms_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
-IntrinsicTriangulation export_triangulation(const detail::SignpostTriangulation& tri) {
+IntrinsicTriangulation export_triangulation(const detail::SignpostTriangulation& tri,
+                                            const detail::SignpostTriangulation& input) {
   const int nf = tri.num_faces(), ne = tri.num_edges();
   IntrinsicTriangulation out;
   out.F.resize(nf, 3);
@@ -48,6 +49,16 @@ IntrinsicTriangulation export_triangulation(const detail::SignpostTriangulation&
     out.original_edge(e) = tri.original_edge[static_cast<size_t>(e)];
   }
   out.mollify_delta = tri.mollify_delta;
+  out.num_input_vertices = tri.num_input_vertices;
+  const int np = tri.num_vertices - tri.num_input_vertices;
+  out.inserted_on.resize(np, 2);
+  out.inserted_t.resize(np);
+  for (int q = 0; q < np; ++q) {
+    const int hb = tri.inserted_halfedge[static_cast<size_t>(q)];
+    out.inserted_on(q, 0) = input.tail(hb);
+    out.inserted_on(q, 1) = input.head(hb);
+    out.inserted_t(q) = tri.inserted_t[static_cast<size_t>(q)];
+  }
   return out;
 }
 
@@ -61,10 +72,21 @@ IntrinsicDelaunay intrinsic_delaunay(const Eigen::MatrixXd& V, const Eigen::Matr
       detail::build_signpost_triangulation(V, F, options.mollify, options.mollify_epsilon);
   detail::SignpostTriangulation tri = input;
   const detail::FlipStats stats = detail::flip_to_delaunay(tri, options.delaunay_tolerance);
-  result.triangulation = export_triangulation(tri);
-  result.triangulation.flips = stats.flips;
+  detail::RefineStats refine;
+  refine.obtuse_before = refine.obtuse_after = detail::count_obtuse_boundary_edges(tri, options.delaunay_tolerance);
+  if (options.refine_boundary) {
+    int boundary_edges = 0;
+    for (int t : input.twin) boundary_edges += t < 0;
+    const int cap = options.max_boundary_insertions >= 0 ? options.max_boundary_insertions : 4 * boundary_edges + 100;
+    refine = detail::refine_obtuse_boundary(tri, input, options.delaunay_tolerance, cap);
+  }
+  result.triangulation = export_triangulation(tri, input);
+  result.triangulation.obtuse_boundary_before = refine.obtuse_before;
+  result.triangulation.obtuse_boundary_after = refine.obtuse_after;
+  result.triangulation.refine_rounds = refine.rounds;
+  result.triangulation.flips = stats.flips + refine.flips;
   result.triangulation.non_delaunay_before = stats.non_delaunay_before;
-  result.triangulation.non_delaunay_after = stats.non_delaunay_after;
+  result.triangulation.non_delaunay_after = detail::count_non_delaunay(tri, options.delaunay_tolerance);
   result.flip_ms = ms_since(t0);
 
   t0 = std::chrono::steady_clock::now();

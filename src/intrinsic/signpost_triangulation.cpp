@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
 
 namespace iarap::detail {
 
@@ -62,6 +63,7 @@ SignpostTriangulation build_signpost_triangulation(const Eigen::MatrixXd& V, con
   const int ne = static_cast<int>(topo.E.rows());
   SignpostTriangulation tri;
   tri.num_vertices = nv;
+  tri.num_input_vertices = nv;
   tri.corner_vertex.resize(static_cast<size_t>(3 * nf));
   tri.twin.assign(static_cast<size_t>(3 * nf), -1);
   tri.edge.resize(static_cast<size_t>(3 * nf));
@@ -285,6 +287,139 @@ FlipStats flip_to_delaunay(SignpostTriangulation& tri, double tolerance) {
     }
   }
   stats.non_delaunay_after = count_non_delaunay(tri, tolerance);
+  return stats;
+}
+
+int count_obtuse_boundary_edges(const SignpostTriangulation& tri, double tolerance) {
+  int count = 0;
+  for (int e = 0; e < tri.num_edges(); ++e) {
+    const int h = tri.edge_halfedge[static_cast<size_t>(e)];
+    if (tri.twin[static_cast<size_t>(h)] < 0 && tri.opposite_cotangent(h) < -tolerance) ++count;
+  }
+  return count;
+}
+
+namespace {
+
+// Where a point at parameter t along intrinsic boundary halfedge h lies on the input: the input boundary
+// halfedge and its parameter. Intrinsic boundary edges are never flipped, so h is a piece of one input
+// boundary halfedge, from tail point to head point.
+std::pair<int, double> locate_on_input_boundary(const SignpostTriangulation& tri, const SignpostTriangulation& input,
+                                                int h, double t) {
+  auto position = [&](int v, int hb_hint) -> std::pair<int, double> {
+    if (v >= tri.num_input_vertices) {
+      const size_t q = static_cast<size_t>(v - tri.num_input_vertices);
+      return {tri.inserted_halfedge[q], tri.inserted_t[q]};
+    }
+    return {hb_hint, input.tail(hb_hint) == v ? 0.0 : 1.0};
+  };
+  const int a = tri.tail(h), b = tri.head(h);
+  // The input boundary halfedge carrying h: known from an inserted end, else the input edge a -> b.
+  int hb = -1;
+  if (a >= tri.num_input_vertices) hb = tri.inserted_halfedge[static_cast<size_t>(a - tri.num_input_vertices)];
+  else if (b >= tri.num_input_vertices) hb = tri.inserted_halfedge[static_cast<size_t>(b - tri.num_input_vertices)];
+  else {
+    const int e = tri.original_edge[static_cast<size_t>(tri.edge[static_cast<size_t>(h)])];
+    hb = input.edge_halfedge[static_cast<size_t>(e)];
+  }
+  const double ta = position(a, hb).second, tb = position(b, hb).second;
+  return {hb, ta + t * (tb - ta)};
+}
+
+// Splits boundary edge e of face (i, j, k) at parameter t from i: faces (i, p, k) and (p, j, k).
+void split_boundary_edge(SignpostTriangulation& tri, const SignpostTriangulation& input, int e, double t) {
+  const int h = tri.edge_halfedge[static_cast<size_t>(e)];
+  const int f = h / 3, g = tri.num_faces();
+  const int h1 = next_halfedge(h), h2 = prev_halfedge(h);
+  const int i = tri.tail(h), j = tri.head(h), k = tri.tail(h2);
+  const int e_jk = tri.edge[static_cast<size_t>(h1)], e_ki = tri.edge[static_cast<size_t>(h2)];
+  const double l_ij = tri.length[static_cast<size_t>(e)], l_jk = tri.halfedge_length(h1), l_ki = tri.halfedge_length(h2);
+  const double kx = (l_ki * l_ki - l_jk * l_jk + l_ij * l_ij) / (2 * l_ij);
+  const double ky = std::sqrt(std::max(l_ki * l_ki - kx * kx, 0.0));
+  const double l_pk = std::hypot(kx - t * l_ij, ky);
+  const auto [hb, tb] = locate_on_input_boundary(tri, input, h, t);
+
+  const int p = tri.num_vertices++;
+  tri.inserted_halfedge.push_back(hb);
+  tri.inserted_t.push_back(tb);
+  tri.vertex_angle_sum.push_back(kPi);
+  tri.boundary_vertex.push_back(1);
+  const int e_pj = tri.num_edges(), e_pk = e_pj + 1;
+  tri.length.push_back((1 - t) * l_ij);
+  tri.length.push_back(l_pk);
+  tri.original_edge.push_back(-1);
+  tri.original_edge.push_back(-1);
+  tri.edge_halfedge.resize(static_cast<size_t>(e_pk + 1));
+  tri.length[static_cast<size_t>(e)] = t * l_ij;
+  tri.original_edge[static_cast<size_t>(e)] = -1;
+  for (auto* v : {&tri.corner_vertex, &tri.twin, &tri.edge}) v->resize(static_cast<size_t>(3 * g + 3));
+  tri.phi.resize(static_cast<size_t>(3 * g + 3));
+
+  const int x_jk = tri.twin[static_cast<size_t>(h1)], x_ki = tri.twin[static_cast<size_t>(h2)];
+  const double phi_ij = tri.phi[static_cast<size_t>(h)], phi_ki = tri.phi[static_cast<size_t>(h2)];
+  const double phi_jk = tri.phi[static_cast<size_t>(h1)];
+  const int s_ip = 3 * f, s_pk = 3 * f + 1, s_ki = 3 * f + 2, s_pj = 3 * g, s_jk = 3 * g + 1, s_kp = 3 * g + 2;
+  auto moved = [&](int x) { return x == h1 ? s_jk : x == h2 ? s_ki : x; };
+  auto set = [&](int slot, int vertex, int edge_id, int twin_slot, double phi) {
+    tri.corner_vertex[static_cast<size_t>(slot)] = vertex;
+    tri.edge[static_cast<size_t>(slot)] = edge_id;
+    tri.twin[static_cast<size_t>(slot)] = twin_slot;
+    tri.phi[static_cast<size_t>(slot)] = phi;
+    if (twin_slot >= 0) tri.twin[static_cast<size_t>(twin_slot)] = slot;
+  };
+  set(s_ip, i, e, -1, phi_ij);
+  set(s_ki, k, e_ki, moved(x_ki), phi_ki);
+  set(s_jk, j, e_jk, moved(x_jk), phi_jk);
+  set(s_pj, p, e_pj, -1, 0.0);
+  set(s_pk, p, e_pk, -1, 0.0);
+  set(s_kp, k, e_pk, s_pk, 0.0);
+  tri.edge_halfedge[static_cast<size_t>(e)] = s_ip;
+  tri.edge_halfedge[static_cast<size_t>(e_pj)] = s_pj;
+  tri.edge_halfedge[static_cast<size_t>(e_pk)] = k < p ? s_kp : s_pk;
+  for (int s : {s_ki, s_jk}) {
+    const int x = tri.twin[static_cast<size_t>(s)];
+    int best = s;
+    if (x >= 0 && (tri.tail(x) < tri.tail(s) || (tri.tail(x) == tri.tail(s) && x < s))) best = x;
+    tri.edge_halfedge[static_cast<size_t>(tri.edge[static_cast<size_t>(s)])] = best;
+  }
+  // Signposts at p: 0 along the boundary towards j, then counter-clockwise; at k: from k -> i by the new corner.
+  tri.phi[static_cast<size_t>(s_pk)] = tri.corner_angle(s_pj);
+  tri.vertex_angle_sum[static_cast<size_t>(p)] = tri.corner_angle(s_pj) + tri.corner_angle(s_pk);
+  double phi_kp = phi_ki + tri.corner_angle(s_ki);
+  const double theta_k = tri.vertex_angle_sum[static_cast<size_t>(k)];
+  if (tri.boundary_vertex[static_cast<size_t>(k)]) phi_kp = std::min(phi_kp, theta_k);
+  else if (phi_kp >= theta_k) phi_kp -= theta_k;
+  tri.phi[static_cast<size_t>(s_kp)] = phi_kp;
+}
+
+} // namespace
+
+RefineStats refine_obtuse_boundary(SignpostTriangulation& tri, const SignpostTriangulation& input,
+                                   double tolerance, int max_insertions) {
+  RefineStats stats;
+  stats.obtuse_before = count_obtuse_boundary_edges(tri, tolerance);
+  while (stats.inserted < max_insertions) {
+    std::vector<int> obtuse;
+    for (int e = 0; e < tri.num_edges(); ++e) {
+      const int h = tri.edge_halfedge[static_cast<size_t>(e)];
+      if (tri.twin[static_cast<size_t>(h)] < 0 && tri.opposite_cotangent(h) < -tolerance) obtuse.push_back(e);
+    }
+    if (obtuse.empty()) break;
+    ++stats.rounds;
+    for (int e : obtuse) {
+      if (stats.inserted >= max_insertions) break;
+      const int h = tri.edge_halfedge[static_cast<size_t>(e)];
+      if (tri.opposite_cotangent(h) >= -tolerance) continue; // fixed by an earlier split of this round
+      // Foot of the altitude from the obtuse corner: inside the edge, since the other two angles are acute.
+      const double l_ij = tri.halfedge_length(h), l_jk = tri.halfedge_length(next_halfedge(h)),
+                   l_ki = tri.halfedge_length(prev_halfedge(h));
+      const double t = std::clamp((l_ki * l_ki - l_jk * l_jk + l_ij * l_ij) / (2 * l_ij * l_ij), 0.05, 0.95);
+      split_boundary_edge(tri, input, e, t);
+      ++stats.inserted;
+    }
+    stats.flips += flip_to_delaunay(tri, tolerance).flips;
+  }
+  stats.obtuse_after = count_obtuse_boundary_edges(tri, tolerance);
   return stats;
 }
 

@@ -20,7 +20,8 @@ inline int next_halfedge(int h) { return h - h % 3 + (h % 3 + 1) % 3; }
 inline int prev_halfedge(int h) { return h - h % 3 + (h % 3 + 2) % 3; }
 
 struct SignpostTriangulation {
-  int num_vertices = 0;
+  int num_vertices = 0;            // input vertices followed by inserted ones
+  int num_input_vertices = 0;
   std::vector<int> corner_vertex;  // 3F vertex at corner h (tail of halfedge h)
   std::vector<int> twin;           // 3F opposite halfedge, -1 on boundary
   std::vector<int> edge;           // 3F edge of halfedge
@@ -31,6 +32,10 @@ struct SignpostTriangulation {
   std::vector<char> boundary_vertex;     // #V
   std::vector<int> original_edge;  // #E input edge this edge still is, -1 once flipped
   double mollify_delta = 0.0;
+  // Inserted vertex v = num_input_vertices + q lies on input boundary halfedge inserted_halfedge[q] at
+  // parameter inserted_t[q] from its tail: a fixed barycentric point, not a degree of freedom.
+  std::vector<int> inserted_halfedge;
+  std::vector<double> inserted_t;
 
   int tail(int h) const { return corner_vertex[static_cast<size_t>(h)]; }
   int head(int h) const { return corner_vertex[static_cast<size_t>(next_halfedge(h))]; }
@@ -66,5 +71,23 @@ FlipStats flip_to_delaunay(SignpostTriangulation& tri, double tolerance);
 
 // Number of interior edges with cot a + cot b < -tolerance.
 int count_non_delaunay(const SignpostTriangulation& tri, double tolerance);
+
+struct RefineStats {
+  int inserted = 0;
+  int rounds = 0;
+  long flips = 0;
+  int obtuse_before = 0; // boundary edges with an obtuse opposite angle before refinement
+  int obtuse_after = 0;
+};
+
+// Boundary edges whose one opposite angle is obtuse (cot < -tolerance), i.e. a negative cotan weight.
+int count_obtuse_boundary_edges(const SignpostTriangulation& tri, double tolerance);
+
+// Splits each boundary edge with an obtuse opposite angle at the foot of the altitude from the opposite
+// vertex (both new opposite angles are then acute), re-flips to Delaunay, and repeats until no boundary
+// edge is obtuse or `max_insertions` is reached. `input` is the unflipped input triangulation, which
+// locates each inserted point on its input boundary edge. Returns what it did.
+RefineStats refine_obtuse_boundary(SignpostTriangulation& tri, const SignpostTriangulation& input,
+                                   double tolerance, int max_insertions);
 
 } // namespace iarap::detail

@@ -67,6 +67,38 @@ Vec2 third_corner(Vec2 pa, Vec2 pb, double l_ab, double l_ac, double l_bc) {
                     std::to_string(j) + ") over the input mesh failed: " + why);
 }
 
+// Where an intrinsic vertex lies on the input: an input vertex (c = -1) or a point of input boundary
+// halfedge (a -> c) at parameter t.
+struct InputPoint {
+  int a, c;
+  double t;
+  int halfedge; // the input boundary halfedge of an inserted point, else -1
+};
+
+InputPoint input_point(const SignpostTriangulation& tri, const SignpostTriangulation& input, int v) {
+  if (v < tri.num_input_vertices) return {v, -1, 0.0, -1};
+  const size_t q = static_cast<size_t>(v - tri.num_input_vertices);
+  const int hb = tri.inserted_halfedge[q];
+  return {input.tail(hb), input.head(hb), tri.inserted_t[q], hb};
+}
+
+// The 2D position of `target` if it lies on the face with corners (va, pa), (vb, pb), (vc, pc).
+bool target_in_face(const InputPoint& target, const int (&v)[3], const Vec2 (&pos)[3], Vec2& where) {
+  int ia = -1, ic = -1;
+  for (int q = 0; q < 3; ++q) {
+    if (v[q] == target.a) ia = q;
+    if (v[q] == target.c) ic = q;
+  }
+  if (ia < 0) return false;
+  if (target.c < 0) {
+    where = pos[ia];
+    return true;
+  }
+  if (ic < 0) return false;
+  where = pos[ia] * (1 - target.t) + pos[ic] * target.t;
+  return true;
+}
+
 // Appends the points of intrinsic edge e to `out`.
 void trace_one(const SignpostTriangulation& input, const VertexFans& fans, const SignpostTriangulation& tri, int e,
                std::vector<TracePoint>& out) {
@@ -82,37 +114,79 @@ void trace_one(const SignpostTriangulation& input, const VertexFans& fans, const
   const double length = tri.length[static_cast<size_t>(e)];
   const double phi = tri.phi[static_cast<size_t>(h)];
   const double tol = 1e-7 * length; // snapping distance at the end; tracing errors are ~1e-14 * length
+  const InputPoint start = input_point(tri, input, i), target = input_point(tri, input, j);
 
-  // The input corner at i whose angular range holds phi.
-  const int first = fans.start[static_cast<size_t>(i)], last = fans.start[static_cast<size_t>(i + 1)];
-  int k = static_cast<int>(std::upper_bound(fans.phi.begin() + first, fans.phi.begin() + last, phi) - fans.phi.begin()) - 1;
-  k = std::max(k, first);
-  const int hin = fans.halfedge[static_cast<size_t>(k)];
-  const double alpha = std::clamp(phi - fans.phi[static_cast<size_t>(k)], 0.0, input.corner_angle(hin));
-
-  // Lay out the first face with i at the origin and hin along +x.
-  const int u = input.head(hin), w = input.tail(prev_halfedge(hin));
-  const double l_iu = input.halfedge_length(hin), l_iw = input.halfedge_length(prev_halfedge(hin));
-  const Vec2 pi{0, 0}, pu{l_iu, 0};
-  const Vec2 pw = third_corner(pi, pu, l_iu, l_iw, input.halfedge_length(next_halfedge(hin)));
-  const Vec2 dir{std::cos(alpha), std::sin(alpha)};
-  const Vec2 end0 = dir * length;
-  out.push_back({i, -1, hin / 3, 0.0});
-  if (u == j && norm(end0 - pu) <= tol) {
-    out.push_back({j, -1, -1, 0.0});
-    return;
-  }
-  if (w == j && norm(end0 - pw) <= tol) {
-    out.push_back({j, -1, -1, 0.0});
-    return;
-  }
-
-  // Walk: exit halfedge x of the current face, crossing at distance r along the ray.
-  Vec2 p = pi, q0 = pu, q1 = pw;
-  int x = next_halfedge(hin);
+  // State of the walk: the ray p + r dir is inside the face left of input halfedge `entry`, whose tail and
+  // head sit at pa and pb. From an input vertex, the first face is the fan corner holding phi; the ray
+  // leaves it through the opposite halfedge.
+  Vec2 dir, p{0, 0}, pa, pb;
+  int entry;
   double remaining = length;
+  if (start.c < 0) {
+    const int first = fans.start[static_cast<size_t>(i)], last = fans.start[static_cast<size_t>(i + 1)];
+    int k = static_cast<int>(std::upper_bound(fans.phi.begin() + first, fans.phi.begin() + last, phi) - fans.phi.begin()) - 1;
+    k = std::max(k, first);
+    const int hin = fans.halfedge[static_cast<size_t>(k)];
+    const double alpha = std::clamp(phi - fans.phi[static_cast<size_t>(k)], 0.0, input.corner_angle(hin));
+    const int u = input.head(hin), w = input.tail(prev_halfedge(hin));
+    const double l_iu = input.halfedge_length(hin);
+    const Vec2 pu{l_iu, 0};
+    const Vec2 pw = third_corner(p, pu, l_iu, input.halfedge_length(prev_halfedge(hin)),
+                                 input.halfedge_length(next_halfedge(hin)));
+    dir = {std::cos(alpha), std::sin(alpha)};
+    out.push_back({i, -1, hin / 3, 0.0});
+    Vec2 goal;
+    if (target_in_face(target, {i, u, w}, {p, pu, pw}, goal) && norm(dir * length - goal) <= tol) {
+      out.push_back({target.a, target.c, -1, target.t});
+      return;
+    }
+    // Leave through u -> w: continue as if that halfedge's twin were the entry of the next face.
+    const int x = next_halfedge(hin);
+    const Vec2 edge_vec = pw - pu;
+    const double denom = cross(dir, edge_vec);
+    const double r = cross(pu - p, edge_vec) / denom;
+    const double s = std::clamp(cross(pu - p, dir) / denom, 0.0, 1.0);
+    if (!(r < remaining - tol)) trace_failure(e, i, j, "the line ends inside input face " + std::to_string(hin / 3) + " away from the end vertex");
+    entry = input.twin[static_cast<size_t>(x)];
+    if (entry < 0) trace_failure(e, i, j, "the line leaves the surface through boundary halfedge " + std::to_string(x));
+    out.push_back({input.tail(x), input.head(x), entry / 3, s});
+    p = p + dir * r;
+    remaining -= r;
+    pa = pw;
+    pb = pu;
+  } else {
+    // An inserted point on input boundary halfedge a -> c: phi = 0 points towards c, the face is on the left.
+    entry = start.halfedge;
+    const double l_ac = input.halfedge_length(entry);
+    pa = {-start.t * l_ac, 0};
+    pb = {(1 - start.t) * l_ac, 0};
+    dir = {std::cos(phi), std::sin(phi)};
+    out.push_back({start.a, start.c, entry / 3, start.t});
+  }
+
   const int max_steps = 4 * input.num_faces() + 16;
   for (int step = 0; step < max_steps; ++step) {
+    // In the face left of `entry` (tail at pa, head at pb); its third corner is c.
+    const int va = input.tail(entry), vb = input.head(entry), c = input.tail(prev_halfedge(entry));
+    const Vec2 pc = third_corner(pa, pb, input.halfedge_length(entry), input.halfedge_length(prev_halfedge(entry)),
+                                 input.halfedge_length(next_halfedge(entry)));
+    Vec2 goal;
+    if (target_in_face(target, {va, vb, c}, {pa, pb, pc}, goal) && norm(p + dir * remaining - goal) <= tol) {
+      out.push_back({target.a, target.c, -1, target.t});
+      return;
+    }
+    // pa is left of the ray and pb right of it: the ray leaves through b -> c when c is on its left.
+    int x;
+    Vec2 q0, q1;
+    if (cross(dir, pc - p) > 0) {
+      x = next_halfedge(entry);
+      q0 = pb;
+      q1 = pc;
+    } else {
+      x = prev_halfedge(entry);
+      q0 = pc;
+      q1 = pa;
+    }
     const Vec2 edge_vec = q1 - q0;
     const double denom = cross(dir, edge_vec);
     const double r = cross(q0 - p, edge_vec) / denom;
@@ -123,25 +197,10 @@ void trace_one(const SignpostTriangulation& input, const VertexFans& fans, const
     out.push_back({input.tail(x), input.head(x), tx / 3, s});
     p = p + dir * r;
     remaining -= r;
-    // Enter the face across x: its halfedge tx runs head(x) -> tail(x); the face lies to its left.
-    const Vec2 pa = q1, pb = q0;
-    const int c = input.tail(prev_halfedge(tx));
-    const Vec2 pc = third_corner(pa, pb, input.halfedge_length(tx), input.halfedge_length(prev_halfedge(tx)),
-                                 input.halfedge_length(next_halfedge(tx)));
-    if (c == j && norm(p + dir * remaining - pc) <= tol) {
-      out.push_back({j, -1, -1, 0.0});
-      return;
-    }
-    // pa is left of the ray and pb right of it: the ray leaves through b->c when c is on its left.
-    if (cross(dir, pc - p) > 0) {
-      x = next_halfedge(tx);
-      q0 = pb;
-      q1 = pc;
-    } else {
-      x = prev_halfedge(tx);
-      q0 = pc;
-      q1 = pa;
-    }
+    // The face across x: its halfedge tx runs head(x) -> tail(x), so its tail sits at q1.
+    entry = tx;
+    pa = q1;
+    pb = q0;
   }
   trace_failure(e, i, j, "more than " + std::to_string(max_steps) + " crossings");
 }

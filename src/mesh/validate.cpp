@@ -5,6 +5,7 @@
 #include "iarap/mesh/edge_topology.h"
 #include "iarap/mesh/repair.h"
 
+#include <algorithm>
 #include <Eigen/Geometry>
 #include <cmath>
 #include <cstdint>
@@ -207,14 +208,45 @@ MeshReport check_mesh(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
     else if (seen != fan(c))
       pinched[static_cast<std::size_t>(v)] = 1;
   }
-  int first_pinched = -1;
-  for (int v = 0; v < nv; ++v)
-    if (pinched[static_cast<std::size_t>(v)] && r.non_manifold_vertices++ == 0)
-      first_pinched = v;
-  if (r.non_manifold_vertices > 0)
-    r.errors.push_back(plural(r.non_manifold_vertices, "vertex is", "vertices are") +
-                       " non-manifold (the faces around one form several fans); first: vertex " +
+  // A pinched vertex whose fans are all open (each fan ends on two boundary edges) is where separate
+  // sheets touch, common in scans: ARAP keeps one rotation cell there and the intrinsic triangulation gives
+  // each fan its own angle range, so it is only a warning. A closed fan touching another is an error.
+  std::vector<std::pair<int, int>> vertex_fans;
+  for (int c = 0; c < 3 * ng; ++c) {
+    const int v = G(c / 3, c % 3);
+    if (pinched[static_cast<std::size_t>(v)]) vertex_fans.emplace_back(v, fan(c));
+  }
+  std::sort(vertex_fans.begin(), vertex_fans.end());
+  vertex_fans.erase(std::unique(vertex_fans.begin(), vertex_fans.end()), vertex_fans.end());
+  std::vector<int> fan_count(static_cast<std::size_t>(nv), 0), boundary_at(static_cast<std::size_t>(nv), 0);
+  for (const auto& vf : vertex_fans) ++fan_count[static_cast<std::size_t>(vf.first)];
+  for (int e = 0; e < ne; ++e)
+    if (t.face_count(e) == 1) {
+      ++boundary_at[static_cast<std::size_t>(t.E(e, 0))];
+      ++boundary_at[static_cast<std::size_t>(t.E(e, 1))];
+    }
+  int first_pinched = -1, first_open_pinched = -1, open_pinched = 0;
+  for (int v = 0; v < nv; ++v) {
+    if (!pinched[static_cast<std::size_t>(v)]) continue;
+    if (r.non_manifold_vertices++ == 0) first_pinched = v;
+    if (boundary_at[static_cast<std::size_t>(v)] == 2 * fan_count[static_cast<std::size_t>(v)] && open_pinched++ == 0)
+      first_open_pinched = v;
+  }
+  if (open_pinched > 0)
+    r.warnings.push_back(plural(open_pinched, "vertex joins", "vertices join") +
+                         " several open fans of faces (sheets touching at a point; handled as one rotation "
+                         "cell); first: vertex " + std::to_string(first_open_pinched));
+  if (r.non_manifold_vertices > open_pinched) {
+    for (int v = 0; v < nv; ++v)
+      if (pinched[static_cast<std::size_t>(v)] &&
+          boundary_at[static_cast<std::size_t>(v)] != 2 * fan_count[static_cast<std::size_t>(v)]) {
+        first_pinched = v;
+        break;
+      }
+    r.errors.push_back(plural(r.non_manifold_vertices - open_pinched, "vertex is", "vertices are") +
+                       " non-manifold (a closed fan of faces touches another fan there); first: vertex " +
                        std::to_string(first_pinched));
+  }
 
   // ---- components and boundary loops
   int raw_components = 0;

@@ -25,8 +25,11 @@ int expect_invariants(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const 
   const auto& seg = idt.segments;
   const auto& tr = idt.traces;
   const EdgeTopology topo = edge_topology(F, static_cast<int>(V.rows()));
-  EXPECT_EQ(tri.F.rows(), F.rows()) << name;
-  EXPECT_EQ(tri.E.rows(), topo.E.rows()) << name;
+  // Each inserted boundary point splits one face and one edge and adds one interior edge, which keeps
+  // the Euler characteristic.
+  const Eigen::Index inserted = tri.inserted_t.size();
+  EXPECT_EQ(tri.F.rows(), F.rows() + inserted) << name;
+  EXPECT_EQ(tri.E.rows(), topo.E.rows() + 2 * inserted) << name;
   EXPECT_EQ(tri.non_delaunay_after, 0) << name;
   int max_segments = 0;
   int failures = 0;
@@ -38,10 +41,18 @@ int expect_invariants(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const 
     }
     const int p0 = tr.start[e], p1 = tr.start[e + 1];
     EXPECT_GE(p1 - p0, 2);
-    EXPECT_EQ(tr.a[p0], tri.E(e, 0));
-    EXPECT_EQ(tr.c[p0], -1);
-    EXPECT_EQ(tr.a[p1 - 1], tri.E(e, 1));
-    EXPECT_EQ(tr.c[p1 - 1], -1);
+    // End points: the input vertex itself, or the inserted boundary point's input edge and parameter.
+    for (const auto [p, v] : {std::pair<int, int>{p0, tri.E(e, 0)}, std::pair<int, int>{p1 - 1, tri.E(e, 1)}}) {
+      if (v < tri.num_input_vertices) {
+        EXPECT_EQ(tr.a[p], v);
+        EXPECT_EQ(tr.c[p], -1);
+      } else {
+        const int q = v - tri.num_input_vertices;
+        EXPECT_EQ(tr.a[p], tri.inserted_on(q, 0));
+        EXPECT_EQ(tr.c[p], tri.inserted_on(q, 1));
+        EXPECT_EQ(tr.t[p], tri.inserted_t(q));
+      }
+    }
     double traced = 0.0;
     for (int s = seg.edge_start(e); s < seg.edge_start(e + 1); ++s) {
       traced += seg.length(s);
@@ -100,6 +111,23 @@ void expect_planar_delaunay(const Eigen::MatrixXd& V, const IntrinsicDelaunay& i
       const double off_line = ((x - p).cross(q - p)).norm() / (q - p).norm();
       EXPECT_LT(off_line, 1e-10 * scale) << name << " edge " << e << " point " << k;
     }
+  }
+}
+
+// Every traced point of a flat mesh lies on the straight line between its edge's end points.
+void expect_planar_delaunay_edges_straight(const Eigen::MatrixXd& V, const IntrinsicDelaunay& idt, const std::string& name) {
+  const auto& tri = idt.triangulation;
+  const auto& tr = idt.traces;
+  const double scale = (V.colwise().maxCoeff() - V.colwise().minCoeff()).norm();
+  auto point = [&](int k) {
+    const int a = tr.a[k], c = tr.c[k];
+    return c < 0 ? Eigen::Vector3d(V.row(a)) : Eigen::Vector3d((1 - tr.t[k]) * V.row(a) + tr.t[k] * V.row(c));
+  };
+  for (int e = 0; e < tri.E.rows(); ++e) {
+    const Eigen::Vector3d p = point(tr.start[e]), q = point(tr.start[e + 1] - 1);
+    EXPECT_NEAR(tri.length(e), (q - p).norm(), 1e-12 * scale) << name << " edge " << e;
+    for (int k = tr.start[e]; k < tr.start[e + 1]; ++k)
+      EXPECT_LT(((point(k) - p).cross(q - p)).norm() / (q - p).norm(), 1e-10 * scale) << name << " edge " << e;
   }
 }
 
@@ -241,4 +269,50 @@ TEST(IntrinsicDelaunay, NonManifoldInputIsNamed) {
   } catch (const TopologyError& e) {
     EXPECT_NE(std::string(e.what()).find("non-manifold edge (0, 1)"), std::string::npos) << e.what();
   }
+}
+
+TEST(IntrinsicDelaunay, BoundaryRefinementRemovesObtuseBoundaryAngles) {
+  // A flat strip whose boundary triangles are obtuse: the top row is shifted so that the Delaunay
+  // triangle of every bottom edge has its apex inside the edge's diametral circle.
+  TestMesh m;
+  const int n = 8;
+  m.V.resize(2 * (n + 1), 3);
+  for (int i = 0; i <= n; ++i) {
+    m.V.row(i) << i, 0, 0;
+    m.V.row(n + 1 + i) << i + 0.5, 0.2, 0;
+  }
+  m.F.resize(2 * n, 3);
+  for (int i = 0; i < n; ++i) {
+    m.F.row(2 * i) << i, i + 1, n + 1 + i;
+    m.F.row(2 * i + 1) << i + 1, n + 2 + i, n + 1 + i;
+  }
+  IntrinsicOptions options;
+  options.refine_boundary = true;
+  const IntrinsicDelaunay paper = intrinsic_delaunay(m.V, m.F);
+  const IntrinsicDelaunay idt = intrinsic_delaunay(m.V, m.F, options);
+  EXPECT_GT(paper.triangulation.obtuse_boundary_before, 0);
+  EXPECT_EQ(idt.triangulation.obtuse_boundary_after, 0);
+  EXPECT_GT(idt.triangulation.inserted_t.size(), 0);
+  for (int e = 0; e < idt.triangulation.E.rows(); ++e)
+    EXPECT_GE(idt.triangulation.cot_weight(e), -1e-12) << "edge " << e;
+  expect_invariants(m.V, m.F, idt, "refined strip");
+  expect_planar_delaunay_edges_straight(m.V, idt, "refined strip");
+}
+
+TEST(IntrinsicDelaunay, BoundaryRefinementOnSharedMeshes) {
+  int tested = 0;
+  for (const std::string name : {"lion.off", "beetle.off", "ogre.obj", "face.obj", "camelhead.off", "spike.ply", "grid.off"}) {
+    const std::string path = iarap::test::shared_mesh_path(name);
+    if (path.empty()) continue;
+    const MeshData mesh = read_mesh(path);
+    IntrinsicOptions options;
+    options.refine_boundary = true;
+    const IntrinsicDelaunay idt = intrinsic_delaunay(mesh.V, mesh.F, options);
+    EXPECT_EQ(idt.triangulation.obtuse_boundary_after, 0) << name;
+    EXPECT_GE(idt.triangulation.cot_weight.minCoeff(), -1e-12) << name;
+    expect_invariants(mesh.V, mesh.F, idt, name + " refined");
+    if (idt.triangulation.obtuse_boundary_before == 0) EXPECT_EQ(idt.triangulation.inserted_t.size(), 0) << name;
+    ++tested;
+  }
+  if (tested == 0) GTEST_SKIP() << "shared meshes not found beside the repository";
 }

@@ -17,6 +17,14 @@ struct IntrinsicOptions {
   // When false, a degenerate input triangle is a TopologyError naming it.
   bool mollify = true;
   double mollify_epsilon = 1e-6;
+  // Boundary-robust iARAP (not in the paper): boundary edges are never flipped, so one whose opposite
+  // angle is obtuse keeps a negative weight. With refine_boundary, such an edge is split at the foot of the
+  // altitude from its obtuse corner (both new opposite angles are acute), the triangulation re-flipped to
+  // Delaunay, and this repeated until no boundary edge is obtuse or max_boundary_insertions points were
+  // inserted (-1: 4 x #boundary edges + 100). Inserted points are fixed barycentric points of their input
+  // boundary edge, not degrees of freedom; each has its own rotation cell.
+  bool refine_boundary = false;
+  int max_boundary_insertions = -1;
 };
 
 // The intrinsic triangulation after flipping to Delaunay. In general a Delta-complex: two edges may
@@ -32,6 +40,14 @@ struct IntrinsicTriangulation {
   Eigen::VectorXd face_area;      // #F intrinsic face areas
   Eigen::VectorXi is_boundary;    // #E 1 for boundary edges (never flipped), else 0
   Eigen::VectorXi original_edge;  // #E the input edge (index into edge_topology(F).E) it still is, or -1
+  // Vertices 0 .. num_input_vertices-1 are the input's; vertex num_input_vertices + q is inserted point q
+  // (refine_boundary), at (1 - inserted_t(q)) V[inserted_on(q,0)] + inserted_t(q) V[inserted_on(q,1)].
+  int num_input_vertices = 0;
+  Eigen::MatrixXi inserted_on;    // #P x 2 input boundary edge holding each inserted point
+  Eigen::VectorXd inserted_t;     // #P
+  int obtuse_boundary_before = 0; // boundary edges with an obtuse opposite angle after flipping
+  int obtuse_boundary_after = 0;  // ... and after refinement (0 unless the insertion cap was hit)
+  int refine_rounds = 0;
   long flips = 0;
   int non_delaunay_before = 0;    // interior edges of the input failing the Delaunay test
   int non_delaunay_after = 0;     // after flipping: 0 unless flips were impossible
@@ -39,8 +55,8 @@ struct IntrinsicTriangulation {
 };
 
 // Traced intrinsic edges: the ordered points of each edge's polyline over the input mesh, in CSR form.
-// Point p is (1 - t[p]) * V[a[p]] + t[p] * V[c[p]]: an input vertex (c = -1, t = 0) or a crossing of
-// input edge (a, c) at parameter t. face[p] is the input face carrying the segment from p to p + 1
+// Point p is (1 - t[p]) * V[a[p]] + t[p] * V[c[p]]: an input vertex (c = -1, t = 0), a crossing of
+// input edge (a, c) at parameter t, or (first/last point) an inserted boundary point. face[p] is the input face carrying the segment from p to p + 1
 // (-1 for the last point of each edge).
 struct TracedEdges {
   std::vector<int> start;         // #E + 1 offsets into the point arrays
