@@ -8,6 +8,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   pybind11-dev python3-dev python3-numpy python3-scipy python3-pytest python3-matplotlib
   python3-vtk9 xvfb xauth
+  chromium
 )
 missing=()
 for p in "${packages[@]}"; do

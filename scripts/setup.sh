@@ -4,6 +4,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install_deps.sh
 bash scripts/build.sh
+# The web viewer's three.js and the browser test's playwright-core, from web/package-lock.json.
+if command -v npm >/dev/null; then npm ci --prefix web --no-audit --no-fund; fi
 mkdir -p out
 ./build/iarap deform data/bunny.off --scenario data/bunny_scenario.json --method iarap \
   --iterations 50 --out out/bunny_iarap.off --report out/bunny_iarap.json

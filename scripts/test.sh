@@ -5,6 +5,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install_deps.sh
 bash scripts/build.sh
+# The web viewer's three.js and the browser test's playwright-core, from web/package-lock.json.
+if command -v npm >/dev/null; then npm ci --prefix web --no-audit --no-fund; fi
 ctest --test-dir build --output-on-failure -j"$(nproc)"
 if [ -d python/tests ] && [ -n "$(ls build/python/iarap*.so 2>/dev/null)" ]; then
   PYTHONPATH="$PWD/build/python" /usr/bin/python3 -m pytest -q python/tests experiments/tests

@@ -1,0 +1,333 @@
+#include "api_routes.h"
+
+#include "binary_frame.h"
+#include "http_error.h"
+#include "json_input.h"
+#include "static_files.h"
+
+#include "iarap/core/errors.h"
+#include "iarap/io/read_mesh.h"
+#include "iarap/io/write_mesh.h"
+
+#include <httplib.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cctype>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+
+namespace iarap::serve {
+namespace {
+
+using nlohmann::json;
+
+void send_json(httplib::Response& res, const json& body, int status = 200) {
+  res.status = status;
+  res.set_content(body.dump(), "application/json");
+}
+
+void send_binary(httplib::Response& res, const std::string& body) {
+  res.set_content(body, "application/octet-stream");
+}
+
+template <class T> std::string raw_bytes(const std::vector<T>& values) {
+  return std::string(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
+}
+
+// A client-given name reduced to [A-Za-z0-9._-] (at most 64 characters), for labels and file names.
+std::string safe_label(const std::string& name) {
+  std::string out;
+  for (const char ch : name.substr(0, 64)) {
+    const bool ok = std::isalnum(static_cast<unsigned char>(ch)) || ch == '.' || ch == '_' || ch == '-';
+    out.push_back(ok ? ch : '_');
+  }
+  return out.empty() ? std::string("mesh") : out;
+}
+
+std::string lower_extension(const std::string& name) {
+  const std::size_t dot = name.rfind('.');
+  std::string ext = dot == std::string::npos ? std::string() : name.substr(dot + 1);
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char ch) { return std::tolower(ch); });
+  return ext;
+}
+
+std::string replace_all(std::string text, const std::string& from, const std::string& to) {
+  for (std::size_t at = text.find(from); !from.empty() && at != std::string::npos;
+       at = text.find(from, at + to.size()))
+    text.replace(at, from.size(), to);
+  return text;
+}
+
+std::string read_file_bytes(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in)
+    throw Error("cannot read back " + path.filename().string());
+  std::ostringstream bytes;
+  bytes << in.rdbuf();
+  return bytes.str();
+}
+
+ArapMethod method_param(const httplib::Request& req) {
+  return parse_arap_method(req.has_param("method") ? req.get_param_value("method") : "iarap");
+}
+
+json state_json(const ServeConfig& config, const ServeState& state) {
+  json j;
+  j["meshes"] = json::array();
+  for (const auto& mesh : config.meshes)
+    j["meshes"].push_back(mesh.name);
+  j["methods"] = json::array();
+  for (const ArapMethod method : all_methods)
+    j["methods"].push_back(arap_method_name(method));
+  j["limits"] = {{"max_json_bytes", config.max_json_bytes},
+                 {"max_upload_bytes", config.max_upload_bytes},
+                 {"max_iterations", config.max_iterations}};
+  j["mesh"] = nullptr;
+  if (state.has_mesh()) {
+    const MeshSummary summary = state.mesh_summary();
+    j["mesh"] = {{"name", summary.name},   {"vertices", summary.vertices},
+                 {"faces", summary.faces}, {"bbox_diagonal", summary.bbox_diagonal},
+                 {"notes", summary.notes}, {"warnings", summary.warnings}};
+    const Eigen::VectorXi fixed = state.fixed(), handle = state.handle();
+    j["fixed"] = std::vector<int>(fixed.data(), fixed.data() + fixed.size());
+    j["handle"] = std::vector<int>(handle.data(), handle.data() + handle.size());
+  }
+  return j;
+}
+
+SolveRequest parse_solve_request(const json& body, int max_iterations) {
+  require_known_fields(body,
+                       {"method", "iterations", "tolerance", "transform", "handle_targets", "cell_energy"});
+  SolveRequest request;
+  request.method = parse_arap_method(string_field(body, "method", "iarap"));
+  request.iterations = integer_field(body, "iterations", 5, 1, max_iterations);
+  request.tolerance = number_field(body, "tolerance", 1e-6);
+  request.cell_energy = bool_field(body, "cell_energy", false);
+  if (body.contains("transform")) {
+    const std::vector<double> m = number_array_field(body, "transform");
+    if (m.size() != 16)
+      throw HttpError(400, "transform has " + std::to_string(m.size()) +
+                               " numbers; expected 16 (a column-major 4 x 4 matrix)");
+    request.transform = Eigen::Map<const Eigen::Matrix4d>(m.data()); // Eigen is column-major too
+  }
+  if (body.contains("handle_targets")) {
+    const std::vector<double> t = number_array_field(body, "handle_targets");
+    if (t.size() % 3 != 0)
+      throw HttpError(400, "handle_targets has " + std::to_string(t.size()) +
+                               " numbers; expected x y z per handle vertex (a multiple of 3)");
+    const auto rows = static_cast<Eigen::Index>(t.size() / 3);
+    request.handle_targets =
+        Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>>(t.data(), rows, 3);
+  }
+  return request;
+}
+
+std::string solve_frame(const SolveRequest& request, const SolveResult& result) {
+  const ArapReport& report = result.report;
+  BinaryFrame frame;
+  frame.add("positions", result.positions);
+  if (request.cell_energy)
+    frame.add("cell_energy", result.cell_energy);
+  return frame.encode({{"method", arap_method_name(request.method)},
+                       {"iterations", report.iterations},
+                       {"converged", report.converged},
+                       {"initial_energy", report.initial_energy},
+                       {"energies", report.energies},
+                       {"precompute_ms", result.precompute_ms},
+                       {"solve_ms", result.solve_ms},
+                       {"local_ms", report.local_ms},
+                       {"global_ms", report.global_ms},
+                       {"pinned", result.pinned},
+                       {"vertices", result.positions.size() / 3}});
+}
+
+// Maps what a handler threw to a status: HttpError its own, InputError 400, Topology/SolverError 422.
+void answer_exception(httplib::Response& res, std::exception_ptr error) {
+  try {
+    std::rethrow_exception(error);
+  } catch (const HttpError& e) {
+    send_json(res, {{"error", e.what()}}, e.status());
+  } catch (const InputError& e) {
+    send_json(res, {{"error", e.what()}}, 400);
+  } catch (const TopologyError& e) {
+    send_json(res, {{"error", e.what()}}, 422);
+  } catch (const SolverError& e) {
+    send_json(res, {{"error", e.what()}}, 422);
+  } catch (const std::exception& e) {
+    send_json(res, {{"error", std::string("internal error: ") + e.what()}}, 500);
+  } catch (...) {
+    send_json(res, {{"error", "internal error"}}, 500);
+  }
+}
+
+// Refuses requests from other web pages (Origin) and from DNS-rebound names (Host).
+httplib::Server::HandlerResponse check_origin(const ServeConfig& config, const httplib::Request& req,
+                                              httplib::Response& res) {
+  const std::string host = req.get_header_value("Host");
+  if (!config.allowed_hosts.empty() && std::find(config.allowed_hosts.begin(), config.allowed_hosts.end(),
+                                                 host) == config.allowed_hosts.end()) {
+    send_json(res, {{"error", "Host \"" + safe_label(host) + "\" is not this server's address"}}, 403);
+    return httplib::Server::HandlerResponse::Handled;
+  }
+  if (req.has_header("Origin") && req.get_header_value("Origin") != "http://" + host) {
+    send_json(res, {{"error", "cross-origin requests are refused"}}, 403);
+    return httplib::Server::HandlerResponse::Handled;
+  }
+  return httplib::Server::HandlerResponse::Unhandled;
+}
+
+} // namespace
+
+void load_server_mesh(ServeState& state, const ServerMesh& mesh) {
+  state.load_mesh(mesh.name, read_mesh(mesh.path));
+}
+
+void register_routes(httplib::Server& server, const ServeConfig& config, ServeState& state,
+                     PrivateTempDir& temp) {
+  server.set_payload_max_length(std::max(config.max_json_bytes, config.max_upload_bytes));
+  server.set_pre_routing_handler([&config](const httplib::Request& req, httplib::Response& res) {
+    return check_origin(config, req, res);
+  });
+  server.set_exception_handler([](const httplib::Request&, httplib::Response& res, std::exception_ptr error) {
+    answer_exception(res, error);
+  });
+  // Named type: a lambda alone is ambiguous between the two set_error_handler overloads.
+  const httplib::Server::HandlerWithResponse error_handler = [&config](const httplib::Request& req,
+                                                                       httplib::Response& res) {
+    if (!res.body.empty())
+      return httplib::Server::HandlerResponse::Unhandled;
+    std::string message = "HTTP " + std::to_string(res.status);
+    if (res.status == 404)
+      message = "not found: " + safe_label(req.path);
+    else if (res.status == 413)
+      message = "request body too large; the limit is " + std::to_string(config.max_upload_bytes) + " bytes";
+    send_json(res, {{"error", message}}, res.status);
+    return httplib::Server::HandlerResponse::Handled;
+  };
+  server.set_error_handler(error_handler);
+  if (config.verbose) {
+    server.set_logger([](const httplib::Request& req, const httplib::Response& res) {
+      std::cerr << "serve: " << req.method << " " << req.path << " -> " << res.status << "\n";
+    });
+  }
+
+  server.Get("/api/state", [&](const httplib::Request&, httplib::Response& res) {
+    send_json(res, state_json(config, state));
+  });
+
+  server.Post("/api/load", [&](const httplib::Request& req, httplib::Response& res) {
+    const json body = parse_json_object(req.body, config.max_json_bytes);
+    require_known_fields(body, {"mesh"});
+    const std::string name = string_field(body, "mesh", "");
+    const auto it = std::find_if(config.meshes.begin(), config.meshes.end(),
+                                 [&](const ServerMesh& mesh) { return mesh.name == name; });
+    if (it == config.meshes.end())
+      throw HttpError(404, "no server mesh named \"" + safe_label(name) + "\"; see meshes in /api/state");
+    load_server_mesh(state, *it);
+    send_json(res, state_json(config, state));
+  });
+
+  server.Post("/api/upload", [&](const httplib::Request& req, httplib::Response& res) {
+    const std::string name = safe_label(req.has_param("name") ? req.get_param_value("name") : "");
+    const std::string ext = lower_extension(name);
+    if (ext != "obj" && ext != "off" && ext != "ply")
+      throw HttpError(400, "upload name \"" + name + "\" must end in .obj, .off or .ply");
+    if (req.body.empty())
+      throw HttpError(400, "upload body is empty; send the mesh file's bytes");
+    if (req.body.size() > config.max_upload_bytes)
+      throw HttpError(413, "upload has " + std::to_string(req.body.size()) + " bytes; the limit is " +
+                               std::to_string(config.max_upload_bytes));
+    ScopedFile file(temp.unique_path("upload", ext));
+    {
+      std::ofstream out(file.path(), std::ios::binary);
+      out.write(req.body.data(), static_cast<std::streamsize>(req.body.size()));
+      if (!out)
+        throw Error("cannot store the upload in the server's temporary folder");
+    }
+    MeshData mesh;
+    try {
+      mesh = read_mesh(file.path().string());
+    } catch (const InputError& e) { // name the upload, not the server's temporary path
+      throw InputError(replace_all(e.what(), file.path().string(), name));
+    }
+    state.load_mesh(name, std::move(mesh));
+    send_json(res, state_json(config, state));
+  });
+
+  server.Get("/api/faces", [&](const httplib::Request&, httplib::Response& res) {
+    send_binary(res, raw_bytes(state.faces()));
+  });
+
+  server.Get("/api/positions", [&](const httplib::Request& req, httplib::Response& res) {
+    const bool rest = req.get_param_value("method") == "rest";
+    send_binary(
+        res, raw_bytes(state.positions(rest ? std::nullopt : std::optional<ArapMethod>(method_param(req)))));
+  });
+
+  server.Post("/api/constraints", [&](const httplib::Request& req, httplib::Response& res) {
+    const json body = parse_json_object(req.body, config.max_json_bytes);
+    require_known_fields(body, {"fixed", "handle"});
+    state.set_constraints(integer_array_field(body, "fixed"), integer_array_field(body, "handle"));
+    send_json(res, state_json(config, state));
+  });
+
+  server.Post("/api/solve", [&](const httplib::Request& req, httplib::Response& res) {
+    const SolveRequest request =
+        parse_solve_request(parse_json_object(req.body, config.max_json_bytes), config.max_iterations);
+    const SolveResult result = state.solve(request);
+    send_binary(res, solve_frame(request, result));
+  });
+
+  server.Post("/api/reset", [&](const httplib::Request& req, httplib::Response& res) {
+    if (!req.body.empty())
+      require_known_fields(parse_json_object(req.body, config.max_json_bytes), {});
+    state.reset();
+    send_json(res, state_json(config, state));
+  });
+
+  server.Get("/api/intrinsic_edges", [&](const httplib::Request&, httplib::Response& res) {
+    const std::shared_ptr<const IntrinsicOverlay> overlay = state.intrinsic_overlay();
+    BinaryFrame frame;
+    frame.add("start", overlay->start);
+    frame.add("a", overlay->a);
+    frame.add("c", overlay->c);
+    frame.add("t", overlay->t);
+    frame.add("original", overlay->original);
+    send_binary(res, frame.encode({{"edges", overlay->original.size()}, {"points", overlay->a.size()}}));
+  });
+
+  server.Get("/api/download", [&](const httplib::Request& req, httplib::Response& res) {
+    const ArapMethod method = method_param(req);
+    const std::string format = req.has_param("format") ? req.get_param_value("format") : "obj";
+    if (format != "obj" && format != "off" && format != "ply")
+      throw HttpError(400, "format must be obj, off or ply, got \"" + safe_label(format) + "\"");
+    const MeshSnapshot snapshot = state.snapshot(method);
+    ScopedFile file(temp.unique_path("download", format));
+    write_mesh(file.path().string(), snapshot.V, snapshot.F);
+    std::string stem = safe_label(snapshot.name);
+    const std::size_t dot = stem.rfind('.');
+    if (dot != std::string::npos && dot > 0)
+      stem.resize(dot);
+    res.set_header("Content-Disposition",
+                   "attachment; filename=\"" + stem + "_" + arap_method_name(method) + "." + format + "\"");
+    res.set_content(read_file_bytes(file.path()),
+                    format == "ply" ? "application/octet-stream" : "text/plain");
+  });
+
+  server.Get("/api/.*", [](const httplib::Request& req, httplib::Response&) {
+    throw HttpError(404, "no API route " + safe_label(req.path));
+  });
+
+  server.Get("/.*", [&config](const httplib::Request& req, httplib::Response& res) {
+    const std::optional<StaticFile> file = resolve_static_file(config.app_dir, req.path);
+    if (!file)
+      throw HttpError(404, "not found: " + safe_label(req.path));
+    res.set_header("Cache-Control", "no-cache");
+    res.set_header("X-Content-Type-Options", "nosniff");
+    res.set_content(read_file_bytes(file->path), file->content_type);
+  });
+}
+
+} // namespace iarap::serve

@@ -1,0 +1,42 @@
+// Checked reading of JSON request bodies: every failure is an HttpError 400 (413 when too large) whose
+// message names the field and, for arrays, the position at fault.
+#pragma once
+#include <nlohmann/json.hpp>
+
+#include <Eigen/Core>
+#include <cstddef>
+#include <initializer_list>
+#include <string>
+#include <vector>
+
+namespace iarap::serve {
+
+// Parses body as one JSON object. Throws HttpError 413 when body exceeds max_bytes, 400 when it is not
+// JSON (with the parser's byte position) or not an object.
+nlohmann::json parse_json_object(const std::string& body, std::size_t max_bytes);
+
+// Throws HttpError 400 naming the first member of object that is not in allowed (catches typos).
+void require_known_fields(const nlohmann::json& object, std::initializer_list<const char*> allowed);
+
+// object[field] as a list of integers (any value range: range checks need the mesh, see ServeState);
+// an absent field gives an empty list. Throws 400 for a non-array, a non-integer element (naming its
+// position) or an element outside the int range.
+Eigen::VectorXi integer_array_field(const nlohmann::json& object, const char* field);
+
+// object[field] as finite numbers. Throws 400 for a non-array, a non-number or non-finite element (naming
+// its position). An absent field gives an empty list.
+std::vector<double> number_array_field(const nlohmann::json& object, const char* field);
+
+// object[field] as an integer in [min, max], fallback when absent; 400 otherwise.
+int integer_field(const nlohmann::json& object, const char* field, int fallback, int min, int max);
+
+// object[field] as a finite number, fallback when absent; 400 otherwise.
+double number_field(const nlohmann::json& object, const char* field, double fallback);
+
+// object[field] as a string, fallback when absent; 400 otherwise.
+std::string string_field(const nlohmann::json& object, const char* field, const std::string& fallback);
+
+// object[field] as a boolean, fallback when absent; 400 otherwise.
+bool bool_field(const nlohmann::json& object, const char* field, bool fallback);
+
+} // namespace iarap::serve

@@ -1,0 +1,257 @@
+#include "serve_state.h"
+
+#include "http_error.h"
+
+#include "iarap/core/errors.h"
+#include "iarap/mesh/validate.h"
+
+#include <chrono>
+#include <cmath>
+#include <unordered_map>
+
+namespace iarap::serve {
+namespace {
+
+double elapsed_ms(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+std::vector<float> to_float_rows(const Eigen::MatrixXd& X) {
+  std::vector<float> out(static_cast<std::size_t>(X.rows() * X.cols()));
+  for (Eigen::Index i = 0; i < X.rows(); ++i)
+    for (Eigen::Index k = 0; k < X.cols(); ++k)
+      out[static_cast<std::size_t>(i * X.cols() + k)] = static_cast<float>(X(i, k));
+  return out;
+}
+
+Eigen::MatrixXd gather_rows(const Eigen::MatrixXd& X, const Eigen::VectorXi& rows) {
+  Eigen::MatrixXd out(rows.size(), X.cols());
+  for (Eigen::Index i = 0; i < rows.size(); ++i)
+    out.row(i) = X.row(rows[i]);
+  return out;
+}
+
+// Range, repeats, and (against `other`) overlap; messages name set[position] = index.
+void check_index_set(const Eigen::VectorXi& set, const char* name, int vertex_count,
+                     std::unordered_map<int, std::string>& seen) {
+  for (Eigen::Index i = 0; i < set.size(); ++i) {
+    const std::string where = std::string(name) + "[" + std::to_string(i) + "] = " + std::to_string(set[i]);
+    if (set[i] < 0 || set[i] >= vertex_count) {
+      throw InputError(where + " is out of range; the mesh has " + std::to_string(vertex_count) +
+                       " vertices (0-based indices)");
+    }
+    const auto [it, inserted] = seen.emplace(set[i], std::string(name) + "[" + std::to_string(i) + "]");
+    if (!inserted)
+      throw InputError(where + " repeats " + it->second);
+  }
+}
+
+} // namespace
+
+void ServeState::load_mesh(const std::string& name, MeshData mesh) {
+  const MeshReport report = check_mesh(mesh.V, mesh.F);
+  if (!report.usable()) {
+    std::string message = name + ": mesh not usable for ARAP:";
+    for (const auto& error : report.errors)
+      message += "\n  " + error;
+    throw TopologyError(message);
+  }
+  std::lock_guard<std::mutex> lock(mutex_);
+  summary_ = MeshSummary{name,
+                         static_cast<int>(mesh.V.rows()),
+                         static_cast<int>(mesh.F.rows()),
+                         report.bbox_diagonal,
+                         mesh.notes,
+                         report.warnings};
+  for (MethodState& state : methods_) {
+    state.data.reset();
+    state.U = mesh.V;
+    state.anchor.resize(0, 3);
+  }
+  fixed_.resize(0);
+  handle_.resize(0);
+  constrained_.resize(0);
+  overlay_.reset();
+  mesh_ = std::move(mesh);
+}
+
+bool ServeState::has_mesh() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return mesh_.has_value();
+}
+
+void ServeState::require_mesh() const {
+  if (!mesh_)
+    throw HttpError(409, "no mesh loaded; load one of the server's meshes or upload one first");
+}
+
+MeshSummary ServeState::mesh_summary() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  require_mesh();
+  return summary_;
+}
+
+Eigen::VectorXi ServeState::fixed() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  require_mesh();
+  return fixed_;
+}
+
+Eigen::VectorXi ServeState::handle() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  require_mesh();
+  return handle_;
+}
+
+// ArapMethod counts 0, 1, 2 in the order of all_methods.
+ServeState::MethodState& ServeState::state_of(ArapMethod method) {
+  return methods_[static_cast<std::size_t>(method)];
+}
+
+const ServeState::MethodState& ServeState::state_of(ArapMethod method) const {
+  return methods_[static_cast<std::size_t>(method)];
+}
+
+void ServeState::set_constraints(const Eigen::VectorXi& fixed, const Eigen::VectorXi& handle) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  require_mesh();
+  const int vertex_count = static_cast<int>(mesh_->V.rows());
+  std::unordered_map<int, std::string> seen;
+  check_index_set(fixed, "fixed", vertex_count, seen);
+  check_index_set(handle, "handle", vertex_count, seen);
+  fixed_ = fixed;
+  handle_ = handle;
+  constrained_.resize(fixed.size() + handle.size());
+  constrained_ << fixed, handle;
+  for (MethodState& state : methods_)
+    state.anchor = gather_rows(state.U, constrained_);
+}
+
+Eigen::MatrixXd ServeState::targets_for(const MethodState& state, const SolveRequest& request) const {
+  Eigen::MatrixXd targets = state.anchor;
+  const Eigen::Index first_handle = fixed_.size();
+  const Eigen::Index handle_count = handle_.size();
+  if (request.transform && request.handle_targets)
+    throw InputError("give either transform or handle_targets, not both");
+  if (request.transform) {
+    const Eigen::Matrix4d& M = *request.transform;
+    if (!M.allFinite())
+      throw InputError("transform has a non-finite entry");
+    const double scale =
+        M.topLeftCorner<3, 3>().cwiseAbs().maxCoeff() + M.topRightCorner<3, 1>().cwiseAbs().maxCoeff();
+    // The last row of an affine map is exactly 0 0 0 1 up to the rounding of the client's float maths.
+    if ((M.row(3) - Eigen::RowVector4d(0, 0, 0, 1)).cwiseAbs().maxCoeff() > 1e-9 * std::max(1.0, scale))
+      throw InputError(
+          "transform must be affine: its last row (column-major elements 3, 7, 11, 15) must be 0 0 0 1");
+    for (Eigen::Index i = 0; i < handle_count; ++i) {
+      const Eigen::Vector3d p = targets.row(first_handle + i).transpose();
+      targets.row(first_handle + i) = (M.topLeftCorner<3, 3>() * p + M.topRightCorner<3, 1>()).transpose();
+    }
+  } else if (request.handle_targets) {
+    const Eigen::MatrixXd& H = *request.handle_targets;
+    if (H.rows() != handle_count || H.cols() != 3) {
+      throw InputError("handle_targets has " + std::to_string(H.rows() * H.cols()) +
+                       " numbers; expected 3 x " + std::to_string(handle_count) +
+                       " handle vertices = " + std::to_string(3 * handle_count));
+    }
+    for (Eigen::Index i = 0; i < H.rows(); ++i) {
+      if (!H.row(i).allFinite())
+        throw InputError("handle_targets row " + std::to_string(i) + " is not finite");
+    }
+    targets.bottomRows(handle_count) = H;
+  }
+  return targets;
+}
+
+SolveResult ServeState::solve(const SolveRequest& request) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  require_mesh();
+  if (constrained_.size() == 0)
+    throw HttpError(409, "no fixed or handle vertices; select some before solving");
+  MethodState& state = state_of(request.method);
+  const Eigen::MatrixXd targets = targets_for(state, request);
+
+  SolveResult result;
+  const auto precompute_start = std::chrono::steady_clock::now();
+  if (!state.data) {
+    ArapOptions options;
+    options.method = request.method;
+    // Uploaded meshes may have pieces the user did not select; pin them rather than refuse to solve.
+    options.pin_unconstrained_components = true;
+    state.data = arap_precompute(mesh_->V, mesh_->F, constrained_, options);
+    result.precompute_ms = elapsed_ms(precompute_start);
+  } else if (state.data->fixed.size() != constrained_.size() || state.data->fixed != constrained_) {
+    arap_set_fixed(*state.data, constrained_); // keeps the previous set on a throw
+    result.precompute_ms = elapsed_ms(precompute_start);
+  }
+
+  ArapSolveOptions options;
+  options.max_iterations = request.iterations;
+  options.tolerance = request.tolerance;
+  Eigen::MatrixXd U = state.U; // commit only a successful solve
+  const auto solve_start = std::chrono::steady_clock::now();
+  result.report = arap_solve(*state.data, targets, U, options);
+  result.solve_ms = elapsed_ms(solve_start);
+  result.pinned = static_cast<int>(state.data->pinned.size());
+  result.positions = to_float_rows(U);
+  if (request.cell_energy) {
+    const Eigen::VectorXd energy = arap_cell_energy(*state.data, U);
+    result.cell_energy.assign(energy.data(), energy.data() + energy.size());
+  }
+  state.U = std::move(U);
+  return result;
+}
+
+void ServeState::reset() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  require_mesh();
+  for (MethodState& state : methods_) {
+    state.U = mesh_->V;
+    state.anchor = gather_rows(state.U, constrained_);
+  }
+}
+
+std::vector<float> ServeState::positions(std::optional<ArapMethod> method) const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  require_mesh();
+  return to_float_rows(method ? state_of(*method).U : mesh_->V);
+}
+
+std::vector<std::uint32_t> ServeState::faces() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  require_mesh();
+  const Eigen::MatrixXi& F = mesh_->F;
+  std::vector<std::uint32_t> out(static_cast<std::size_t>(F.rows() * 3));
+  for (Eigen::Index f = 0; f < F.rows(); ++f)
+    for (int k = 0; k < 3; ++k)
+      out[static_cast<std::size_t>(3 * f + k)] = static_cast<std::uint32_t>(F(f, k));
+  return out;
+}
+
+MeshSnapshot ServeState::snapshot(ArapMethod method) const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  require_mesh();
+  return {state_of(method).U, mesh_->F, summary_.name};
+}
+
+std::shared_ptr<const IntrinsicOverlay> ServeState::intrinsic_overlay() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  require_mesh();
+  if (overlay_)
+    return overlay_;
+  const IntrinsicDelaunay intrinsic = intrinsic_delaunay(mesh_->V, mesh_->F);
+  const TracedEdges& traces = intrinsic.traces;
+  auto overlay = std::make_shared<IntrinsicOverlay>();
+  overlay->start.assign(traces.start.begin(), traces.start.end());
+  overlay->a.assign(traces.a.begin(), traces.a.end());
+  overlay->c.assign(traces.c.begin(), traces.c.end());
+  overlay->t.assign(traces.t.begin(), traces.t.end());
+  const Eigen::VectorXi& original = intrinsic.triangulation.original_edge;
+  overlay->original.resize(static_cast<std::size_t>(original.size()));
+  for (Eigen::Index e = 0; e < original.size(); ++e)
+    overlay->original[static_cast<std::size_t>(e)] = original[e] >= 0 ? 1 : 0;
+  overlay_ = std::move(overlay);
+  return overlay_;
+}
+
+} // namespace iarap::serve

@@ -1,0 +1,150 @@
+// `iarap serve [MESH...]`: the interactive web viewer. An HTTP server (cpp-httplib) serves the app in web/
+// and an API over one deformation session; see serve/api_routes.h for the routes.
+#include "command_registry.h"
+#include "serve/api_routes.h"
+#include "serve/private_temp_dir.h"
+#include "serve/serve_state.h"
+
+#include "iarap/core/errors.h"
+#include "iarap/core/threads.h"
+
+#include <httplib.h>
+
+#include <algorithm>
+#include <csignal>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <pthread.h>
+#include <thread>
+
+#ifndef IARAP_WEB_DIR
+#define IARAP_WEB_DIR ""
+#endif
+
+namespace iarap::cli {
+namespace {
+
+struct ServeArguments {
+  std::vector<std::string> meshes;
+  int port = 8080;
+  std::string host = "127.0.0.1";
+  std::string app_dir = IARAP_WEB_DIR;
+  double max_upload_mb = 64;
+  int threads = 0;
+  bool verbose = false;
+};
+
+bool is_loopback(const std::string& host) {
+  return host == "127.0.0.1" || host == "localhost" || host == "::1";
+}
+
+// Names clients see: the file name, made unique with "#2", "#3"... when two paths share it.
+std::vector<serve::ServerMesh> server_meshes(const std::vector<std::string>& paths) {
+  std::vector<serve::ServerMesh> meshes;
+  for (const auto& path : paths) {
+    const std::string base = std::filesystem::path(path).filename().string();
+    std::string name = base;
+    for (int n = 2; std::any_of(meshes.begin(), meshes.end(), [&](const auto& m) { return m.name == name; });
+         ++n)
+      name = base + "#" + std::to_string(n);
+    meshes.push_back({name, path});
+  }
+  return meshes;
+}
+
+void run_serve(const ServeArguments& args, bool host_given) {
+  serve::ServeConfig config;
+  config.app_dir = args.app_dir;
+  if (config.app_dir.empty() || !std::filesystem::is_regular_file(config.app_dir / "index.html"))
+    throw CLI::ValidationError("--app-dir", "no index.html in \"" + args.app_dir +
+                                                "\"; give the repository's web/ folder");
+  if (!std::filesystem::is_regular_file(config.app_dir / "node_modules/three/build/three.module.js")) {
+    std::cerr << "serve: warning: " << (config.app_dir / "node_modules/three").string()
+              << " is missing; run `npm ci --prefix web` or the page cannot load three.js\n";
+  }
+  if (!(args.max_upload_mb > 0 && args.max_upload_mb <= 4096))
+    throw CLI::ValidationError("--max-upload-mb", "must be in (0, 4096]");
+  config.max_upload_bytes = static_cast<std::size_t>(args.max_upload_mb * (1 << 20));
+  config.meshes = server_meshes(args.meshes);
+  config.verbose = args.verbose;
+  set_thread_count(args.threads);
+
+  serve::ServeState state;
+  if (!config.meshes.empty()) {
+    serve::load_server_mesh(state, config.meshes.front());
+    const serve::MeshSummary summary = state.mesh_summary();
+    std::cerr << "serve: loaded " << summary.name << " (" << summary.vertices << " vertices, "
+              << summary.faces << " faces)\n";
+  }
+  if (host_given && !is_loopback(args.host)) {
+    std::cerr << "serve: WARNING: listening on " << args.host
+              << " lets other machines reach this server; it has no authentication. Use only on a trusted "
+                 "network.\n";
+  }
+
+  // SIGINT / SIGTERM are taken by one thread with sigwait (async-signal-safe), which stops the server;
+  // blocking them first makes every thread started below inherit the mask.
+  sigset_t signals;
+  sigemptyset(&signals);
+  sigaddset(&signals, SIGINT);
+  sigaddset(&signals, SIGTERM);
+  pthread_sigmask(SIG_BLOCK, &signals, nullptr);
+
+  serve::PrivateTempDir temp;
+  httplib::Server server;
+  // A worker thread serves one connection until it closes or idles past the keep-alive timeout, so idle
+  // keep-alive connections would starve httplib's default pool (8 threads here) under a burst. Requests
+  // mostly wait on the session mutex, so many threads cost little. httplib owns the queue it is given.
+  server.new_task_queue = [] { return new httplib::ThreadPool(64); };
+  server.set_keep_alive_max_count(1000); // one browser connection carries a whole drag
+  server.set_keep_alive_timeout(2);
+  const int port = args.port == 0 ? server.bind_to_any_port(args.host)
+                                  : (server.bind_to_port(args.host, args.port) ? args.port : -1);
+  if (port < 0)
+    throw Error("cannot listen on " + args.host + ":" + std::to_string(args.port) +
+                " (in use, or not an address of this machine)");
+  if (!host_given || is_loopback(args.host)) {
+    for (const char* name : {"127.0.0.1", "localhost", "[::1]"})
+      config.allowed_hosts.push_back(std::string(name) + ":" + std::to_string(port));
+  }
+  serve::register_routes(server, config, state, temp);
+
+  std::thread signal_thread([&server, signals] {
+    int received = 0;
+    sigwait(&signals, &received);
+    server.stop();
+  });
+  const std::string shown_host = args.host.find(':') != std::string::npos ? "[" + args.host + "]" : args.host;
+  std::cout << "iarap serve: open http://" << shown_host << ":" << port << "/ in a browser (Ctrl-C stops)"
+            << std::endl;
+  const bool clean = server.listen_after_bind();
+  pthread_kill(signal_thread.native_handle(), SIGTERM); // wakes the signal thread if listening failed
+  signal_thread.join();
+  if (!clean)
+    throw Error("the server stopped listening unexpectedly");
+  std::cerr << "serve: stopped\n";
+}
+
+const bool registered = register_command(
+    {"serve", [](CLI::App& app) {
+       auto args = std::make_shared<ServeArguments>();
+       auto* sub = app.add_subcommand(
+           "serve", "Interactive web viewer: drag handles and watch the energies deform a mesh");
+       sub->add_option("meshes", args->meshes,
+                       "Meshes the page can load (OBJ, OFF, PLY, STL); the first is loaded")
+           ->check(CLI::ExistingFile);
+       sub->add_option("--port", args->port, "TCP port (0: any free port)")->check(CLI::Range(0, 65535));
+       auto* host =
+           sub->add_option("--host", args->host, "Address to listen on (default 127.0.0.1, loopback only)");
+       sub->add_option("--app-dir", args->app_dir,
+                       "Folder of the web app (index.html, src/, node_modules/three)");
+       sub->add_option("--max-upload-mb", args->max_upload_mb, "Largest accepted request body, in MiB");
+       sub->add_option("--threads", args->threads, "Solver threads (0: all cores)")
+           ->check(CLI::NonNegativeNumber);
+       sub->add_flag("--verbose", args->verbose, "Log every request to stderr");
+       sub->callback([args, host] { run_serve(*args, host->count() > 0); });
+     }});
+
+} // namespace
+} // namespace iarap::cli
