@@ -5,8 +5,6 @@
 
 #include "iarap/solver/arap.h"
 
-#include <pybind11/stl.h>
-
 #include <chrono>
 #include <memory>
 #include <mutex>
