@@ -135,6 +135,11 @@ try {
   }, `data:image/png;base64,${png.toString('base64')}`);
   console.log(`screenshot ${shotPath}: ${stats.colours} colours, ${(100 * stats.share).toFixed(1)}% non-background`);
   assert.ok(stats.colours > 50 && stats.share > 0.1, `screenshot looks blank: ${JSON.stringify(stats)}`);
+  // Reset brings the displayed shape back to the rest positions (which the fixed vertices never left).
+  const rest = await page.evaluate(async () => Array.from(new Float32Array(await (await fetch('/api/positions?method=rest')).arrayBuffer())));
+  await page.click('#reset');
+  await page.waitForFunction(([X, tol]) => window.iarapViewer.displayedPositions().every((v, i) => Math.abs(v - X[i]) <= tol),
+    [rest, 1e-6 * height], { timeout: 20000, polling: 200 });
   assert.deepEqual(problems, []);
   console.log('browser test: 1 passed, 0 failed');
 } catch (error) {
