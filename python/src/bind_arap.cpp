@@ -73,13 +73,15 @@ Eigen::Index vertex_count(const ArapSolver& solver) {
 }
 
 std::unique_ptr<ArapSolver> make_solver(const py::object& V, const py::object& F, const py::object& fixed,
-                                        const std::string& method, bool pin_unconstrained_components) {
+                                        const std::string& method, bool pin_unconstrained_components,
+                                        bool refine_boundary) {
   const Eigen::MatrixXd positions = to_points(V, "V");
   const Eigen::MatrixXi faces = to_faces(F, "F", positions.rows());
   const Eigen::VectorXi constrained = to_indices(fixed, "fixed", positions.rows());
   ArapOptions options;
   options.method = parse_arap_method(method);
   options.pin_unconstrained_components = pin_unconstrained_components;
+  options.intrinsic.refine_boundary = refine_boundary;
   py::gil_scoped_release release;
   return std::make_unique<ArapSolver>(positions, faces, constrained, options);
 }
@@ -175,12 +177,14 @@ Methods: "iarap" (intrinsic ARAP, paper Eq. 9), "spokes-rims" (Chao et al. 2010,
 and Alexa 2007, Eq. 1). New targets reuse the factorization of L_ff; assigning `fixed` refactorizes.
 Energies are in squared mesh units. Methods release the GIL; one solver serves one thread at a time.)")
       .def(py::init(&make_solver), py::arg("V"), py::arg("F"), py::arg("fixed"), py::arg("method") = "iarap",
-           py::kw_only(), py::arg("pin_unconstrained_components") = false,
+           py::kw_only(), py::arg("pin_unconstrained_components") = false, py::arg("refine_boundary") = false,
            R"(Precomputes the elements of `method`, the system matrix L and the factorization of L_ff.
 
 V: (#V, 3) rest positions. F: (#F, 3) faces of a manifold, consistently oriented triangle mesh (boundary
 allowed). fixed: (#fixed,) distinct constrained vertex indices. pin_unconstrained_components: pin the first
 vertex of every connected component without a constrained vertex (else such a component raises SolverError).
+refine_boundary ("iarap" only, not in the paper): split boundary edges opposite an obtuse intrinsic angle, so
+that no weight is negative; the inserted points get rotation cells of their own (rows #V.. of `rotations`).
 Raises ValueError (InputError, TopologyError) for bad arrays, indices or meshes; SolverError (a RuntimeError)
 for an unconstrained component or a failed factorization.)")
       .def("solve", &solve_py, py::arg("targets"), py::arg("U0") = py::none(), py::arg("iterations") = 50,
@@ -210,8 +214,8 @@ local_ms_per_iteration, global_ms_per_iteration, solve_ms (the whole C++ solve),
 intrinsic_ms, assembly_ms, factor_ms. Times in milliseconds.)")
       .def_property_readonly(
           "rotations", &rotations_py,
-          "float64 (#V, 3, 3): the rotation of each vertex's cell fitted to the last solution "
-          "(identities before the first solve).")
+          "float64 (#cells, 3, 3): the rotation of each vertex's cell (then of each point inserted by "
+          "refine_boundary) fitted to the last solution (identities before the first solve).")
       .def_property_readonly(
           "method",
           [](const ArapSolver& s) {
@@ -252,7 +256,9 @@ intrinsic_ms, assembly_ms, factor_ms. Times in milliseconds.)")
                 s, U, [](const ArapData& d, const Eigen::MatrixXd& P) { return arap_cell_energy(d, P); }));
           },
           py::arg("U"),
-          "float64 (#V,): the energy of each vertex's cell at U (#V, 3); they sum to energy(U).")
+          "float64 (#cells,): the energy of each cell (vertices, then points inserted by refine_boundary) at "
+          "U "
+          "(#V, 3); they sum to energy(U).")
       .def(
           "gradient",
           [](const ArapSolver& s, const py::object& U) {

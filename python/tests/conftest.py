@@ -78,13 +78,17 @@ def sphere():
     return icosphere(3)
 
 
+def read_shared_mesh(name):
+    path = shared_mesh(name)
+    if path is None:
+        pytest.skip(f"shared mesh {name} not found (../shared/meshes or $IARAP_SHARED_MESHES)")
+    return iarap.read_mesh(path)
+
+
 @pytest.fixture(scope="session")
 def spike():
-    """A shared mesh with a boundary (binary PLY, flat disk-like patch); skipped when absent."""
-    path = shared_mesh("spike.ply")
-    if path is None:
-        pytest.skip("shared mesh spike.ply not found (../shared/meshes or $IARAP_SHARED_MESHES)")
-    return iarap.read_mesh(path)
+    """A flat disk-like patch with boundary (binary PLY); skipped when absent."""
+    return read_shared_mesh("spike.ply")
 
 
 @pytest.fixture(scope="session")

@@ -75,3 +75,22 @@ def test_B_rows_have_at_most_three_entries_summing_to_zero(bunny):
     L = B.T @ scipy.sparse.diags(seg["weight"]) @ B
     L_iarap = iarap.laplacian(V, F, "iarap")
     assert abs(L - L_iarap).max() <= 1e-12 * abs(L_iarap).max()
+
+
+def test_refine_boundary_splits_obtuse_boundary_edges():
+    # One triangle, obtuse at vertex 2: its boundary edge (0, 1) has a negative cotan weight. The altitude
+    # from vertex 2 meets it in the middle (by symmetry), where refinement inserts one point.
+    V = np.array([[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [1.0, 0.2, 0.0]])
+    F = np.array([[0, 1, 2]])
+    plain = iarap.intrinsic_delaunay(V, F)
+    assert plain["obtuse_boundary_before"] == 1 and plain["cot_weight"].min() < 0
+    assert plain["inserted_t"].shape == (0,)
+    idt = iarap.intrinsic_delaunay(V, F, refine_boundary=True)
+    assert idt["num_input_vertices"] == 3 and idt["obtuse_boundary_after"] == 0
+    np.testing.assert_array_equal(idt["inserted_on"], [[0, 1]])
+    np.testing.assert_allclose(idt["inserted_t"], [0.5], rtol=1e-12)
+    assert idt["F"].shape == (2, 3) and idt["F"].max() == 3  # intrinsic vertex 3 is the inserted point
+    assert idt["cot_weight"].min() >= -1e-12
+    B = idt["B"]
+    assert B.shape[1] == len(V) and np.diff(B.indptr).max() <= 3
+    assert_rows_sum_to_zero(B)
