@@ -23,7 +23,7 @@ namespace iarap::cli {
 namespace {
 
 struct DeformArguments {
-  std::string mesh, constraints, scenario, method = "iarap", out, report;
+  std::string mesh, constraints, scenario, method = "iarap", boundary = "refine", out, report;
   int iterations = 50;
   double tolerance = 1e-6;
   int threads = 0;
@@ -90,6 +90,7 @@ void run_deform(const DeformArguments& args) {
   ArapOptions options;
   options.method = parse_arap_method(args.method);
   options.pin_unconstrained_components = args.pin_unconstrained;
+  options.intrinsic.refine_boundary = args.boundary == "refine";
   const auto precompute_start = std::chrono::steady_clock::now();
   ArapData data = arap_precompute(mesh.V, mesh.F, constraints.fixed, options);
   const double precompute_ms = elapsed_ms(precompute_start);
@@ -138,7 +139,11 @@ void run_deform(const DeformArguments& args) {
                       {"non_delaunay_after", data.intrinsic.non_delaunay_after},
                       {"mollify_delta", data.intrinsic.mollify_delta},
                       {"intrinsic_edges", data.intrinsic.intrinsic_edges},
-                      {"segments", data.intrinsic.segments}};
+                      {"segments", data.intrinsic.segments},
+                      {"boundary", args.boundary},
+                      {"obtuse_boundary_before", data.intrinsic.obtuse_boundary_before},
+                      {"obtuse_boundary_after", data.intrinsic.obtuse_boundary_after},
+                      {"inserted_points", data.intrinsic.inserted_points}};
   }
   const std::string text = j.dump(2) + "\n";
   if (!args.report.empty())
@@ -166,6 +171,11 @@ const bool registered = register_command(
        constraints->excludes(scenario);
        sub->add_option("--method", args->method, "Energy: arap, spokes-rims or iarap")
            ->check(CLI::IsMember({"arap", "spokes-rims", "iarap"}))
+           ->capture_default_str();
+       sub->add_option("--boundary", args->boundary,
+                       "iARAP on meshes with boundary: 'refine' splits boundary edges whose opposite angle is obtuse "
+                       "(non-negative weights, stays at rest); 'paper' is the paper's exact discretization")
+           ->check(CLI::IsMember({"paper", "refine"}))
            ->capture_default_str();
        sub->add_option("--iterations", args->iterations, "Maximum number of local/global iterations (>= 0)")
            ->check(CLI::Range(0, 1000000))

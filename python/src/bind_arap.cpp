@@ -177,7 +177,7 @@ Methods: "iarap" (intrinsic ARAP, paper Eq. 9), "spokes-rims" (Chao et al. 2010,
 and Alexa 2007, Eq. 1). New targets reuse the factorization of L_ff; assigning `fixed` refactorizes.
 Energies are in squared mesh units. Methods release the GIL; one solver serves one thread at a time.)")
       .def(py::init(&make_solver), py::arg("V"), py::arg("F"), py::arg("fixed"), py::arg("method") = "iarap",
-           py::kw_only(), py::arg("pin_unconstrained_components") = false, py::arg("refine_boundary") = false,
+           py::kw_only(), py::arg("pin_unconstrained_components") = false, py::arg("refine_boundary") = true,
            R"(Precomputes the elements of `method`, the system matrix L and the factorization of L_ff.
 
 V: (#V, 3) rest positions. F: (#F, 3) faces of a manifold, consistently oriented triangle mesh (boundary

@@ -281,10 +281,7 @@ assert solver.cell_energy(U).shape == (len(V) + inserted,)
 """
 
 
-# In a subprocess: the check found a heap corruption in the library (iarap_elements -> build_csr with
-# refine_boundary on lion.off), which must fail this test, not abort the whole suite.
-@pytest.mark.xfail(strict=True, reason="library: iARAP with refine_boundary moves the rest shape of an obtuse "
-                   "triangle, gives no cells to inserted points, and corrupts the heap on lion.off (solver WIP)")
+# In a subprocess, so that a crash in the library fails this test instead of aborting the whole suite.
 @pytest.mark.parametrize("mesh", ["triangle", "lion.off"])
 def test_refine_boundary_keeps_the_rest_shape(mesh):
     args = []

@@ -75,8 +75,9 @@ ArapData arap_precompute(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, con
     start = Clock::now();
     data.elements = iarap_elements(V, intrinsic);
     const IntrinsicTriangulation& t = intrinsic.triangulation;
-    data.intrinsic = {t.flips,    t.non_delaunay_before,         t.non_delaunay_after, t.mollify_delta,
-                      t.E.rows(), intrinsic.segments.edge.size()};
+    data.intrinsic = {t.flips,      t.non_delaunay_before,          t.non_delaunay_after,     t.mollify_delta,
+                      t.E.rows(),   intrinsic.segments.edge.size(), t.obtuse_boundary_before, t.obtuse_boundary_after,
+                      t.inserted_t.size()};
     break;
   }
   }
