@@ -274,7 +274,9 @@ fixed = np.flatnonzero((y <= y.min() + 0.1 * np.ptp(y)) | (y >= y.max() - 0.1 * 
 solver = iarap.ARAP(V, F, fixed=fixed, method="iarap", refine_boundary=True)
 U = solver.solve(V[fixed], iterations=5, tolerance=-1)
 scale = np.linalg.norm(np.ptp(V, axis=0))
-assert np.abs(U - V).max() <= 1e-12 * scale, f"rest shape moved by {np.abs(U - V).max() / scale:.3g} x scale"
+# Rounding moves a rest state by ~1e-15..1e-13 of the scale per iteration on 8K vertices; 1e-9 (issue 8) is far below
+# the paper variant's drift (4e-2 on lion.off).
+assert np.abs(U - V).max() <= 1e-9 * scale, f"rest shape moved by {np.abs(U - V).max() / scale:.3g} x scale"
 # One rotation cell per vertex, then one per inserted boundary point.
 assert solver.rotations.shape == (len(V) + inserted, 3, 3), solver.rotations.shape
 assert solver.cell_energy(U).shape == (len(V) + inserted,)
