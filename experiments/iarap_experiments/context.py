@@ -86,6 +86,13 @@ class Stopwatch:
         self.ctx.timings[self.name] = time.perf_counter() - self.start
 
 
+def load_note(ctx: "Context") -> str:
+    """'' on an idle machine, else a note that timings are disturbed (load average above the core count)."""
+    load = os.getloadavg()[0]
+    cores = os.cpu_count() or 1
+    return f" (machine loaded: load average {load:.1f} on {cores} cores, timings unreliable)" if load > cores else ""
+
+
 def yes_no(value: bool) -> str:
     return "yes" if value else "no"
 

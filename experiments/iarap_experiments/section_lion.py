@@ -60,9 +60,11 @@ def _base_lines(ctx: Context, setup: dict, edges_obj: str) -> tuple[str, str, li
     intrinsic = ctx.work("lion_base_intrinsic.obj")
     with open(intrinsic, "w", encoding="ascii") as f:
         f.write("".join(f"v {x!r} {y!r} {z!r}\n" for x, y, z in P.tolist()))
-        f.write("".join("l " + " ".join(str(i + 1) for i in l) + "\n" for l in kept))
+        # Only the intrinsic edges that cross extrinsic ones: the others lie on extrinsic edges and would hide them.
+        f.write("".join("l " + " ".join(str(i + 1) for i in l) + "\n" for l in kept if len(l) > 2))
     crossing = sum(len(l) > 2 for l in kept)
-    return extrinsic, intrinsic, [len(kept), crossing, len(edges)]
+    overall = sum(len(l) > 2 for l in lines) / max(len(lines), 1)
+    return extrinsic, intrinsic, [len(kept), crossing, len(edges), overall]
 
 
 def run(ctx: Context, doc) -> None:
@@ -93,8 +95,7 @@ def run(ctx: Context, doc) -> None:
                          "rigid_residual": rigid_residual_max(base_rest, U[setup["free_base"]]) / diagonal,
                          "iterations": r["iterations"], "converged": r["converged"]}
     ctx.write_json("lion_base.json", results)
-    kept, crossing, extrinsic_count = 0, 0, 0
-    extrinsic_obj, intrinsic_obj, (kept, crossing, extrinsic_count) = _base_lines(ctx, setup, edges_obj)
+    extrinsic_obj, intrinsic_obj, (kept, crossing, extrinsic_count, overall) = _base_lines(ctx, setup, edges_obj)
     # Look at the base along its area-weighted mean normal (outward for the outward-oriented surface).
     base_faces = setup["F"][np.isin(setup["F"], setup["base"]).all(axis=1)]
     P = setup["V"]
@@ -104,7 +105,7 @@ def run(ctx: Context, doc) -> None:
     ctx.render_jobs.append({"out": ctx.path("fig14_lion_base_edges.png"), "panel_size": [700, 560],
                             "view": {"direction": normal.tolist(), "up": (up / np.linalg.norm(up)).tolist(), "zoom": 1.0},
                             "frame_points": setup["V"][setup["base"]].tolist(),
-                            "panels": [{"title": "base: extrinsic (blue), intrinsic (red)",
+                            "panels": [{"title": "base: extrinsic edges (blue), crossing intrinsic edges (red)",
                                         "layers": [{"obj": extrinsic_obj, "kind": "lines", "color": [0.2, 0.35, 0.9],
                                                     "line_width": 1.0},
                                                    {"obj": intrinsic_obj, "kind": "lines", "color": [0.9, 0.1, 0.1],
@@ -125,14 +126,17 @@ def run(ctx: Context, doc) -> None:
                       f"1e-8). The base is curved, not a plane, so besides the flatness asked for (max distance "
                       "to the best-fit plane) we report how much the free part of the base bent: the max distance "
                       "to the best rigid motion of its rest shape. Both / bbox diagonal. In the base, "
-                      f"{crossing} of the {kept} intrinsic edges cross extrinsic edges ({extrinsic_count} extrinsic edges)."),
+                      f"{crossing} of the {kept} intrinsic edges cross extrinsic edges ({extrinsic_count} extrinsic edges), "
+                      f"against {overall * 100:.0f}% over the whole mesh: crossings are spread evenly over `lion.off`, "
+                      "which has no flat, crossing-dense base like the paper's model, so this section can only "
+                      "approximate Fig. 14."),
             Table(["", "rest"] + [METHOD_LABELS[n] for n in names],
                   [["max distance to best-fit plane", fmt(results["rest"]["plane_distance"])] +
                    [fmt(results[n]["plane_distance"]) for n in names],
                    ["bending (rigid-fit residual)", "0"] + [fmt(results[n]["rigid_residual"]) for n in names],
                    ["iterations", "-"] + [str(results[n]["iterations"]) for n in names]]),
             Image("fig14_lion_base_edges.png", "Fig. 14 (left): the lion's base seen along its mean normal, "
-                                               "extrinsic edges blue, traced intrinsic Delaunay edges red."),
+                                               "extrinsic edges blue, the traced intrinsic Delaunay edges that cross them red."),
             Image("fig14_lion_results.png", "Lion: rest (constrained vertices red) and the results."))
     sr, ia = results["spokes-rims"]["rigid_residual"], results["iarap"]["rigid_residual"]
     verdict = "yes" if ia < sr else "no"

@@ -126,6 +126,7 @@ def run(ctx: Context, doc) -> None:
         refined_stays = all(r["drift"]["iarap-refine"][last] <= STAYS for r in results)
         ctx.claim("Rest stability", "boundary-robust iARAP stays at rest everywhere (not in the paper)",
                   "all stay" if refined_stays else "some drift", "-", "yes" if refined_stays else "no")
+    calm = [r["mesh"] for r in closed_nd if r["drift"]["arap"][last] <= STAYS]
     doc.add(Paragraph(f"**Holds?** Original ARAP drifts on {arap_drifts} of the {len(closed_nd)} closed non-Delaunay "
-                      f"meshes; spokes-and-rims and iARAP {'stay at rest on every closed mesh' if others_stay else 'drift on some closed mesh'}. "
+                      f"meshes{' (it stays on ' + ', '.join(calm) + ': presumably their few or weak negative weights leave the energy non-negative)' if calm else ''}; spokes-and-rims and iARAP {'stay at rest on every closed mesh' if others_stay else 'drift on some closed mesh'}. "
                       f"With boundary, iARAP drifts on: {', '.join(iarap_boundary_drift) or 'none'}."))

@@ -1,7 +1,7 @@
 """Table 1: precomputation and per-iteration times of the three methods on ~3K, ~20K and ~200K meshes."""
 from __future__ import annotations
 
-from .context import METHOD_LABELS, METHODS, Context, fmt
+from .context import METHOD_LABELS, METHODS, Context, fmt, load_note
 from .report_document import Heading, Paragraph, Table
 
 # Paper Table 1 (ms, single thread, AMD Ryzen 7 2700X): (precompute, step) per model and method.
@@ -31,13 +31,24 @@ def models(ctx: Context) -> list[tuple[str, str, str, int]]:
 def run(ctx: Context, doc) -> None:
     iterations = 3 if ctx.quick else 5
     thread_settings = [1] if ctx.quick else sorted({1, ctx.threads_all})
-    results = []
-    for klass, label, path, subdivide in models(ctx):
-        for threads in thread_settings:
-            bench = ctx.cli.bench([path], threads=threads, iterations=iterations, subdivide=subdivide)
-            for r in bench["results"]:
-                r.update({"class": klass, "label": label, "threads": threads, "cpu": bench["cpu"]})
-                results.append(r)
+    repeats = 1 if ctx.quick else 2
+    note = load_note(ctx)
+    best = {}
+    # Each configuration is timed `repeats` times in turn, keeping the fastest figure of each kind: load
+    # from other processes only ever adds time.
+    for _ in range(repeats):
+        for klass, label, path, subdivide in models(ctx):
+            for threads in thread_settings:
+                bench = ctx.cli.bench([path], threads=threads, iterations=iterations, subdivide=subdivide)
+                for r in bench["results"]:
+                    r.update({"class": klass, "label": label, "threads": threads, "cpu": bench["cpu"]})
+                    key = (klass, r["method"], threads)
+                    if key not in best:
+                        best[key] = r
+                    else:
+                        for field in ("precompute_ms", "intrinsic_ms", "iteration_ms", "local_ms", "global_ms"):
+                            best[key][field] = min(best[key][field], r[field])
+    results = list(best.values())
     ctx.write_json("table1.json", results)
     ctx.write_csv("table1.csv", ["class", "mesh", "vertices", "method", "threads", "precompute_ms",
                                  "intrinsic_ms", "iteration_ms", "local_ms", "global_ms"],
@@ -50,7 +61,7 @@ def run(ctx: Context, doc) -> None:
                       "single-threaded on a Ryzen 7 2700X.\n\n"
                       f"**Measured:** `iarap bench` (its fixed scene: bottom 10% along y fixed, top 10% moved "
                       f"by 10% of the bounding-box diagonal), median of {iterations} iterations after one "
-                      f"warm-up, on `{results[0]['cpu'] if results else '?'}`; threads = 1 and all "
+                      f"warm-up, fastest of {repeats} interleaved rounds, on `{results[0]['cpu'] if results else '?'}`; threads = 1 and all "
                       f"({ctx.threads_all}) cores. The ~200K mesh is `armadillo.obj` subdivided 1-to-4 by "
                       "`iarap bench --subdivide 1` (the library's midpoint subdivision). Times in ms."))
     rows = []
@@ -81,9 +92,9 @@ def run(ctx: Context, doc) -> None:
         ctx.claim("Table 1", f"{klass}: iARAP precompute and step comparable to original ARAP "
                   f"(step <= {MAX_STEP_RATIO}x, precompute <= {MAX_PRE_RATIO}x)",
                   f"pre {pre_ratio:.2f}x, step {step_ratio:.2f}x (1 thread)",
-                  f"pre {paper_pre_ratio:.2f}x, step {paper_step_ratio:.2f}x", "yes" if holds else "no")
+                  f"pre {paper_pre_ratio:.2f}x, step {paper_step_ratio:.2f}x", ("yes" if holds else "no") + note)
     doc.add(Paragraph("**Holds?** " + "; ".join(
         f"{k}: iARAP/original = {p:.2f}x precompute, {s:.2f}x per step (paper {pp:.2f}x, {ps:.2f}x) -> "
         f"{'yes' if s <= MAX_STEP_RATIO and p <= MAX_PRE_RATIO else 'no'}"
         for k, p, s, pp, ps in verdicts) + f". Verdict rule: step ratio <= {MAX_STEP_RATIO} and precompute "
-        f"ratio <= {MAX_PRE_RATIO}. Absolute times depend on the machine and are not comparable 1:1."))
+        f"ratio <= {MAX_PRE_RATIO}. Absolute times depend on the machine and are not comparable 1:1.{note}"))

@@ -1,7 +1,7 @@
 """Table 2: iARAP local-step time at a fixed vertex and edge count and a growing segments/edges ratio."""
 from __future__ import annotations
 
-from .context import Context, fmt
+from .context import Context, fmt, load_note
 from .generated_meshes import flipped_lattice
 from .mesh_io import write_obj
 from .report_document import Heading, Paragraph, Table
@@ -61,14 +61,15 @@ def run(ctx: Context, doc) -> None:
     paper_ratio_growth = PAPER[-1][0] / PAPER[0][0] - 1.0
     # The paper's time grows less than the segment count (fixed per-vertex work dominates): holds when
     # ours grows too, and by no more than the segment count itself.
-    holds = 0.0 < growth <= ratio_growth * 1.5
-    verdict = "yes" if holds else ("partly" if growth > -0.05 else "no")
+    # Growth below 2% is within the run-to-run noise of these timings: not a measured growth.
+    holds = 0.02 < growth <= ratio_growth * 1.5
+    verdict = ("yes" if holds else ("no (no growth beyond noise)" if growth <= 0.02 else "no")) + load_note(ctx)
     ctx.claim("Table 2", "local-step time grows mildly with segments per intrinsic edge",
-              f"+{growth * 100:.1f}% for segments/edge {first['segments_per_edge']:.3f} -> "
+              f"{growth * 100:+.1f}% for segments/edge {first['segments_per_edge']:.3f} -> "
               f"{last['segments_per_edge']:.3f} (+{ratio_growth * 100:.1f}%)",
               f"+{paper_growth * 100:.1f}% for 1.05 -> 1.29 (+{paper_ratio_growth * 100:.1f}%)", verdict)
     doc.add(Paragraph(f"**Holds?** {verdict}: local step {fmt(first['local_ms'])} -> {fmt(last['local_ms'])} ms "
-                      f"(+{growth * 100:.1f}%) while segments per edge grow by {ratio_growth * 100:.1f}%; the "
+                      f"({growth * 100:+.1f}%) while segments per edge grow by {ratio_growth * 100:.1f}%; the "
                       f"paper reports +{paper_growth * 100:.1f}% for +{paper_ratio_growth * 100:.1f}%. Rule: "
-                      "the time must grow, by at most 1.5x the growth of the segment count (noise on a shared "
-                      "machine is a few percent)."))
+                      "the time must grow by more than 2% (noise) and at most 1.5x the growth of the segment "
+                      "count."))
