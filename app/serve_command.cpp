@@ -16,6 +16,7 @@
 #include <iostream>
 #include <memory>
 #include <pthread.h>
+#include <sys/socket.h>
 #include <thread>
 
 #ifndef IARAP_WEB_DIR
@@ -99,6 +100,11 @@ void run_serve(const ServeArguments& args, bool host_given) {
   server.new_task_queue = [] { return new httplib::ThreadPool(64); };
   server.set_keep_alive_max_count(1000); // one browser connection carries a whole drag
   server.set_keep_alive_timeout(2);
+  // httplib's default also sets SO_REUSEPORT, which would let a second server share the port silently.
+  server.set_socket_options([](socket_t sock) {
+    const int yes = 1;
+    setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof(yes));
+  });
   const int port = args.port == 0 ? server.bind_to_any_port(args.host)
                                   : (server.bind_to_port(args.host, args.port) ? args.port : -1);
   if (port < 0)

@@ -30,7 +30,6 @@ try {
 if (!fs.existsSync(path.join(webDir, 'node_modules/three/build/three.module.js'))) skip('three is not installed (npm ci --prefix web)');
 
 const userDataDir = fs.mkdtempSync(path.join(os.tmpdir(), 'iarap-chromium-'));
-const server = await startServer([path.join(repoRoot, 'data', 'bunny.off')]);
 // A fresh profile (playwright passes it as --user-data-dir); WebGL through SwiftShader, no GPU.
 const browser = await chromium.launchPersistentContext(userDataDir, {
   executablePath: chromiumPath,
@@ -39,6 +38,13 @@ const browser = await chromium.launchPersistentContext(userDataDir, {
   args: ['--headless', '--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run', '--disable-background-networking',
     '--disable-component-update', '--disable-sync', '--use-angle=swiftshader', '--enable-unsafe-swiftshader'],
 });
+let server;
+try {
+  server = await startServer([path.join(repoRoot, 'data', 'bunny.off')]);
+} catch (error) {
+  await browser.close();
+  throw error;
+}
 const problems = [];
 let failed = false;
 try {
