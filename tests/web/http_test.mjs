@@ -134,6 +134,10 @@ describe('api', () => {
       // Original ARAP keeps negative cotan weights and may go below zero on the non-Delaunay bunny.
       if (method !== 'arap') assert.ok(header.energies.at(-1) > 0, `${method} ${energies}`);
       else assert.ok(Number.isFinite(header.energies.at(-1)));
+      // New targets for the same constrained set reuse the factorization: no setup time.
+      assert.ok(header.precompute_ms > 0, 'the first solve of a method builds its data');
+      const again = decodeFrame(await (await postJson('/api/solve', { method, iterations: 1, transform })).arrayBuffer());
+      assert.equal(again.header.precompute_ms, 0);
     }
   });
 
