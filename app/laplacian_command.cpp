@@ -169,7 +169,7 @@ const bool registered = iarap::cli::register_command(
            ->required()
            ->check(CLI::ExistingFile);
        sub->add_option("--kind", args->kind, "operator; without it --properties/--json report every kind")
-           ->check(CLI::IsMember({"cotan", "intrinsic", "iarap", "iarap-plus", "iarap-sym"}));
+           ->check(CLI::IsMember({"cotan", "intrinsic", "iarap", "iarap-plus", "iarap-sym", "iarap-refined"}));
        sub->add_option("--out", args->out, "write the operator as Matrix Market (coordinate real general)");
        sub->add_flag("--properties", args->properties, "print the property table");
        sub->add_flag("--json", args->json, "print the properties as a JSON array, one object per kind");

@@ -14,7 +14,7 @@ namespace iarap {
 const std::vector<LaplacianKind>& all_laplacian_kinds() {
   static const std::vector<LaplacianKind> kinds{LaplacianKind::Cotan, LaplacianKind::Intrinsic,
                                                 LaplacianKind::Iarap, LaplacianKind::IarapPlus,
-                                                LaplacianKind::IarapSym};
+                                                LaplacianKind::IarapSym, LaplacianKind::IarapRefined};
   return kinds;
 }
 
@@ -30,6 +30,8 @@ std::string laplacian_kind_name(LaplacianKind kind) {
     return "iarap-plus";
   case LaplacianKind::IarapSym:
     return "iarap-sym";
+  case LaplacianKind::IarapRefined:
+    return "iarap-refined";
   }
   throw InputError("unknown Laplacian kind " + std::to_string(static_cast<int>(kind)));
 }
@@ -39,13 +41,19 @@ LaplacianKind parse_laplacian_kind(const std::string& name) {
     if (laplacian_kind_name(kind) == name)
       return kind;
   throw InputError("unknown Laplacian kind '" + name +
-                   "'; expected cotan, intrinsic, iarap, iarap-plus or iarap-sym");
+                   "'; expected cotan, intrinsic, iarap, iarap-plus, iarap-sym or iarap-refined");
 }
 
 Eigen::SparseMatrix<double> laplacian(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, LaplacianKind kind,
                                       const IntrinsicDelaunay* precomputed) {
   if (kind == LaplacianKind::Cotan)
     return cotan_laplacian(V, F);
+  if (kind == LaplacianKind::IarapRefined) {
+    // Its own triangulation: the refined one has inserted boundary points a precomputed plain one lacks.
+    IntrinsicOptions options;
+    options.refine_boundary = true;
+    return iarap_laplacian(intrinsic_delaunay(V, F, options).segments, static_cast<int>(V.rows()));
+  }
   std::optional<IntrinsicDelaunay> storage;
   const IntrinsicDelaunay& idt = detail::intrinsic_for_mesh(V, F, precomputed, storage);
   const int num_vertices = static_cast<int>(V.rows());
@@ -59,6 +67,7 @@ Eigen::SparseMatrix<double> laplacian(const Eigen::MatrixXd& V, const Eigen::Mat
   case LaplacianKind::IarapSym:
     return iarap_sym_laplacian(V, idt);
   case LaplacianKind::Cotan:
+  case LaplacianKind::IarapRefined:
     break;
   }
   return cotan_laplacian(V, F);
