@@ -146,13 +146,7 @@ void run_bench(const BenchArguments& args) {
   int failed = 0;
   for (const auto& path : args.meshes) {
     MeshData mesh = read_mesh(path);
-    for (int k = 0; k < args.subdivide; ++k) {
-      Eigen::MatrixXd V;
-      Eigen::MatrixXi F;
-      subdivide_midpoint(mesh.V, mesh.F, V, F);
-      mesh.V = std::move(V);
-      mesh.F = std::move(F);
-    }
+    subdivide_midpoint(mesh.V, mesh.F, args.subdivide);
     const MeshReport check = check_mesh(mesh.V, mesh.F);
     if (!check.usable()) {
       throw TopologyError(path + ": mesh not usable for ARAP: " + check.errors.front() +

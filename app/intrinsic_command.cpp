@@ -108,13 +108,7 @@ double cotan_factorization_ms(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F
 void run(const IntrinsicArgs& args) {
   set_thread_count(args.threads);
   MeshData mesh = read_mesh(args.mesh);
-  for (int k = 0; k < args.subdivide; ++k) {
-    Eigen::MatrixXd V2;
-    Eigen::MatrixXi F2;
-    subdivide_midpoint(mesh.V, mesh.F, V2, F2);
-    mesh.V = std::move(V2);
-    mesh.F = std::move(F2);
-  }
+  subdivide_midpoint(mesh.V, mesh.F, args.subdivide);
   IntrinsicOptions options;
   options.mollify = !args.no_mollify;
   options.refine_boundary = args.refine_boundary;

@@ -1,5 +1,7 @@
 #include "iarap/mesh/subdivide.h"
 
+#include <utility>
+
 #include "iarap/core/errors.h"
 #include "iarap/mesh/edge_topology.h"
 
@@ -35,6 +37,16 @@ void subdivide_midpoint(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, Eige
   }
   V_out = std::move(out);
   F_out = std::move(faces);
+}
+
+void subdivide_midpoint(Eigen::MatrixXd& V, Eigen::MatrixXi& F, int times) {
+  for (int k = 0; k < times; ++k) {
+    Eigen::MatrixXd V_out;
+    Eigen::MatrixXi F_out;
+    subdivide_midpoint(V, F, V_out, F_out);
+    V = std::move(V_out);
+    F = std::move(F_out);
+  }
 }
 
 } // namespace iarap

@@ -135,4 +135,34 @@ inline TestMesh closed_cone(int sides, int rings, double height, double twist = 
   return m;
 }
 
+// A strip of cols x rows cells whose rows are sheared by half a cell, so the boundary triangles along the
+// long sides are obtuse (negative boundary cotan weights that flips cannot remove). bend_radius > 0 bends
+// it over a cylinder of that radius (x becomes an arc), 0 keeps it flat.
+inline TestMesh sheared_strip(int cols, int rows, double bend_radius = 0.0) {
+  TestMesh m;
+  m.V.resize((rows + 1) * (cols + 1), 3);
+  for (int r = 0; r <= rows; ++r)
+    for (int c = 0; c <= cols; ++c) {
+      const double x = c + 0.5 * (r % 2), y = 0.25 * r;
+      if (bend_radius > 0)
+        m.V.row(r * (cols + 1) + c) << bend_radius * std::sin(x / bend_radius), y, bend_radius * std::cos(x / bend_radius);
+      else
+        m.V.row(r * (cols + 1) + c) << x, y, 0.0;
+    }
+  m.F.resize(2 * rows * cols, 3);
+  int f = 0;
+  for (int r = 0; r < rows; ++r)
+    for (int c = 0; c < cols; ++c) {
+      const int a = r * (cols + 1) + c, b = a + 1, d = a + cols + 1, e = d + 1;
+      if (r % 2 == 0) {
+        m.F.row(f++) << a, b, d;
+        m.F.row(f++) << b, e, d;
+      } else {
+        m.F.row(f++) << a, e, d;
+        m.F.row(f++) << a, b, e;
+      }
+    }
+  return m;
+}
+
 } // namespace iarap::test

@@ -11,23 +11,7 @@ using namespace iarap;
 TEST(IarapRefinedLaplacian, SymmetricConstantsInKernelAndLinearlyPreciseOnFlatBoundaryMeshes) {
   // A flat strip whose rows are sheared by half a cell (obtuse boundary triangles), made non-Delaunay by
   // random flips, so refinement inserts boundary points.
-  const int cols = 12, rows = 4;
-  iarap::test::TestMesh m;
-  m.V.resize((rows + 1) * (cols + 1), 3);
-  for (int r = 0; r <= rows; ++r)
-    for (int c = 0; c <= cols; ++c) m.V.row(r * (cols + 1) + c) << c + 0.5 * (r % 2), 0.25 * r, 0.0;
-  m.F.resize(2 * rows * cols, 3);
-  for (int r = 0, f = 0; r < rows; ++r)
-    for (int c = 0; c < cols; ++c) {
-      const int a = r * (cols + 1) + c, b = a + 1, d = a + cols + 1, e = d + 1;
-      if (r % 2 == 0) {
-        m.F.row(f++) << a, b, d;
-        m.F.row(f++) << b, e, d;
-      } else {
-        m.F.row(f++) << a, e, d;
-        m.F.row(f++) << a, b, e;
-      }
-    }
+  iarap::test::TestMesh m = iarap::test::sheared_strip(12, 4);
   iarap::test::random_planar_flips(m, 40, 9);
   IntrinsicOptions options;
   options.refine_boundary = true;

@@ -3,6 +3,7 @@
 #include "iarap/core/errors.h"
 #include "iarap/io/read_mesh.h"
 #include "iarap/solver/arap.h"
+#include "intrinsic/mesh_generators.h"
 #include "solver/solver_fixtures.h"
 #include "test_support.h"
 
@@ -17,30 +18,10 @@ using iarap::test::SolverMesh;
 
 namespace {
 
-// A strip of rows x cols cells whose rows are sheared by half a cell, so every boundary triangle along the
-// long sides is obtuse, bent over a cylinder of radius 2 so that the rest state is not flat.
+// The sheared strip bent over a cylinder of radius 2, so that the rest state is not flat.
 SolverMesh bent_obtuse_strip(int cols, int rows) {
-  SolverMesh m;
-  m.V.resize((rows + 1) * (cols + 1), 3);
-  for (int r = 0; r <= rows; ++r)
-    for (int c = 0; c <= cols; ++c) {
-      const double x = c + 0.5 * (r % 2), y = 0.25 * r;
-      m.V.row(r * (cols + 1) + c) << 2.0 * std::sin(x / 2.0), y, 2.0 * std::cos(x / 2.0);
-    }
-  m.F.resize(2 * rows * cols, 3);
-  int f = 0;
-  for (int r = 0; r < rows; ++r)
-    for (int c = 0; c < cols; ++c) {
-      const int a = r * (cols + 1) + c, b = a + 1, d = a + cols + 1, e = d + 1;
-      if (r % 2 == 0) {
-        m.F.row(f++) << a, b, d;
-        m.F.row(f++) << b, e, d;
-      } else {
-        m.F.row(f++) << a, e, d;
-        m.F.row(f++) << a, b, e;
-      }
-    }
-  return m;
+  const iarap::test::TestMesh m = iarap::test::sheared_strip(cols, rows, 2.0);
+  return {m.V, m.F};
 }
 
 struct RestRun {

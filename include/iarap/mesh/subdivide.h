@@ -11,4 +11,7 @@ namespace iarap {
 void subdivide_midpoint(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, Eigen::MatrixXd& V_out,
                         Eigen::MatrixXi& F_out);
 
+// Applies subdivide_midpoint `times` times in place (benchmark meshes: each time 4x the faces).
+void subdivide_midpoint(Eigen::MatrixXd& V, Eigen::MatrixXi& F, int times);
+
 } // namespace iarap
