@@ -311,7 +311,9 @@ TEST(IntrinsicDelaunay, BoundaryRefinementOnSharedMeshes) {
     EXPECT_EQ(idt.triangulation.obtuse_boundary_after, 0) << name;
     EXPECT_GE(idt.triangulation.cot_weight.minCoeff(), -1e-12) << name;
     expect_invariants(mesh.V, mesh.F, idt, name + " refined");
-    if (idt.triangulation.obtuse_boundary_before == 0) EXPECT_EQ(idt.triangulation.inserted_t.size(), 0) << name;
+    if (idt.triangulation.obtuse_boundary_before == 0) {
+      EXPECT_EQ(idt.triangulation.inserted_t.size(), 0) << name;
+    }
     ++tested;
   }
   if (tested == 0) GTEST_SKIP() << "shared meshes not found beside the repository";
