@@ -42,7 +42,7 @@ int expect_invariants(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const 
     const int p0 = tr.start[e], p1 = tr.start[e + 1];
     EXPECT_GE(p1 - p0, 2);
     // End points: the input vertex itself, or the inserted boundary point's input edge and parameter.
-    for (const auto [p, v] : {std::pair<int, int>{p0, tri.E(e, 0)}, std::pair<int, int>{p1 - 1, tri.E(e, 1)}}) {
+    for (const auto& [p, v] : {std::pair<int, int>{p0, tri.E(e, 0)}, std::pair<int, int>{p1 - 1, tri.E(e, 1)}}) {
       if (v < tri.num_input_vertices) {
         EXPECT_EQ(tr.a[p], v);
         EXPECT_EQ(tr.c[p], -1);
