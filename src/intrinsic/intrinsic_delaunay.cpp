@@ -86,7 +86,9 @@ IntrinsicDelaunay intrinsic_delaunay(const Eigen::MatrixXd& V, const Eigen::Matr
   result.triangulation.refine_rounds = refine.rounds;
   result.triangulation.flips = stats.flips + refine.flips;
   result.triangulation.non_delaunay_before = stats.non_delaunay_before;
-  result.triangulation.non_delaunay_after = detail::count_non_delaunay(tri, options.delaunay_tolerance);
+  result.triangulation.non_delaunay_after = refine.inserted > 0
+                                                ? detail::count_non_delaunay(tri, options.delaunay_tolerance)
+                                                : stats.non_delaunay_after;
   result.flip_ms = ms_since(t0);
 
   t0 = std::chrono::steady_clock::now();
