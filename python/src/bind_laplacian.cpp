@@ -31,7 +31,8 @@ positive weights is positive semi-definite. Weights are dimensionless (cotangent
 mass matrix for a pointwise operator.
 kind: "cotan" (extrinsic cotan weights), "intrinsic" (cotan Laplacian of the intrinsic Delaunay
 triangulation), "iarap" (B^T D_w B of the iARAP global step, Eq. 17), "iarap-plus" (asymmetric
-first-segment operator L+), "iarap-sym" (first segment from each end, symmetric).
+first-segment operator L+), "iarap-sym" (first segment from each end, symmetric), "iarap-refined" (B^T D_w B of
+the boundary-robust iARAP, whose obtuse boundary edges are split).
 Raises ValueError for bad arrays, an unknown kind or a non-manifold mesh.)");
   py::tuple kinds(all_laplacian_kinds().size());
   for (std::size_t k = 0; k < all_laplacian_kinds().size(); ++k)

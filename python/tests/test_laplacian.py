@@ -16,10 +16,10 @@ def assert_rows_sum_to_zero(M):
 
 
 def test_kinds_are_listed():
-    assert iarap.LAPLACIAN_KINDS == ("cotan", "intrinsic", "iarap", "iarap-plus", "iarap-sym")
+    assert iarap.LAPLACIAN_KINDS == ("cotan", "intrinsic", "iarap", "iarap-plus", "iarap-sym", "iarap-refined")
 
 
-@pytest.mark.parametrize("kind", ["cotan", "intrinsic", "iarap", "iarap-plus", "iarap-sym"])
+@pytest.mark.parametrize("kind", ["cotan", "intrinsic", "iarap", "iarap-plus", "iarap-sym", "iarap-refined"])
 def test_laplacian_rows_sum_to_zero(bunny, kind):
     V, F = bunny
     L = iarap.laplacian(V, F, kind=kind)
