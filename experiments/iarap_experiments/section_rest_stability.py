@@ -4,6 +4,7 @@ from __future__ import annotations
 import json
 import re
 
+from .cli import CliError
 from .context import METHOD_LABELS, METHODS, Context, fmt
 from .report_document import Heading, Paragraph, Table
 
@@ -53,7 +54,7 @@ def run(ctx: Context, doc) -> None:
     scenario = ctx.work("rest_scenario.json")
     with open(scenario, "w", encoding="utf-8") as f:
         json.dump(SCENARIO, f)
-    results, skipped = [], []
+    results, skipped, refused = [], [], []
     for label, path in meshes(ctx):
         info = ctx.cli.info(path)
         if not info.get("usable", False):
@@ -67,10 +68,19 @@ def run(ctx: Context, doc) -> None:
         for name, method, extra in variants(ctx):
             row["drift"][name], row["iterations"][name] = {}, {}
             for iterations in checkpoints:
-                r = ctx.cli.deform(path, ctx.work("rest_out.off"), method, iterations, scenario=scenario,
-                                   tolerance=0.0, extra=extra)
+                try:
+                    r = ctx.cli.deform(path, ctx.work("rest_out.off"), method, iterations, scenario=scenario,
+                                       tolerance=0.0, extra=extra)
+                except CliError as error:  # e.g. original ARAP refuses zero-area faces (ogre.obj)
+                    refused.append(f"{METHOD_LABELS.get(name, name)} on `{label}`: {str(error).splitlines()[-1][:160]}")
+                    row["drift"][name][str(iterations)] = float("nan")
+                    row["iterations"][name][str(iterations)] = 0
+                    break
                 row["drift"][name][str(iterations)] = r["max_displacement"] / r["bbox_diagonal"]
                 row["iterations"][name][str(iterations)] = r["iterations"]
+            for iterations in checkpoints:  # a refused method fills every checkpoint
+                row["drift"][name].setdefault(str(iterations), float("nan"))
+                row["iterations"][name].setdefault(str(iterations), 0)
         results.append(row)
     ctx.write_json("rest_stability.json", results)
     names = [n for n, _, _ in variants(ctx)]
@@ -99,6 +109,8 @@ def run(ctx: Context, doc) -> None:
     if skipped:
         doc.add(Paragraph("Not usable for ARAP as they are (`iarap info` errors), so not measured: " +
                           ", ".join(skipped) + "."))
+    if refused:
+        doc.add(Paragraph("Refused by the method (nan in the table): " + "; ".join(refused) + "."))
     doc.add(Table(header, [[r["mesh"], str(r["vertices"]), str(r["non_delaunay_edges"]), str(r["boundary_edges"]),
                             str(r["obtuse_boundary_edges"])] + [fmt(r["drift"][n][str(k)], 2) for n in names
                                                                for k in checkpoints] for r in results]))
