@@ -120,8 +120,26 @@ void trace_one(const SignpostTriangulation& input, const VertexFans& fans, const
   // head sit at pa and pb. From an input vertex, the first face is the fan corner holding phi; the ray
   // leaves it through the opposite halfedge.
   Vec2 dir, p{0, 0}, pa, pb;
-  int entry;
+  int entry = -1;
   double remaining = length;
+  // The ray leaves the current face through input halfedge x (tail at q0, head at q1): record the crossing
+  // and enter the face across x, whose halfedge twin(x) runs head(x) -> tail(x), so its tail sits at q1.
+  auto cross_halfedge = [&](int x, Vec2 q0, Vec2 q1) {
+    const Vec2 edge_vec = q1 - q0;
+    const double denom = cross(dir, edge_vec);
+    const double r = cross(q0 - p, edge_vec) / denom;
+    const double s = std::clamp(cross(q0 - p, dir) / denom, 0.0, 1.0);
+    if (!(r < remaining - tol))
+      trace_failure(e, i, j, "the line ends inside input face " + std::to_string(x / 3) + " away from the end vertex");
+    const int tx = input.twin[static_cast<size_t>(x)];
+    if (tx < 0) trace_failure(e, i, j, "the line leaves the surface through boundary halfedge " + std::to_string(x));
+    out.push_back({input.tail(x), input.head(x), tx / 3, s});
+    p = p + dir * r;
+    remaining -= r;
+    entry = tx;
+    pa = q1;
+    pb = q0;
+  };
   if (start.c < 0) {
     const int first = fans.start[static_cast<size_t>(i)], last = fans.start[static_cast<size_t>(i + 1)];
     int k = static_cast<int>(std::upper_bound(fans.phi.begin() + first, fans.phi.begin() + last, phi) - fans.phi.begin()) - 1;
@@ -140,20 +158,8 @@ void trace_one(const SignpostTriangulation& input, const VertexFans& fans, const
       out.push_back({target.a, target.c, -1, target.t});
       return;
     }
-    // Leave through u -> w: continue as if that halfedge's twin were the entry of the next face.
-    const int x = next_halfedge(hin);
-    const Vec2 edge_vec = pw - pu;
-    const double denom = cross(dir, edge_vec);
-    const double r = cross(pu - p, edge_vec) / denom;
-    const double s = std::clamp(cross(pu - p, dir) / denom, 0.0, 1.0);
-    if (!(r < remaining - tol)) trace_failure(e, i, j, "the line ends inside input face " + std::to_string(hin / 3) + " away from the end vertex");
-    entry = input.twin[static_cast<size_t>(x)];
-    if (entry < 0) trace_failure(e, i, j, "the line leaves the surface through boundary halfedge " + std::to_string(x));
-    out.push_back({input.tail(x), input.head(x), entry / 3, s});
-    p = p + dir * r;
-    remaining -= r;
-    pa = pw;
-    pb = pu;
+    // Leave through u -> w into the next face.
+    cross_halfedge(next_halfedge(hin), pu, pw);
   } else {
     // An inserted point on input boundary halfedge a -> c: phi = 0 points towards c, the face is on the left.
     entry = start.halfedge;
@@ -187,20 +193,7 @@ void trace_one(const SignpostTriangulation& input, const VertexFans& fans, const
       q0 = pc;
       q1 = pa;
     }
-    const Vec2 edge_vec = q1 - q0;
-    const double denom = cross(dir, edge_vec);
-    const double r = cross(q0 - p, edge_vec) / denom;
-    const double s = std::clamp(cross(q0 - p, dir) / denom, 0.0, 1.0);
-    if (!(r < remaining - tol)) trace_failure(e, i, j, "the line ends inside input face " + std::to_string(x / 3) + " away from the end vertex");
-    const int tx = input.twin[static_cast<size_t>(x)];
-    if (tx < 0) trace_failure(e, i, j, "the line leaves the surface through boundary halfedge " + std::to_string(x));
-    out.push_back({input.tail(x), input.head(x), tx / 3, s});
-    p = p + dir * r;
-    remaining -= r;
-    // The face across x: its halfedge tx runs head(x) -> tail(x), so its tail sits at q1.
-    entry = tx;
-    pa = q1;
-    pb = q0;
+    cross_halfedge(x, q0, q1);
   }
   trace_failure(e, i, j, "more than " + std::to_string(max_steps) + " crossings");
 }
