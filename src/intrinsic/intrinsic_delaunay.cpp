@@ -24,6 +24,7 @@ IntrinsicTriangulation export_triangulation(const detail::SignpostTriangulation&
   out.FE.resize(nf, 3);
   out.corner_angle.resize(nf, 3);
   out.face_area.resize(nf);
+#pragma omp parallel for schedule(static)
   for (int f = 0; f < nf; ++f) {
     for (int k = 0; k < 3; ++k) {
       const int h = 3 * f + k;
@@ -39,6 +40,7 @@ IntrinsicTriangulation export_triangulation(const detail::SignpostTriangulation&
   out.cot_weight.resize(ne);
   out.is_boundary.resize(ne);
   out.original_edge.resize(ne);
+#pragma omp parallel for schedule(static)
   for (int e = 0; e < ne; ++e) {
     const int h = tri.edge_halfedge[static_cast<size_t>(e)];
     out.E(e, 0) = tri.tail(h);

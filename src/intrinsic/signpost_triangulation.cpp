@@ -244,24 +244,42 @@ bool flip_edge(SignpostTriangulation& tri, int e) {
   return true;
 }
 
+namespace {
+
+bool is_non_delaunay(const SignpostTriangulation& tri, int e, double tolerance) {
+  const int h = tri.edge_halfedge[static_cast<size_t>(e)];
+  const int t = tri.twin[static_cast<size_t>(h)];
+  return t >= 0 && tri.opposite_cotangent(h) + tri.opposite_cotangent(t) < -tolerance;
+}
+
+// The interior edges failing the Delaunay test, in increasing order (parallel scan).
+std::vector<int> non_delaunay_edges(const SignpostTriangulation& tri, double tolerance) {
+  const int ne = tri.num_edges();
+  std::vector<char> failing(static_cast<size_t>(ne));
+#pragma omp parallel for schedule(static)
+  for (int e = 0; e < ne; ++e) failing[static_cast<size_t>(e)] = is_non_delaunay(tri, e, tolerance);
+  std::vector<int> edges;
+  for (int e = 0; e < ne; ++e)
+    if (failing[static_cast<size_t>(e)]) edges.push_back(e);
+  return edges;
+}
+
+} // namespace
+
 int count_non_delaunay(const SignpostTriangulation& tri, double tolerance) {
-  int count = 0;
-  for (int e = 0; e < tri.num_edges(); ++e) {
-    const int h = tri.edge_halfedge[static_cast<size_t>(e)];
-    const int t = tri.twin[static_cast<size_t>(h)];
-    if (t < 0) continue;
-    if (tri.opposite_cotangent(h) + tri.opposite_cotangent(t) < -tolerance) ++count;
-  }
-  return count;
+  return static_cast<int>(non_delaunay_edges(tri, tolerance).size());
 }
 
 FlipStats flip_to_delaunay(SignpostTriangulation& tri, double tolerance) {
   FlipStats stats;
-  stats.non_delaunay_before = count_non_delaunay(tri, tolerance);
+  // Only edges that fail now need a look: any other edge can only start failing when a flip changes one of
+  // its two faces, and then it is pushed.
+  std::vector<int> stack = non_delaunay_edges(tri, tolerance);
+  stats.non_delaunay_before = static_cast<int>(stack.size());
+  std::reverse(stack.begin(), stack.end()); // pop in increasing edge order, as a full sweep would
   const int ne = tri.num_edges();
-  std::vector<int> stack(static_cast<size_t>(ne));
-  std::vector<char> queued(static_cast<size_t>(ne), 1);
-  for (int e = 0; e < ne; ++e) stack[static_cast<size_t>(e)] = ne - 1 - e;
+  std::vector<char> queued(static_cast<size_t>(ne), 0);
+  for (int e : stack) queued[static_cast<size_t>(e)] = 1;
   // Each flip strictly lowers the Dirichlet energy of the piecewise-linear interpolant (Rippa, Bobenko &
   // Springborn), so the loop ends; the cap only guards against a numerical cycle.
   const long max_flips = 1000L * ne + 1000000L;
@@ -270,9 +288,7 @@ FlipStats flip_to_delaunay(SignpostTriangulation& tri, double tolerance) {
     const int e = stack.back();
     stack.pop_back();
     queued[static_cast<size_t>(e)] = 0;
-    const int h = tri.edge_halfedge[static_cast<size_t>(e)];
-    const int t = tri.twin[static_cast<size_t>(h)];
-    if (t < 0 || tri.opposite_cotangent(h) + tri.opposite_cotangent(t) >= -tolerance) continue;
+    if (!is_non_delaunay(tri, e, tolerance)) continue;
     if (!flip_edge(tri, e)) {
       stuck.push_back(e); // re-checked at the end: a later neighbouring flip may have fixed it
       continue;
@@ -293,11 +309,7 @@ FlipStats flip_to_delaunay(SignpostTriangulation& tri, double tolerance) {
   // Every other edge was last checked Delaunay after its last change; only unflippable ones can fail.
   std::sort(stuck.begin(), stuck.end());
   stuck.erase(std::unique(stuck.begin(), stuck.end()), stuck.end());
-  for (int e : stuck) {
-    const int h = tri.edge_halfedge[static_cast<size_t>(e)];
-    const int t = tri.twin[static_cast<size_t>(h)];
-    if (t >= 0 && tri.opposite_cotangent(h) + tri.opposite_cotangent(t) < -tolerance) ++stats.non_delaunay_after;
-  }
+  for (int e : stuck) stats.non_delaunay_after += is_non_delaunay(tri, e, tolerance);
   return stats;
 }
 
