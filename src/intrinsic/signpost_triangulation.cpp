@@ -131,6 +131,10 @@ SignpostTriangulation build_signpost_triangulation(const Eigen::MatrixXd& V, con
   tri.phi.assign(static_cast<size_t>(3 * nf), 0.0);
   tri.vertex_angle_sum.assign(static_cast<size_t>(nv), 0.0);
   tri.boundary_vertex.assign(static_cast<size_t>(nv), 0);
+  // Corner angles once per face, in parallel; the fan sweeps below only add them up.
+  std::vector<double> corner(static_cast<size_t>(3 * nf));
+#pragma omp parallel for schedule(static)
+  for (int h = 0; h < 3 * nf; ++h) corner[static_cast<size_t>(h)] = tri.corner_angle(h);
   auto sweep = [&](int h0) {
     const int v = tri.tail(h0);
     double angle = tri.vertex_angle_sum[static_cast<size_t>(v)];
@@ -139,7 +143,7 @@ SignpostTriangulation build_signpost_triangulation(const Eigen::MatrixXd& V, con
     while (true) {
       swept[static_cast<size_t>(h)] = 1;
       tri.phi[static_cast<size_t>(h)] = angle;
-      angle += tri.corner_angle(h);
+      angle += corner[static_cast<size_t>(h)];
       const int t = tri.twin[static_cast<size_t>(prev_halfedge(h))];
       if (t < 0) break;
       if (t == h0) {
