@@ -71,6 +71,15 @@ void run_serve(const ServeArguments& args, bool host_given) {
   config.verbose = args.verbose;
   set_thread_count(args.threads);
 
+  // SIGINT / SIGTERM are taken by one thread with sigwait (async-signal-safe), which stops the server.
+  // They are blocked before anything starts a thread (the first mesh's precomputation starts OpenMP and
+  // CHOLMOD workers), so that every thread inherits the mask and none dies of the default action.
+  sigset_t signals;
+  sigemptyset(&signals);
+  sigaddset(&signals, SIGINT);
+  sigaddset(&signals, SIGTERM);
+  pthread_sigmask(SIG_BLOCK, &signals, nullptr);
+
   serve::ServeState state;
   if (!config.meshes.empty()) {
     serve::load_server_mesh(state, config.meshes.front());
@@ -84,13 +93,6 @@ void run_serve(const ServeArguments& args, bool host_given) {
                  "network.\n";
   }
 
-  // SIGINT / SIGTERM are taken by one thread with sigwait (async-signal-safe), which stops the server;
-  // blocking them first makes every thread started below inherit the mask.
-  sigset_t signals;
-  sigemptyset(&signals);
-  sigaddset(&signals, SIGINT);
-  sigaddset(&signals, SIGTERM);
-  pthread_sigmask(SIG_BLOCK, &signals, nullptr);
 
   serve::PrivateTempDir temp;
   httplib::Server server;

@@ -7,6 +7,7 @@
 #include "iarap/mesh/cotan.h"
 
 #include <chrono>
+#include <vector>
 
 namespace iarap {
 
@@ -24,16 +25,18 @@ IntrinsicTriangulation export_triangulation(const detail::SignpostTriangulation&
   out.FE.resize(nf, 3);
   out.corner_angle.resize(nf, 3);
   out.face_area.resize(nf);
+  std::vector<double> cot(static_cast<size_t>(3 * nf)); // opposite each halfedge, for the edge weights
 #pragma omp parallel for schedule(static)
   for (int f = 0; f < nf; ++f) {
+    double angle[3], c[3];
+    out.face_area(f) = tri.face_geometry(f, angle, c);
     for (int k = 0; k < 3; ++k) {
       const int h = 3 * f + k;
       out.F(f, k) = tri.tail(h);
       out.FE(f, (k + 2) % 3) = tri.edge[static_cast<size_t>(h)]; // halfedge k is opposite corner k + 2
-      out.corner_angle(f, k) = tri.corner_angle(h);
+      out.corner_angle(f, k) = angle[k];
+      cot[static_cast<size_t>(h)] = c[k];
     }
-    out.face_area(f) = triangle_area_from_lengths(tri.halfedge_length(3 * f), tri.halfedge_length(3 * f + 1),
-                                                  tri.halfedge_length(3 * f + 2));
   }
   out.E.resize(ne, 2);
   out.length.resize(ne);
@@ -43,11 +46,12 @@ IntrinsicTriangulation export_triangulation(const detail::SignpostTriangulation&
 #pragma omp parallel for schedule(static)
   for (int e = 0; e < ne; ++e) {
     const int h = tri.edge_halfedge[static_cast<size_t>(e)];
-    out.E(e, 0) = tri.tail(h);
-    out.E(e, 1) = tri.head(h);
+    out.E(e, 0) = tri.edge_vertex[static_cast<size_t>(2 * e)];
+    out.E(e, 1) = tri.edge_vertex[static_cast<size_t>(2 * e + 1)];
     out.length(e) = tri.length[static_cast<size_t>(e)];
-    out.cot_weight(e) = tri.cotan_weight(e);
-    out.is_boundary(e) = tri.twin[static_cast<size_t>(h)] < 0;
+    const int t = tri.twin[static_cast<size_t>(h)];
+    out.cot_weight(e) = 0.5 * (cot[static_cast<size_t>(h)] + (t >= 0 ? cot[static_cast<size_t>(t)] : 0.0));
+    out.is_boundary(e) = t < 0;
     out.original_edge(e) = tri.original_edge[static_cast<size_t>(e)];
   }
   out.mollify_delta = tri.mollify_delta;
@@ -70,8 +74,9 @@ IntrinsicDelaunay intrinsic_delaunay(const Eigen::MatrixXd& V, const Eigen::Matr
                                      const IntrinsicOptions& options) {
   IntrinsicDelaunay result;
   auto t0 = std::chrono::steady_clock::now();
+  detail::VertexFans fans;
   const detail::SignpostTriangulation input =
-      detail::build_signpost_triangulation(V, F, options.mollify, options.mollify_epsilon);
+      detail::build_signpost_triangulation(V, F, options.mollify, options.mollify_epsilon, &fans);
   detail::SignpostTriangulation tri = input;
   const detail::FlipStats stats = detail::flip_to_delaunay(tri, options.delaunay_tolerance);
   detail::RefineStats refine;
@@ -94,7 +99,7 @@ IntrinsicDelaunay intrinsic_delaunay(const Eigen::MatrixXd& V, const Eigen::Matr
   result.flip_ms = ms_since(t0);
 
   t0 = std::chrono::steady_clock::now();
-  result.traces = detail::trace_edges(input, tri);
+  result.traces = detail::trace_edges(input, fans, tri);
   result.trace_ms = ms_since(t0);
 
   t0 = std::chrono::steady_clock::now();

@@ -2,6 +2,7 @@
 
 #include "iarap/core/errors.h"
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -79,13 +80,24 @@ Segments build_segments(const Eigen::MatrixXd& V, const IntrinsicTriangulation& 
     throw SolverError("segment " + std::to_string(bad_segment) +
                       " has end points on no common input face (more than 3 vertices in b)");
 
-  std::vector<Eigen::Triplet<double>> triplets;
-  triplets.reserve(static_cast<size_t>(3 * ns));
+  // B in compressed column form directly (a counting sort by vertex): segments are visited in order, so
+  // each column's rows come out sorted, with none of setFromTriplets' sort and temporary copies.
+  const int nv = static_cast<int>(V.rows());
+  seg.B.resize(ns, nv);
+  std::vector<int> fill(static_cast<size_t>(nv) + 1, 0);
   for (int s = 0; s < ns; ++s)
     for (int q = 0; q < 3; ++q)
-      if (seg.b_value(s, q) != 0.0) triplets.emplace_back(s, seg.b_index(s, q), seg.b_value(s, q));
-  seg.B.resize(ns, V.rows());
-  seg.B.setFromTriplets(triplets.begin(), triplets.end());
+      if (seg.b_value(s, q) != 0.0) ++fill[static_cast<size_t>(seg.b_index(s, q)) + 1];
+  for (int v = 0; v < nv; ++v) fill[static_cast<size_t>(v) + 1] += fill[static_cast<size_t>(v)];
+  seg.B.resizeNonZeros(fill[static_cast<size_t>(nv)]);
+  std::copy(fill.begin(), fill.end(), seg.B.outerIndexPtr());
+  for (int s = 0; s < ns; ++s)
+    for (int q = 0; q < 3; ++q)
+      if (seg.b_value(s, q) != 0.0) {
+        const int k = fill[static_cast<size_t>(seg.b_index(s, q))]++;
+        seg.B.innerIndexPtr()[k] = s;
+        seg.B.valuePtr()[k] = seg.b_value(s, q);
+      }
   return seg;
 }
 

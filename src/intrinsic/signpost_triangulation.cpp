@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <utility>
 
@@ -43,19 +44,35 @@ double SignpostTriangulation::cotan_weight(int e) const {
   return w;
 }
 
+double SignpostTriangulation::face_geometry(int f, double (&angle)[3], double (&cot)[3]) const {
+  const double l[3] = {halfedge_length(3 * f), halfedge_length(3 * f + 1), halfedge_length(3 * f + 2)};
+  const double four_area = 4.0 * triangle_area_from_lengths(l[0], l[1], l[2]);
+  double d[3]; // d[k] = 2 l_a l_b cos(angle opposite halfedge k), by the law of cosines
+  for (int k = 0; k < 3; ++k) d[k] = l[(k + 1) % 3] * l[(k + 1) % 3] + l[(k + 2) % 3] * l[(k + 2) % 3] - l[k] * l[k];
+  for (int k = 0; k < 3; ++k) {
+    cot[k] = d[k] / four_area;
+    angle[k] = std::atan2(four_area, d[(k + 1) % 3]); // the corner at the tail of halfedge k faces halfedge k + 1
+  }
+  return 0.25 * four_area;
+}
+
 SignpostTriangulation build_signpost_triangulation(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
-                                                   bool mollify, double mollify_epsilon) {
+                                                   bool mollify, double mollify_epsilon, VertexFans* fans_out) {
   const int nv = static_cast<int>(V.rows());
   const int nf = static_cast<int>(F.rows());
   if (F.cols() != 3) throw InputError("faces must have 3 columns, got " + std::to_string(F.cols()));
-  for (int f = 0; f < nf; ++f) {
-    for (int k = 0; k < 3; ++k) {
-      if (F(f, k) < 0 || F(f, k) >= nv)
-        throw InputError("face " + std::to_string(f) + " uses vertex " + std::to_string(F(f, k)) +
+  // Checks run as parallel scans that keep the first offending index; the error is thrown afterwards.
+  int bad_face = nf;
+#pragma omp parallel for schedule(static) reduction(min : bad_face)
+  for (int f = 0; f < nf; ++f)
+    for (int k = 0; k < 3; ++k)
+      if (F(f, k) < 0 || F(f, k) >= nv || F(f, k) == F(f, (k + 1) % 3)) bad_face = std::min(bad_face, f);
+  if (bad_face < nf) {
+    for (int k = 0; k < 3; ++k)
+      if (F(bad_face, k) < 0 || F(bad_face, k) >= nv)
+        throw InputError("face " + std::to_string(bad_face) + " uses vertex " + std::to_string(F(bad_face, k)) +
                          "; mesh has " + std::to_string(nv));
-    }
-    if (F(f, 0) == F(f, 1) || F(f, 1) == F(f, 2) || F(f, 2) == F(f, 0))
-      throw TopologyError("face " + std::to_string(f) + " repeats a vertex");
+    throw TopologyError("face " + std::to_string(bad_face) + " repeats a vertex");
   }
   if (!V.allFinite()) throw InputError("vertex coordinates contain NaN or Inf");
 
@@ -69,51 +86,78 @@ SignpostTriangulation build_signpost_triangulation(const Eigen::MatrixXd& V, con
   tri.edge.resize(static_cast<size_t>(3 * nf));
   tri.edge_halfedge.assign(static_cast<size_t>(ne), -1);
   tri.original_edge.resize(static_cast<size_t>(ne));
+  tri.edge_vertex.resize(static_cast<size_t>(2 * ne));
+#pragma omp parallel for schedule(static)
   for (int f = 0; f < nf; ++f)
     for (int k = 0; k < 3; ++k) {
       tri.corner_vertex[static_cast<size_t>(3 * f + k)] = F(f, k);
       tri.edge[static_cast<size_t>(3 * f + k)] = topo.FE(f, (k + 2) % 3);
     }
+  // Twins and lengths per edge (each edge writes only its own halfedges), with the mean length.
+  tri.length.resize(static_cast<size_t>(ne));
+  double length_sum = 0.0;
+  int bad_edge = ne;
+#pragma omp parallel for schedule(static) reduction(+ : length_sum) reduction(min : bad_edge)
   for (int e = 0; e < ne; ++e) {
     tri.original_edge[static_cast<size_t>(e)] = e;
-    if (topo.face_count(e) > 2)
-      throw TopologyError("non-manifold edge " + edge_name(topo.E(e, 0), topo.E(e, 1)) + " is shared by " +
-                          std::to_string(topo.face_count(e)) + " faces");
+    const int i = topo.E(e, 0), j = topo.E(e, 1);
+    tri.length[static_cast<size_t>(e)] = std::sqrt((V(i, 0) - V(j, 0)) * (V(i, 0) - V(j, 0)) +
+                                                   (V(i, 1) - V(j, 1)) * (V(i, 1) - V(j, 1)) +
+                                                   (V(i, 2) - V(j, 2)) * (V(i, 2) - V(j, 2)));
+    length_sum += tri.length[static_cast<size_t>(e)];
+    if (topo.face_count(e) > 2) {
+      bad_edge = std::min(bad_edge, e);
+      continue;
+    }
     const int h0 = 3 * topo.EF(e, 0) + (topo.EK(e, 0) + 1) % 3;
     tri.edge_halfedge[static_cast<size_t>(e)] = h0;
     if (topo.face_count(e) == 2) {
       const int h1 = 3 * topo.EF(e, 1) + (topo.EK(e, 1) + 1) % 3;
-      if (tri.tail(h0) == tri.tail(h1))
-        throw TopologyError("faces " + std::to_string(topo.EF(e, 0)) + " and " + std::to_string(topo.EF(e, 1)) +
-                            " are inconsistently oriented across edge " + edge_name(topo.E(e, 0), topo.E(e, 1)));
+      if (tri.tail(h0) == tri.tail(h1)) {
+        bad_edge = std::min(bad_edge, e);
+        continue;
+      }
       tri.twin[static_cast<size_t>(h0)] = h1;
       tri.twin[static_cast<size_t>(h1)] = h0;
       if (tri.tail(h1) < tri.tail(h0)) tri.edge_halfedge[static_cast<size_t>(e)] = h1;
     }
+    const int h = tri.edge_halfedge[static_cast<size_t>(e)]; // a boundary edge runs along its one halfedge
+    tri.edge_vertex[static_cast<size_t>(2 * e)] = tri.tail(h);
+    tri.edge_vertex[static_cast<size_t>(2 * e + 1)] = tri.head(h);
+  }
+  if (bad_edge < ne) {
+    const int e = bad_edge;
+    if (topo.face_count(e) > 2)
+      throw TopologyError("non-manifold edge " + edge_name(topo.E(e, 0), topo.E(e, 1)) + " is shared by " +
+                          std::to_string(topo.face_count(e)) + " faces");
+    throw TopologyError("faces " + std::to_string(topo.EF(e, 0)) + " and " + std::to_string(topo.EF(e, 1)) +
+                        " are inconsistently oriented across edge " + edge_name(topo.E(e, 0), topo.E(e, 1)));
   }
 
-  // Edge lengths, then the mollification of Sharp & Crane 2020: one delta for all edges so that every
-  // triangle inequality holds with margin eps.
-  tri.length.resize(static_cast<size_t>(ne));
-  double mean_length = 0.0;
-  for (int e = 0; e < ne; ++e) {
-    tri.length[static_cast<size_t>(e)] = (V.row(topo.E(e, 0)) - V.row(topo.E(e, 1))).norm();
-    mean_length += tri.length[static_cast<size_t>(e)];
-  }
-  mean_length /= std::max(ne, 1);
-  const double eps = mollify_epsilon * mean_length;
+  // The mollification of Sharp & Crane 2020: one delta for all edges so that every triangle inequality
+  // holds with margin eps.
+  const double eps = mollify_epsilon * length_sum / std::max(ne, 1);
   double delta = 0.0;
+  bad_face = nf;
+#pragma omp parallel for schedule(static) reduction(max : delta) reduction(min : bad_face)
   for (int f = 0; f < nf; ++f) {
     for (int k = 0; k < 3; ++k) {
       const double a = tri.halfedge_length(3 * f + k), b = tri.halfedge_length(3 * f + (k + 1) % 3),
                    c = tri.halfedge_length(3 * f + (k + 2) % 3);
       const double need = eps - (b + c - a);
-      if (need > 0 && !mollify)
-        throw TopologyError("face " + std::to_string(f) + " is degenerate (triangle inequality margin " +
-                            std::to_string(b + c - a) + " below " + std::to_string(eps) +
-                            "); enable intrinsic mollification or repair the mesh");
+      if (need > 0 && !mollify) bad_face = std::min(bad_face, f);
       delta = std::max(delta, need);
     }
+  }
+  if (bad_face < nf) {
+    double margin = std::numeric_limits<double>::infinity();
+    for (int k = 0; k < 3; ++k)
+      margin = std::min(margin, tri.halfedge_length(3 * bad_face + (k + 1) % 3) +
+                                    tri.halfedge_length(3 * bad_face + (k + 2) % 3) -
+                                    tri.halfedge_length(3 * bad_face + k));
+    throw TopologyError("face " + std::to_string(bad_face) + " is degenerate (triangle inequality margin " +
+                        std::to_string(margin) + " below " + std::to_string(eps) +
+                        "); enable intrinsic mollification or repair the mesh");
   }
   if (delta > 0)
     for (double& l : tri.length) l += delta;
@@ -123,50 +167,77 @@ SignpostTriangulation build_signpost_triangulation(const Eigen::MatrixXd& V, con
   // starts at its outgoing boundary halfedge, so its angles run from 0 to its total without wrapping.
   // A vertex where several open fans meet (a "bowtie", common in scanned meshes) keeps one rotation cell;
   // its fans get disjoint angle ranges separated by a gap, so a signpost never points between fans.
-  std::vector<int> outgoing(static_cast<size_t>(nv), 0);
-  for (int h = 0; h < 3 * nf; ++h) ++outgoing[static_cast<size_t>(tri.tail(h))];
+  // outgoing: the halfedges leaving each vertex in increasing index (CSR, counting sort by tail).
+  std::vector<int> start(static_cast<size_t>(nv) + 1, 0), outgoing(static_cast<size_t>(3 * nf));
+  for (int h = 0; h < 3 * nf; ++h) ++start[static_cast<size_t>(tri.tail(h)) + 1];
+  for (int v = 0; v < nv; ++v) start[static_cast<size_t>(v) + 1] += start[static_cast<size_t>(v)];
+  {
+    std::vector<int> fill(start.begin(), start.end() - 1);
+    for (int h = 0; h < 3 * nf; ++h) outgoing[static_cast<size_t>(fill[static_cast<size_t>(tri.tail(h))]++)] = h;
+  }
+  if (fans_out) {
+    fans_out->start = start;
+    fans_out->halfedge.assign(static_cast<size_t>(3 * nf), -1);
+  }
   std::vector<char> swept(static_cast<size_t>(3 * nf), 0);
-  std::vector<int> fans(static_cast<size_t>(nv), 0);
-  std::vector<char> closed_fan(static_cast<size_t>(nv), 0);
   tri.phi.assign(static_cast<size_t>(3 * nf), 0.0);
   tri.vertex_angle_sum.assign(static_cast<size_t>(nv), 0.0);
   tri.boundary_vertex.assign(static_cast<size_t>(nv), 0);
   // Corner angles once per face, in parallel; the fan sweeps below only add them up.
   std::vector<double> corner(static_cast<size_t>(3 * nf));
 #pragma omp parallel for schedule(static)
-  for (int h = 0; h < 3 * nf; ++h) corner[static_cast<size_t>(h)] = tri.corner_angle(h);
-  auto sweep = [&](int h0) {
-    const int v = tri.tail(h0);
-    double angle = tri.vertex_angle_sum[static_cast<size_t>(v)];
-    if (fans[static_cast<size_t>(v)] > 0) angle += 1.0; // gap between fans
-    int h = h0;
-    while (true) {
-      swept[static_cast<size_t>(h)] = 1;
-      tri.phi[static_cast<size_t>(h)] = angle;
-      angle += corner[static_cast<size_t>(h)];
-      const int t = tri.twin[static_cast<size_t>(prev_halfedge(h))];
-      if (t < 0) break;
-      if (t == h0) {
-        closed_fan[static_cast<size_t>(v)] = 1;
-        break;
+  for (int f = 0; f < nf; ++f) {
+    double angle[3], cot[3];
+    tri.face_geometry(f, angle, cot);
+    for (int k = 0; k < 3; ++k) corner[static_cast<size_t>(3 * f + k)] = angle[k];
+  }
+  // Each vertex's sweeps touch only the halfedges leaving it, so vertices run in parallel. Open fans come
+  // first, from their boundary halfedge, then the closed fan; within each, in increasing halfedge index.
+  int bad_vertex = nv;
+#pragma omp parallel for schedule(dynamic, 1024) reduction(min : bad_vertex)
+  for (int v = 0; v < nv; ++v) {
+    int fans = 0, fill = start[static_cast<size_t>(v)];
+    bool closed = false;
+    double angle = 0.0;
+    auto sweep = [&](int h0) {
+      if (fans > 0) angle += 1.0; // gap between fans
+      int h = h0;
+      while (true) {
+        swept[static_cast<size_t>(h)] = 1;
+        tri.phi[static_cast<size_t>(h)] = angle;
+        if (fans_out) fans_out->halfedge[static_cast<size_t>(fill++)] = h;
+        angle += corner[static_cast<size_t>(h)];
+        const int t = tri.twin[static_cast<size_t>(prev_halfedge(h))];
+        if (t < 0) break;
+        if (t == h0) {
+          closed = true;
+          break;
+        }
+        h = t;
       }
-      h = t;
+      ++fans;
+    };
+    const int first = start[static_cast<size_t>(v)], last = start[static_cast<size_t>(v) + 1];
+    for (int k = first; k < last; ++k) {
+      const int h = outgoing[static_cast<size_t>(k)];
+      if (tri.twin[static_cast<size_t>(h)] < 0) {
+        tri.boundary_vertex[static_cast<size_t>(v)] = 1;
+        sweep(h);
+      }
     }
+    for (int k = first; k < last; ++k)
+      if (!swept[static_cast<size_t>(outgoing[static_cast<size_t>(k)])]) sweep(outgoing[static_cast<size_t>(k)]);
     tri.vertex_angle_sum[static_cast<size_t>(v)] = angle;
-    ++fans[static_cast<size_t>(v)];
-  };
-  for (int h = 0; h < 3 * nf; ++h) // open fans first, from their boundary halfedge
-    if (tri.twin[static_cast<size_t>(h)] < 0) {
-      tri.boundary_vertex[static_cast<size_t>(tri.tail(h))] = 1;
-      sweep(h);
-    }
-  for (int h = 0; h < 3 * nf; ++h)
-    if (!swept[static_cast<size_t>(h)]) sweep(h);
-  for (int v = 0; v < nv; ++v)
-    if (fans[static_cast<size_t>(v)] > 1 && closed_fan[static_cast<size_t>(v)])
-      throw TopologyError("non-manifold vertex " + std::to_string(v) + ": a closed fan of faces and " +
-                          std::to_string(fans[static_cast<size_t>(v)] - 1) +
-                          " more fans meet there (two surfaces touching at a point)");
+    if (fans > 1 && closed) bad_vertex = std::min(bad_vertex, v);
+  }
+  if (bad_vertex < nv) {
+    int fans = 0;
+    for (int k = start[static_cast<size_t>(bad_vertex)]; k < start[static_cast<size_t>(bad_vertex) + 1]; ++k)
+      fans += tri.twin[static_cast<size_t>(outgoing[static_cast<size_t>(k)])] < 0;
+    throw TopologyError("non-manifold vertex " + std::to_string(bad_vertex) + ": a closed fan of faces and " +
+                        std::to_string(std::max(fans, 1)) +
+                        " more fans meet there (two surfaces touching at a point)");
+  }
   return tri;
 }
 
@@ -183,11 +254,7 @@ bool flip_edge(SignpostTriangulation& tri, int e) {
   const int e_bc = tri.edge[static_cast<size_t>(h1)], e_ca = tri.edge[static_cast<size_t>(h2)];
   const int e_ad = tri.edge[static_cast<size_t>(t1)], e_db = tri.edge[static_cast<size_t>(t2)];
   if (e_bc == e || e_ca == e || e_ad == e || e_db == e) return false;
-  // The quad must be convex at a and b for the new diagonal to stay inside it.
-  if (tri.corner_angle(h) + tri.corner_angle(t1) >= kPi || tri.corner_angle(t) + tri.corner_angle(h1) >= kPi)
-    return false;
-
-  // New length from the planar layout of the two triangles on either side of (a, b).
+  // Planar layout of the two triangles: a at the origin, b on the +x axis, c above, d below.
   const double l_ab = tri.length[static_cast<size_t>(e)];
   const double l_bc = tri.halfedge_length(h1), l_ca = tri.halfedge_length(h2);
   const double l_ad = tri.halfedge_length(t1), l_db = tri.halfedge_length(t2);
@@ -195,7 +262,16 @@ bool flip_edge(SignpostTriangulation& tri, int e) {
   const double cy = std::sqrt(std::max(l_ca * l_ca - cx * cx, 0.0));
   const double dx = (l_ad * l_ad - l_db * l_db + l_ab * l_ab) / (2 * l_ab);
   const double dy = -std::sqrt(std::max(l_ad * l_ad - dx * dx, 0.0));
+  // The quad is convex at a and b (the new diagonal stays inside it) iff segment cd crosses the x axis
+  // strictly between a and b: the same test as "both quad angles at a and b below pi", without angles.
+  if (!(cy > 0.0 && dy < 0.0)) return false;
+  const double x_cross = cx + (dx - cx) * cy / (cy - dy);
+  if (!(x_cross > 0.0 && x_cross < l_ab)) return false;
   const double l_cd = std::hypot(cx - dx, cy - dy);
+  // Angles of the new faces at c (between c->a and c->d) and at d (between d->b and d->c), from the layout.
+  const double angle_c = std::atan2(std::abs(cx * (dy - cy) - cy * (dx - cx)), -cx * (dx - cx) - cy * (dy - cy));
+  const double angle_d = std::atan2(std::abs((l_ab - dx) * (cy - dy) + dy * (cx - dx)),
+                                    (l_ab - dx) * (cx - dx) - dy * (cy - dy));
 
   // Old halfedge -> new slot, so that twins pointing into the two faces follow their halfedge.
   const int n_ca = 3 * f0 + 0, n_ad = 3 * f0 + 1, n_dc = 3 * f0 + 2;
@@ -228,6 +304,8 @@ bool flip_edge(SignpostTriangulation& tri, int e) {
   set(n_dc, d, e, n_cd, 0.0);
   set(n_cd, c, e, n_dc, 0.0);
   tri.edge_halfedge[static_cast<size_t>(e)] = c <= d ? n_cd : n_dc;
+  tri.edge_vertex[static_cast<size_t>(2 * e)] = std::min(c, d);
+  tri.edge_vertex[static_cast<size_t>(2 * e + 1)] = std::max(c, d);
   for (int s : {n_ca, n_ad, n_db, n_bc}) {
     // edge_halfedge: of an edge's two halfedges, the one with the lower tail vertex (E(e,0) <= E(e,1)).
     const int x = twin[static_cast<size_t>(s)];
@@ -242,8 +320,8 @@ bool flip_edge(SignpostTriangulation& tri, int e) {
     if (tri.boundary_vertex[static_cast<size_t>(v)]) return std::min(angle, theta);
     return angle >= theta ? angle - theta : angle;
   };
-  tri.phi[static_cast<size_t>(n_cd)] = wrap(c, phi_ca + tri.corner_angle(n_ca));
-  tri.phi[static_cast<size_t>(n_dc)] = wrap(d, phi_db + tri.corner_angle(n_db));
+  tri.phi[static_cast<size_t>(n_cd)] = wrap(c, phi_ca + angle_c);
+  tri.phi[static_cast<size_t>(n_dc)] = wrap(d, phi_db + angle_d);
   tri.original_edge[static_cast<size_t>(e)] = -1;
   return true;
 }
@@ -258,10 +336,21 @@ bool is_non_delaunay(const SignpostTriangulation& tri, int e, double tolerance) 
 
 // The interior edges failing the Delaunay test, in increasing order (parallel scan).
 std::vector<int> non_delaunay_edges(const SignpostTriangulation& tri, double tolerance) {
-  const int ne = tri.num_edges();
+  const int ne = tri.num_edges(), nf = tri.num_faces();
+  std::vector<double> cot(static_cast<size_t>(3 * nf)); // one area per face instead of one per halfedge
+#pragma omp parallel for schedule(static)
+  for (int f = 0; f < nf; ++f) {
+    double angle[3], c[3];
+    tri.face_geometry(f, angle, c);
+    for (int k = 0; k < 3; ++k) cot[static_cast<size_t>(3 * f + k)] = c[k];
+  }
   std::vector<char> failing(static_cast<size_t>(ne));
 #pragma omp parallel for schedule(static)
-  for (int e = 0; e < ne; ++e) failing[static_cast<size_t>(e)] = is_non_delaunay(tri, e, tolerance);
+  for (int e = 0; e < ne; ++e) {
+    const int h = tri.edge_halfedge[static_cast<size_t>(e)];
+    const int t = tri.twin[static_cast<size_t>(h)];
+    failing[static_cast<size_t>(e)] = t >= 0 && cot[static_cast<size_t>(h)] + cot[static_cast<size_t>(t)] < -tolerance;
+  }
   std::vector<int> edges;
   for (int e = 0; e < ne; ++e)
     if (failing[static_cast<size_t>(e)]) edges.push_back(e);
@@ -274,11 +363,19 @@ int count_non_delaunay(const SignpostTriangulation& tri, double tolerance) {
   return static_cast<int>(non_delaunay_edges(tri, tolerance).size());
 }
 
-FlipStats flip_to_delaunay(SignpostTriangulation& tri, double tolerance) {
+FlipStats flip_to_delaunay(SignpostTriangulation& tri, double tolerance, const std::vector<int>* seeds) {
   FlipStats stats;
   // Only edges that fail now need a look: any other edge can only start failing when a flip changes one of
   // its two faces, and then it is pushed.
-  std::vector<int> stack = non_delaunay_edges(tri, tolerance);
+  std::vector<int> stack;
+  if (seeds) {
+    for (int e : *seeds)
+      if (is_non_delaunay(tri, e, tolerance)) stack.push_back(e);
+    std::sort(stack.begin(), stack.end());
+    stack.erase(std::unique(stack.begin(), stack.end()), stack.end());
+  } else {
+    stack = non_delaunay_edges(tri, tolerance);
+  }
   stats.non_delaunay_before = static_cast<int>(stack.size());
   std::reverse(stack.begin(), stack.end()); // pop in increasing edge order, as a full sweep would
   const int ne = tri.num_edges();
@@ -377,6 +474,9 @@ void split_boundary_edge(SignpostTriangulation& tri, const SignpostTriangulation
   tri.original_edge.push_back(-1);
   tri.original_edge.push_back(-1);
   tri.edge_halfedge.resize(static_cast<size_t>(e_pk + 1));
+  // The tails of the halfedges chosen below: i -> p (boundary), p -> j (boundary), k -> p (k < p, interior).
+  tri.edge_vertex[static_cast<size_t>(2 * e + 1)] = p;
+  for (int x : {p, j, k, p}) tri.edge_vertex.push_back(x);
   tri.length[static_cast<size_t>(e)] = t * l_ij;
   tri.original_edge[static_cast<size_t>(e)] = -1;
   for (auto* v : {&tri.corner_vertex, &tri.twin, &tri.edge}) v->resize(static_cast<size_t>(3 * g + 3));
@@ -424,29 +524,38 @@ void split_boundary_edge(SignpostTriangulation& tri, const SignpostTriangulation
 RefineStats refine_obtuse_boundary(SignpostTriangulation& tri, const SignpostTriangulation& input,
                                    double tolerance, int max_insertions) {
   RefineStats stats;
-  stats.obtuse_before = count_obtuse_boundary_edges(tri, tolerance);
+  // Boundary edges are never flipped and a split keeps e on the boundary and adds e_pj, so this list
+  // stays complete; each round looks at it instead of at every edge.
+  std::vector<int> boundary;
+  for (int e = 0; e < tri.num_edges(); ++e)
+    if (tri.twin[static_cast<size_t>(tri.edge_halfedge[static_cast<size_t>(e)])] < 0) boundary.push_back(e);
+  auto obtuse = [&](int e) { return tri.opposite_cotangent(tri.edge_halfedge[static_cast<size_t>(e)]) < -tolerance; };
+  stats.obtuse_before = static_cast<int>(std::count_if(boundary.begin(), boundary.end(), obtuse));
   while (stats.inserted < max_insertions) {
-    std::vector<int> obtuse;
-    for (int e = 0; e < tri.num_edges(); ++e) {
-      const int h = tri.edge_halfedge[static_cast<size_t>(e)];
-      if (tri.twin[static_cast<size_t>(h)] < 0 && tri.opposite_cotangent(h) < -tolerance) obtuse.push_back(e);
-    }
-    if (obtuse.empty()) break;
+    std::vector<int> candidates;
+    for (int e : boundary)
+      if (obtuse(e)) candidates.push_back(e);
+    if (candidates.empty()) break;
     ++stats.rounds;
-    for (int e : obtuse) {
+    std::vector<int> touched; // the edges of the faces the splits changed: the only ones that may fail now
+    for (int e : candidates) {
       if (stats.inserted >= max_insertions) break;
+      if (!obtuse(e)) continue; // fixed by an earlier split of this round
       const int h = tri.edge_halfedge[static_cast<size_t>(e)];
-      if (tri.opposite_cotangent(h) >= -tolerance) continue; // fixed by an earlier split of this round
       // Foot of the altitude from the obtuse corner: inside the edge, since the other two angles are acute.
       const double l_ij = tri.halfedge_length(h), l_jk = tri.halfedge_length(next_halfedge(h)),
                    l_ki = tri.halfedge_length(prev_halfedge(h));
       const double t = std::clamp((l_ki * l_ki - l_jk * l_jk + l_ij * l_ij) / (2 * l_ij * l_ij), 0.05, 0.95);
+      for (int x : {tri.edge[static_cast<size_t>(next_halfedge(h))], tri.edge[static_cast<size_t>(prev_halfedge(h))]})
+        touched.push_back(x);
       split_boundary_edge(tri, input, e, t);
+      boundary.push_back(tri.num_edges() - 2); // e_pj
+      touched.push_back(tri.num_edges() - 1);  // e_pk
       ++stats.inserted;
     }
-    stats.flips += flip_to_delaunay(tri, tolerance).flips;
+    stats.flips += flip_to_delaunay(tri, tolerance, &touched).flips;
   }
-  stats.obtuse_after = count_obtuse_boundary_edges(tri, tolerance);
+  stats.obtuse_after = static_cast<int>(std::count_if(boundary.begin(), boundary.end(), obtuse));
   return stats;
 }
 

@@ -26,6 +26,8 @@ struct SignpostTriangulation {
   std::vector<int> twin;           // 3F opposite halfedge, -1 on boundary
   std::vector<int> edge;           // 3F edge of halfedge
   std::vector<int> edge_halfedge;  // #E one halfedge of each edge (the one whose tail is E(e,0))
+  std::vector<int> edge_vertex;    // 2 #E endpoints (E(e,0), E(e,1)) = (smaller, larger): edge-ordered
+                                   // passes read them without chasing edge_halfedge into face arrays
   std::vector<double> length;      // #E intrinsic length
   std::vector<double> phi;         // 3F direction of halfedge h at its tail, in [0, vertex_angle_sum)
   std::vector<double> vertex_angle_sum;  // #V total angle around each vertex (Theta_v)
@@ -46,15 +48,27 @@ struct SignpostTriangulation {
   double opposite_cotangent(int h) const;
   // w_e = (cot a + cot b) / 2, one term on boundary edges.
   double cotan_weight(int e) const;
+  // All of face f at once, from one area: angle[k] = corner_angle(3f + k), cot[k] = opposite_cotangent(3f + k).
+  // Returns the face's area.
+  double face_geometry(int f, double (&angle)[3], double (&cot)[3]) const;
   int num_faces() const { return static_cast<int>(corner_vertex.size() / 3); }
   int num_edges() const { return static_cast<int>(length.size()); }
 };
 
+// The outgoing halfedges of each vertex of the input triangulation in increasing signpost angle (CSR):
+// where the tracer finds the input face that holds a direction. Not kept up to date by flips.
+struct VertexFans {
+  std::vector<int> start;    // #V + 1
+  std::vector<int> halfedge; // 3F
+};
+
 // Builds the triangulation of the input mesh: validates manifoldness and orientation (TopologyError
 // naming the edge or vertex), computes edge lengths (mollified if asked and needed), vertex angle sums and
-// the signpost angles of the input halfedges. Edge ids equal those of edge_topology(F).
+// the signpost angles of the input halfedges. Edge ids equal those of edge_topology(F). When `fans` is
+// given, it receives the vertex fans, which the angle sweep visits in order anyway.
 SignpostTriangulation build_signpost_triangulation(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
-                                                   bool mollify, double mollify_epsilon);
+                                                   bool mollify, double mollify_epsilon,
+                                                   VertexFans* fans = nullptr);
 
 // Flips edge e in place; false (and no change) when the edge cannot be flipped: boundary, both sides in
 // one face, or a non-convex intrinsic quad.
@@ -67,7 +81,9 @@ struct FlipStats {
 };
 
 // Flips until every interior edge satisfies cot a + cot b >= -tolerance (Bobenko & Springborn 2007).
-FlipStats flip_to_delaunay(SignpostTriangulation& tri, double tolerance);
+// With `seeds`, only those edges are checked at the start: the caller guarantees every other edge passes
+// (e.g. the edges of the faces a local change touched); non_delaunay_before then counts failing seeds.
+FlipStats flip_to_delaunay(SignpostTriangulation& tri, double tolerance, const std::vector<int>* seeds = nullptr);
 
 // Number of interior edges with cot a + cot b < -tolerance.
 int count_non_delaunay(const SignpostTriangulation& tri, double tolerance);

@@ -27,30 +27,13 @@ struct TracePoint {
   double t;
 };
 
-// Outgoing input halfedges of each vertex, sorted by signpost angle (counter-clockwise).
-struct VertexFans {
-  std::vector<int> start; // #V + 1
-  std::vector<int> halfedge;
-  std::vector<double> phi;
-};
-
-VertexFans build_fans(const SignpostTriangulation& input) {
-  VertexFans fans;
-  const int nv = input.num_vertices, nh = 3 * input.num_faces();
-  fans.start.assign(static_cast<size_t>(nv + 1), 0);
-  for (int h = 0; h < nh; ++h) ++fans.start[static_cast<size_t>(input.tail(h) + 1)];
-  for (int v = 0; v < nv; ++v) fans.start[static_cast<size_t>(v + 1)] += fans.start[static_cast<size_t>(v)];
-  fans.halfedge.resize(static_cast<size_t>(nh));
-  std::vector<int> fill(fans.start.begin(), fans.start.end() - 1);
-  for (int h = 0; h < nh; ++h) fans.halfedge[static_cast<size_t>(fill[static_cast<size_t>(input.tail(h))]++)] = h;
-  for (int v = 0; v < nv; ++v) {
-    auto first = fans.halfedge.begin() + fans.start[static_cast<size_t>(v)];
-    auto last = fans.halfedge.begin() + fans.start[static_cast<size_t>(v + 1)];
-    std::sort(first, last, [&](int a, int b) { return input.phi[static_cast<size_t>(a)] < input.phi[static_cast<size_t>(b)]; });
-  }
-  fans.phi.resize(static_cast<size_t>(nh));
-  for (int k = 0; k < nh; ++k) fans.phi[static_cast<size_t>(k)] = input.phi[static_cast<size_t>(fans.halfedge[static_cast<size_t>(k)])];
-  return fans;
+// The signpost angle of each entry of the vertex fans, contiguous for the binary search of trace_one.
+std::vector<double> fan_angles(const SignpostTriangulation& input, const VertexFans& fans) {
+  std::vector<double> phi(fans.halfedge.size());
+#pragma omp parallel for schedule(static)
+  for (long k = 0; k < static_cast<long>(phi.size()); ++k)
+    phi[static_cast<size_t>(k)] = input.phi[static_cast<size_t>(fans.halfedge[static_cast<size_t>(k)])];
+  return phi;
 }
 
 // Position of the third corner of the face left of the directed segment pa -> pb.
@@ -100,17 +83,10 @@ bool target_in_face(const InputPoint& target, const int (&v)[3], const Vec2 (&po
 }
 
 // Appends the points of intrinsic edge e to `out`.
-void trace_one(const SignpostTriangulation& input, const VertexFans& fans, const SignpostTriangulation& tri, int e,
-               std::vector<TracePoint>& out) {
+void trace_one(const SignpostTriangulation& input, const VertexFans& fans, const std::vector<double>& fan_phi,
+               const SignpostTriangulation& tri, int e, std::vector<TracePoint>& out) {
   const int h = tri.edge_halfedge[static_cast<size_t>(e)];
   const int i = tri.tail(h), j = tri.head(h);
-  const int original = tri.original_edge[static_cast<size_t>(e)];
-  if (original >= 0) {
-    const int hin = input.edge_halfedge[static_cast<size_t>(original)];
-    out.push_back({i, -1, hin / 3, 0.0});
-    out.push_back({j, -1, -1, 0.0});
-    return;
-  }
   const double length = tri.length[static_cast<size_t>(e)];
   const double phi = tri.phi[static_cast<size_t>(h)];
   const double tol = 1e-7 * length; // snapping distance at the end; tracing errors are ~1e-14 * length
@@ -142,10 +118,10 @@ void trace_one(const SignpostTriangulation& input, const VertexFans& fans, const
   };
   if (start.c < 0) {
     const int first = fans.start[static_cast<size_t>(i)], last = fans.start[static_cast<size_t>(i + 1)];
-    int k = static_cast<int>(std::upper_bound(fans.phi.begin() + first, fans.phi.begin() + last, phi) - fans.phi.begin()) - 1;
+    int k = static_cast<int>(std::upper_bound(fan_phi.begin() + first, fan_phi.begin() + last, phi) - fan_phi.begin()) - 1;
     k = std::max(k, first);
     const int hin = fans.halfedge[static_cast<size_t>(k)];
-    const double alpha = std::clamp(phi - fans.phi[static_cast<size_t>(k)], 0.0, input.corner_angle(hin));
+    const double alpha = std::clamp(phi - fan_phi[static_cast<size_t>(k)], 0.0, input.corner_angle(hin));
     const int u = input.head(hin), w = input.tail(prev_halfedge(hin));
     const double l_iu = input.halfedge_length(hin);
     const Vec2 pu{l_iu, 0};
@@ -200,28 +176,35 @@ void trace_one(const SignpostTriangulation& input, const VertexFans& fans, const
 
 } // namespace
 
-TracedEdges trace_edges(const SignpostTriangulation& input, const SignpostTriangulation& intrinsic) {
-  const VertexFans fans = build_fans(input);
+TracedEdges trace_edges(const SignpostTriangulation& input, const VertexFans& fans,
+                        const SignpostTriangulation& intrinsic) {
+  const std::vector<double> fan_phi = fan_angles(input, fans);
   const int ne = intrinsic.num_edges();
-  std::vector<int> counts(static_cast<size_t>(ne), 0);
+  // Pass 1 traces the flipped edges into per-thread buffers (an edge never flipped is its input edge: two
+  // points, nothing to trace). Pass 2 writes every edge's points at its CSR offset, the unflipped ones
+  // straight from edge-ordered arrays, so that neither pass chases the (mostly unflipped) edges through
+  // the face arrays.
+  std::vector<int> count(static_cast<size_t>(ne), 2), owner(static_cast<size_t>(ne), -1), offset(static_cast<size_t>(ne), 0);
   std::vector<std::vector<TracePoint>> buffers(static_cast<size_t>(omp_get_max_threads()));
   std::string error;
 #pragma omp parallel
   {
-    auto& buffer = buffers[static_cast<size_t>(omp_get_thread_num())];
-    // schedule(static) hands each thread one contiguous, increasing block of edges, so the buffers
-    // concatenated in thread order are in edge order.
-#pragma omp for schedule(static)
+    const int thread = omp_get_thread_num();
+    auto& buffer = buffers[static_cast<size_t>(thread)];
+#pragma omp for schedule(dynamic, 256)
     for (int e = 0; e < ne; ++e) {
+      if (intrinsic.original_edge[static_cast<size_t>(e)] >= 0) continue;
       const size_t before = buffer.size();
       try {
-        trace_one(input, fans, intrinsic, e, buffer);
+        trace_one(input, fans, fan_phi, intrinsic, e, buffer);
       } catch (const std::exception& ex) {
 #pragma omp critical
         if (error.empty()) error = ex.what();
         buffer.resize(before);
       }
-      counts[static_cast<size_t>(e)] = static_cast<int>(buffer.size() - before);
+      count[static_cast<size_t>(e)] = static_cast<int>(buffer.size() - before);
+      owner[static_cast<size_t>(e)] = thread;
+      offset[static_cast<size_t>(e)] = static_cast<int>(before);
     }
   }
   if (!error.empty()) throw SolverError(error);
@@ -229,19 +212,34 @@ TracedEdges trace_edges(const SignpostTriangulation& input, const SignpostTriang
   TracedEdges traces;
   traces.start.resize(static_cast<size_t>(ne + 1));
   traces.start[0] = 0;
-  for (int e = 0; e < ne; ++e) traces.start[static_cast<size_t>(e + 1)] = traces.start[static_cast<size_t>(e)] + counts[static_cast<size_t>(e)];
+  for (int e = 0; e < ne; ++e) traces.start[static_cast<size_t>(e + 1)] = traces.start[static_cast<size_t>(e)] + count[static_cast<size_t>(e)];
   const size_t np = static_cast<size_t>(traces.start.back());
-  traces.a.reserve(np);
-  traces.c.reserve(np);
-  traces.face.reserve(np);
-  traces.t.reserve(np);
-  for (const auto& buffer : buffers)
-    for (const TracePoint& p : buffer) {
-      traces.a.push_back(p.a);
-      traces.c.push_back(p.c);
-      traces.face.push_back(p.face);
-      traces.t.push_back(p.t);
+  traces.a.resize(np);
+  traces.c.resize(np);
+  traces.face.resize(np);
+  traces.t.resize(np);
+#pragma omp parallel for schedule(static)
+  for (int e = 0; e < ne; ++e) {
+    const size_t p = static_cast<size_t>(traces.start[static_cast<size_t>(e)]);
+    const int original = intrinsic.original_edge[static_cast<size_t>(e)];
+    if (original >= 0) {
+      // The input halfedge with the edge's tail carries the one segment (same orientation rule as E).
+      traces.a[p] = intrinsic.edge_vertex[static_cast<size_t>(2 * e)];
+      traces.a[p + 1] = intrinsic.edge_vertex[static_cast<size_t>(2 * e + 1)];
+      traces.c[p] = traces.c[p + 1] = -1;
+      traces.t[p] = traces.t[p + 1] = 0.0;
+      traces.face[p] = input.edge_halfedge[static_cast<size_t>(original)] / 3;
+      traces.face[p + 1] = -1;
+      continue;
     }
+    const TracePoint* from = buffers[static_cast<size_t>(owner[static_cast<size_t>(e)])].data() + offset[static_cast<size_t>(e)];
+    for (int k = 0; k < count[static_cast<size_t>(e)]; ++k) {
+      traces.a[p + static_cast<size_t>(k)] = from[k].a;
+      traces.c[p + static_cast<size_t>(k)] = from[k].c;
+      traces.face[p + static_cast<size_t>(k)] = from[k].face;
+      traces.t[p + static_cast<size_t>(k)] = from[k].t;
+    }
+  }
   return traces;
 }
 

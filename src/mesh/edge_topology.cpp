@@ -1,54 +1,84 @@
 #include "iarap/mesh/edge_topology.h"
 
-#include <algorithm>
-#include <cstdint>
 #include <vector>
 
 namespace iarap {
 
 EdgeTopology edge_topology(const Eigen::MatrixXi& F, int num_vertices) {
-  const Eigen::Index nf = F.rows();
-  // One key per face corner: the sorted vertex pair of the opposite edge, sorted to group equal edges.
-  struct Half {
-    std::int64_t key;
-    int face;
-    int corner;
-  };
-  std::vector<Half> halves(static_cast<size_t>(3 * nf));
-  for (Eigen::Index f = 0; f < nf; ++f) {
+  const int nf = static_cast<int>(F.rows());
+  const size_t nv = static_cast<size_t>(num_vertices);
+  // Bucket every face corner by the smaller vertex of its opposite edge (counting sort, linear time),
+  // then order each small bucket by the larger vertex. Faces are visited in order and the insertion
+  // sort is stable, so equal edges keep their (face, corner) order: the same result as sorting all
+  // corners by (min vertex, max vertex, face, corner), without an O(F log F) sort.
+  std::vector<int> start(nv + 1, 0);
+  for (int f = 0; f < nf; ++f)
     for (int k = 0; k < 3; ++k) {
-      std::int64_t a = F(f, (k + 1) % 3), b = F(f, (k + 2) % 3);
-      if (a > b) std::swap(a, b);
-      halves[static_cast<size_t>(3 * f + k)] = {a * num_vertices + b, static_cast<int>(f), k};
+      const int a = F(f, (k + 1) % 3), b = F(f, (k + 2) % 3);
+      ++start[static_cast<size_t>(a < b ? a : b) + 1];
     }
+  for (size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
+  struct Corner {
+    int other; // the larger vertex of the opposite edge
+    int face_corner; // 3 f + k
+  };
+  std::vector<Corner> bucket(static_cast<size_t>(3 * nf));
+  {
+    std::vector<int> fill(start.begin(), start.end() - 1);
+    for (int f = 0; f < nf; ++f)
+      for (int k = 0; k < 3; ++k) {
+        const int a = F(f, (k + 1) % 3), b = F(f, (k + 2) % 3);
+        const int lo = a < b ? a : b, hi = a < b ? b : a;
+        bucket[static_cast<size_t>(fill[static_cast<size_t>(lo)]++)] = {hi, 3 * f + k};
+      }
   }
-  std::sort(halves.begin(), halves.end(), [](const Half& x, const Half& y) {
-    return x.key != y.key ? x.key < y.key : (x.face != y.face ? x.face < y.face : x.corner < y.corner);
-  });
-  size_t ne = 0;
-  for (size_t i = 0; i < halves.size(); ++i)
-    if (i == 0 || halves[i].key != halves[i - 1].key) ++ne;
+  // Sort each bucket and count its distinct edges (vertices are independent: parallel), then number the
+  // edges by a prefix sum over vertices and fill the incidences, again per vertex.
+  const int nvi = num_vertices;
+  std::vector<int> edge_start(nv + 1, 0);
+#pragma omp parallel for schedule(dynamic, 4096)
+  for (int v = 0; v < nvi; ++v) {
+    const int first = start[static_cast<size_t>(v)], last = start[static_cast<size_t>(v) + 1];
+    int distinct = 0;
+    for (int i = first; i < last; ++i) { // stable insertion sort by `other`
+      const Corner c = bucket[static_cast<size_t>(i)];
+      int j = i;
+      for (; j > first && bucket[static_cast<size_t>(j - 1)].other > c.other; --j)
+        bucket[static_cast<size_t>(j)] = bucket[static_cast<size_t>(j - 1)];
+      bucket[static_cast<size_t>(j)] = c;
+    }
+    for (int i = first; i < last; ++i)
+      distinct += i == first || bucket[static_cast<size_t>(i)].other != bucket[static_cast<size_t>(i - 1)].other;
+    edge_start[static_cast<size_t>(v) + 1] = distinct;
+  }
+  for (size_t v = 0; v < nv; ++v) edge_start[v + 1] += edge_start[v];
+  const int ne = edge_start[nv];
 
   EdgeTopology t;
-  t.E.resize(static_cast<Eigen::Index>(ne), 2);
-  t.EF.setConstant(static_cast<Eigen::Index>(ne), 2, -1);
-  t.EK.setConstant(static_cast<Eigen::Index>(ne), 2, -1);
-  t.face_count.setZero(static_cast<Eigen::Index>(ne));
+  t.E.resize(ne, 2);
+  t.EF.setConstant(ne, 2, -1);
+  t.EK.setConstant(ne, 2, -1);
+  t.face_count.setZero(ne);
   t.FE.resize(nf, 3);
-  Eigen::Index e = -1;
-  for (size_t i = 0; i < halves.size(); ++i) {
-    const Half& h = halves[i];
-    if (i == 0 || h.key != halves[i - 1].key) {
-      ++e;
-      t.E(e, 0) = static_cast<int>(h.key / num_vertices);
-      t.E(e, 1) = static_cast<int>(h.key % num_vertices);
+#pragma omp parallel for schedule(dynamic, 4096)
+  for (int v = 0; v < nvi; ++v) {
+    const int first = start[static_cast<size_t>(v)], last = start[static_cast<size_t>(v) + 1];
+    int e = edge_start[static_cast<size_t>(v)] - 1;
+    for (int i = first; i < last; ++i) {
+      const Corner c = bucket[static_cast<size_t>(i)];
+      if (i == first || c.other != bucket[static_cast<size_t>(i - 1)].other) {
+        ++e;
+        t.E(e, 0) = v;
+        t.E(e, 1) = c.other;
+      }
+      const int f = c.face_corner / 3, k = c.face_corner % 3;
+      const int slot = t.face_count(e)++;
+      if (slot < 2) {
+        t.EF(e, slot) = f;
+        t.EK(e, slot) = k;
+      }
+      t.FE(f, k) = e;
     }
-    const int slot = t.face_count(e)++;
-    if (slot < 2) {
-      t.EF(e, slot) = h.face;
-      t.EK(e, slot) = h.corner;
-    }
-    t.FE(h.face, h.corner) = static_cast<int>(e);
   }
   return t;
 }

@@ -4,9 +4,13 @@
 #include "iarap/mesh/connected_components.h"
 #include "iarap/solver/arap_rhs.h"
 #include "iarap/solver/fit_rotations.h"
+#include "iarap/solver/system_pattern.h"
+
+#include <omp.h>
 
 #include <chrono>
 #include <cmath>
+#include <future>
 #include <string>
 
 namespace iarap {
@@ -52,16 +56,150 @@ std::string arap_method_name(ArapMethod method) {
   return "unknown";
 }
 
+namespace {
+
+// Which vertices are free and where the constrained ones go: [fixed; pinned].
+struct ConstraintLayout {
+  std::vector<int> constrained_slot; // #V position in [fixed; pinned], or -1 for a free vertex
+  std::vector<int> constrained;      // the constrained vertices in slot order
+  std::vector<int> pinned;
+  std::vector<int> free;             // increasing
+  Eigen::VectorXi free_slot;         // #V position in free, or -1
+};
+
+ConstraintLayout constraint_layout(const ArapData& data, const Eigen::VectorXi& fixed) {
+  const int n = static_cast<int>(data.V.rows());
+  if (fixed.size() == 0)
+    throw InputError("ARAP: the constrained (fixed) vertex set is empty");
+  ConstraintLayout layout;
+  layout.constrained_slot.assign(static_cast<size_t>(n), -1);
+  std::vector<int>& slot = layout.constrained_slot;
+  for (Eigen::Index k = 0; k < fixed.size(); ++k) {
+    const int v = fixed(k);
+    if (v < 0 || v >= n)
+      throw InputError("ARAP: fixed[" + std::to_string(k) + "] = " + std::to_string(v) +
+                       " is out of range; mesh has " + std::to_string(n) + " vertices");
+    if (slot[v] >= 0)
+      throw InputError("ARAP: fixed[" + std::to_string(k) + "] = " + std::to_string(v) + " repeats fixed[" +
+                       std::to_string(slot[v]) + "]");
+    slot[v] = static_cast<int>(k);
+    layout.constrained.push_back(v);
+  }
+
+  // A component with no constrained vertex leaves L_ff singular (translations are free).
+  std::vector<int> constrained_in(static_cast<size_t>(data.component_count), 0);
+  std::vector<int> size_of(static_cast<size_t>(data.component_count), 0);
+  std::vector<int> first_of(static_cast<size_t>(data.component_count), -1);
+  for (int v = 0; v < n; ++v) {
+    const int c = data.component(v);
+    ++size_of[c];
+    if (first_of[c] < 0)
+      first_of[c] = v;
+    if (slot[v] >= 0)
+      ++constrained_in[c];
+  }
+  for (int c = 0; c < data.component_count; ++c) {
+    if (constrained_in[c] > 0)
+      continue;
+    if (!data.pin_unconstrained_components)
+      throw SolverError(
+          "ARAP: connected component " + std::to_string(c) + " (" + std::to_string(size_of[c]) +
+          " vertices, e.g. vertex " + std::to_string(first_of[c]) +
+          ") has no constrained vertex, so the system is singular; constrain one of its vertices "
+          "or enable pin_unconstrained_components");
+    slot[first_of[c]] = static_cast<int>(layout.constrained.size());
+    layout.constrained.push_back(first_of[c]);
+    layout.pinned.push_back(first_of[c]);
+  }
+
+  layout.free_slot = Eigen::VectorXi::Constant(n, -1);
+  layout.free.reserve(static_cast<size_t>(n));
+  for (int v = 0; v < n; ++v)
+    if (slot[v] < 0) {
+      layout.free_slot(v) = static_cast<int>(layout.free.size());
+      layout.free.push_back(v);
+    }
+  return layout;
+}
+
+// Column `column` of the symmetric L restricted to the free rows, renumbered (rows stay sorted because
+// free_slot is increasing), appended to out_inner / out_value.
+template <typename Emit>
+void free_rows_of_column(const Eigen::SparseMatrix<double>& L, int column, const Eigen::VectorXi& free_slot,
+                         Emit&& emit) {
+  for (int k = L.outerIndexPtr()[column]; k < L.outerIndexPtr()[column + 1]; ++k) {
+    const int row = free_slot(L.innerIndexPtr()[k]);
+    if (row >= 0) emit(row, L.valuePtr()[k]);
+  }
+}
+
+// L (#V x #V, symmetric, compressed) split into L_ff (free x free) and L_fc (free x constrained) directly
+// in compressed form. Matrices with one pattern give L_ff with one pattern, which is what lets the
+// symbolic factorization run on the pattern ahead of the values.
+void split_system(const Eigen::SparseMatrix<double>& L, const ConstraintLayout& layout,
+                  Eigen::SparseMatrix<double>& L_ff, Eigen::SparseMatrix<double>* L_fc) {
+  auto build = [&](const std::vector<int>& columns, Eigen::SparseMatrix<double>& out) {
+    const int nc = static_cast<int>(columns.size());
+    out.resize(static_cast<Eigen::Index>(layout.free.size()), nc);
+    int nnz = 0;
+    for (int c = 0; c < nc; ++c) free_rows_of_column(L, columns[static_cast<size_t>(c)], layout.free_slot, [&](int, double) { ++nnz; });
+    out.resizeNonZeros(nnz);
+    int k = 0;
+    out.outerIndexPtr()[0] = 0;
+    for (int c = 0; c < nc; ++c) {
+      free_rows_of_column(L, columns[static_cast<size_t>(c)], layout.free_slot, [&](int row, double value) {
+        out.innerIndexPtr()[k] = row;
+        out.valuePtr()[k++] = value;
+      });
+      out.outerIndexPtr()[c + 1] = k;
+    }
+  };
+  build(layout.free, L_ff);
+  if (L_fc) build(layout.constrained, *L_fc); // column j of symmetric L is row j: its free rows couple to j
+}
+
+void commit_layout(ArapData& data, const Eigen::VectorXi& fixed, ConstraintLayout& layout,
+                   SparseCholesky& solver, Eigen::SparseMatrix<double>& L_fc) {
+  data.solver = std::move(solver);
+  data.L_fc = std::move(L_fc);
+  data.fixed = fixed;
+  data.pinned = Eigen::Map<const Eigen::VectorXi>(layout.pinned.data(), static_cast<Eigen::Index>(layout.pinned.size()));
+  data.free = Eigen::Map<const Eigen::VectorXi>(layout.free.data(), static_cast<Eigen::Index>(layout.free.size()));
+  data.free_slot = std::move(layout.free_slot);
+}
+
+} // namespace
+
 ArapData arap_precompute(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const Eigen::VectorXi& fixed,
                          const ArapOptions& options) {
   check_arap_mesh(V, F);
+  auto start = Clock::now();
   ArapData data;
   data.method = options.method;
   data.pin_unconstrained_components = options.pin_unconstrained_components;
   data.V = V;
   data.F = F;
+  data.component = vertex_components(F, static_cast<int>(V.rows()), &data.component_count);
+  ConstraintLayout layout = constraint_layout(data, fixed); // bad constraints fail before any heavy work
 
-  auto start = Clock::now();
+  // The pattern of L (hence of L_ff) follows from F alone, so CHOLMOD's symbolic analysis runs on a second
+  // thread while the elements (for iARAP: the intrinsic triangulation) are built; with one thread, first.
+  const SystemPattern pattern = system_pattern(F, static_cast<int>(V.rows()));
+  Eigen::SparseMatrix<double> L_ff, L_fc;
+  split_system(pattern.matrix, layout, L_ff, nullptr);
+  SparseCholesky solver;
+  double analyze_ms = 0.0;
+  auto analyze = [&] {
+    const auto t = Clock::now();
+    solver.analyze(L_ff);
+    analyze_ms = ms_since(t);
+  };
+  std::future<void> analysis;
+  if (omp_get_max_threads() > 1) analysis = std::async(std::launch::async, analyze);
+  else analyze();
+  data.timings.factor_ms = ms_since(start);
+
+  start = Clock::now();
   switch (options.method) {
   case ArapMethod::Arap:
     data.elements = arap_edge_elements(V, F);
@@ -81,93 +219,28 @@ ArapData arap_precompute(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, con
     break;
   }
   }
-  data.L = element_system_matrix(data.elements);
+  data.L = element_system_matrix(data.elements, F, pattern);
   data.timings.assembly_ms = ms_since(start);
 
-  data.component = vertex_components(F, static_cast<int>(V.rows()), &data.component_count);
+  start = Clock::now();
+  if (analysis.valid()) analysis.get();
+  split_system(data.L, layout, L_ff, &L_fc);
+  solver.factorize(L_ff); // throws SolverError
+  data.timings.analyze_ms = analyze_ms;
+  data.timings.factor_ms += ms_since(start);
   data.R.assign(static_cast<size_t>(data.elements.num_cells), Eigen::Matrix3d::Identity());
-  arap_set_fixed(data, fixed);
+  commit_layout(data, fixed, layout, solver, L_fc);
   return data;
 }
 
 void arap_set_fixed(ArapData& data, const Eigen::VectorXi& fixed) {
   const auto start = Clock::now();
-  const int n = static_cast<int>(data.V.rows());
-  if (fixed.size() == 0)
-    throw InputError("ARAP: the constrained (fixed) vertex set is empty");
-  // position in the constrained list [fixed; pinned], or -1 for a free vertex
-  std::vector<int> constrained_slot(static_cast<size_t>(n), -1);
-  for (Eigen::Index k = 0; k < fixed.size(); ++k) {
-    const int v = fixed(k);
-    if (v < 0 || v >= n)
-      throw InputError("ARAP: fixed[" + std::to_string(k) + "] = " + std::to_string(v) +
-                       " is out of range; mesh has " + std::to_string(n) + " vertices");
-    if (constrained_slot[v] >= 0)
-      throw InputError("ARAP: fixed[" + std::to_string(k) + "] = " + std::to_string(v) + " repeats fixed[" +
-                       std::to_string(constrained_slot[v]) + "]");
-    constrained_slot[v] = static_cast<int>(k);
-  }
-
-  // A component with no constrained vertex leaves L_ff singular (translations are free).
-  std::vector<int> constrained_in(static_cast<size_t>(data.component_count), 0);
-  std::vector<int> size_of(static_cast<size_t>(data.component_count), 0);
-  std::vector<int> first_of(static_cast<size_t>(data.component_count), -1);
-  for (int v = 0; v < n; ++v) {
-    const int c = data.component(v);
-    ++size_of[c];
-    if (first_of[c] < 0)
-      first_of[c] = v;
-    if (constrained_slot[v] >= 0)
-      ++constrained_in[c];
-  }
-  std::vector<int> pinned;
-  for (int c = 0; c < data.component_count; ++c) {
-    if (constrained_in[c] > 0)
-      continue;
-    if (!data.pin_unconstrained_components)
-      throw SolverError(
-          "ARAP: connected component " + std::to_string(c) + " (" + std::to_string(size_of[c]) +
-          " vertices, e.g. vertex " + std::to_string(first_of[c]) +
-          ") has no constrained vertex, so the system is singular; constrain one of its vertices "
-          "or enable pin_unconstrained_components");
-    constrained_slot[first_of[c]] = static_cast<int>(fixed.size() + static_cast<Eigen::Index>(pinned.size()));
-    pinned.push_back(first_of[c]);
-  }
-
-  Eigen::VectorXi free_slot = Eigen::VectorXi::Constant(n, -1);
-  std::vector<int> free;
-  free.reserve(static_cast<size_t>(n));
-  for (int v = 0; v < n; ++v)
-    if (constrained_slot[v] < 0) {
-      free_slot(v) = static_cast<int>(free.size());
-      free.push_back(v);
-    }
-  const int num_constrained = static_cast<int>(fixed.size()) + static_cast<int>(pinned.size());
-
-  // Split L by columns into L_ff and L_fc (rows: free vertices only).
-  std::vector<Eigen::Triplet<double>> ff, fc;
-  for (int j = 0; j < data.L.outerSize(); ++j)
-    for (Eigen::SparseMatrix<double>::InnerIterator it(data.L, j); it; ++it) {
-      const int i = static_cast<int>(it.row());
-      if (free_slot(i) < 0)
-        continue;
-      if (free_slot(j) >= 0)
-        ff.emplace_back(free_slot(i), free_slot(j), it.value());
-      else
-        fc.emplace_back(free_slot(i), constrained_slot[j], it.value());
-    }
-  const int num_free = static_cast<int>(free.size());
-  Eigen::SparseMatrix<double> L_ff(num_free, num_free), L_fc(num_free, num_constrained);
-  L_ff.setFromTriplets(ff.begin(), ff.end());
-  L_fc.setFromTriplets(fc.begin(), fc.end());
+  ConstraintLayout layout = constraint_layout(data, fixed);
+  Eigen::SparseMatrix<double> L_ff, L_fc;
+  split_system(data.L, layout, L_ff, &L_fc);
   SparseCholesky solver(L_ff); // throws SolverError; data is untouched until here
-
-  data.solver = std::move(solver);
-  data.L_fc = std::move(L_fc);
-  data.fixed = fixed;
-  data.pinned = Eigen::Map<const Eigen::VectorXi>(pinned.data(), static_cast<Eigen::Index>(pinned.size()));
-  data.free = Eigen::Map<const Eigen::VectorXi>(free.data(), num_free);
-  data.free_slot = std::move(free_slot);
+  commit_layout(data, fixed, layout, solver, L_fc);
+  data.timings.analyze_ms = 0.0; // inside factor_ms here
   data.timings.factor_ms = ms_since(start);
 }
 

@@ -99,6 +99,7 @@ ArapElements arap_edge_elements(const Eigen::MatrixXd& V, const Eigen::MatrixXi&
   el.b_index.resize(m, 3);
   el.b_value.resize(m, 3);
   el.w.resize(m);
+  el.face.resize(static_cast<size_t>(m));
   el.cell_start.resize(static_cast<size_t>(m) + 1);
   el.cell.resize(static_cast<size_t>(2 * m));
   for (Eigen::Index e = 0; e < m; ++e) {
@@ -113,6 +114,7 @@ ArapElements arap_edge_elements(const Eigen::MatrixXd& V, const Eigen::MatrixXi&
         w += 0.5 * C(topo.EF(e, s), topo.EK(e, s));
     set_edge_vector(el, e, i, j);
     el.w(e) = w;
+    el.face[static_cast<size_t>(e)] = topo.EF(e, 0);
     el.cell_start[e] = static_cast<int>(2 * e);
     el.cell[2 * e] = i;
     el.cell[2 * e + 1] = j;
@@ -132,6 +134,7 @@ ArapElements spokes_rims_elements(const Eigen::MatrixXd& V, const Eigen::MatrixX
   el.b_index.resize(m, 3);
   el.b_value.resize(m, 3);
   el.w.resize(m);
+  el.face.resize(static_cast<size_t>(m));
   el.cell_start.resize(static_cast<size_t>(m) + 1);
   el.cell.resize(static_cast<size_t>(3 * m));
   for (Eigen::Index f = 0; f < F.rows(); ++f)
@@ -139,6 +142,7 @@ ArapElements spokes_rims_elements(const Eigen::MatrixXd& V, const Eigen::MatrixX
       const Eigen::Index e = 3 * f + k;
       set_edge_vector(el, e, F(f, (k + 1) % 3), F(f, (k + 2) % 3));
       el.w(e) = 0.5 * C(f, k); // Eq. 2: cot of the angle opposite the edge, over 2 per cell term
+      el.face[static_cast<size_t>(e)] = static_cast<int>(f);
       el.cell_start[e] = static_cast<int>(3 * e);
       for (int c = 0; c < 3; ++c)
         el.cell[3 * e + c] = F(f, c);
@@ -171,6 +175,7 @@ ArapElements iarap_elements(const Eigen::MatrixXd& V, const IntrinsicDelaunay& i
   el.w.resize(count);
   el.cell_start.assign(1, 0);
   el.cell.reserve(static_cast<size_t>(2 * count));
+  el.face.reserve(static_cast<size_t>(count));
   Eigen::Index m = 0;
   for (Eigen::Index s = 0; s < count; ++s) {
     const int edge = seg.edge(s);
@@ -197,6 +202,7 @@ ArapElements iarap_elements(const Eigen::MatrixXd& V, const IntrinsicDelaunay& i
       el.b_value(m, k) = value;
     }
     el.w(m) = seg.weight(s);
+    el.face.push_back(seg.face(s));
     el.cell.push_back(E(edge, 0)); // Eq. 16: the segment belongs to the cells of both ends of its edge
     el.cell.push_back(E(edge, 1));
     el.cell_start.push_back(static_cast<int>(el.cell.size()));

@@ -4,6 +4,7 @@
 
 #include <Eigen/CholmodSupport>
 #include <Eigen/SparseCholesky>
+#include <algorithm>
 #include <cmath>
 
 namespace iarap {
@@ -16,6 +17,7 @@ constexpr double kPivotTolerance = 1e-14;
 struct SparseCholesky::Impl {
   Eigen::SparseMatrix<double> A; // kept so that copies can refactorize
   FactorizationKind kind = FactorizationKind::None;
+  Eigen::SparseMatrix<double> analyzed; // the pattern llt was analyzed on (analyze()), values unused
   std::unique_ptr<Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>>> llt;
   std::unique_ptr<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>> ldlt;
 };
@@ -55,9 +57,34 @@ SparseCholesky::SparseCholesky(SparseCholesky&&) noexcept = default;
 SparseCholesky& SparseCholesky::operator=(SparseCholesky&&) noexcept = default;
 SparseCholesky::~SparseCholesky() = default;
 
+namespace {
+bool same_pattern(const Eigen::SparseMatrix<double>& a, const Eigen::SparseMatrix<double>& b) {
+  return a.isCompressed() && b.isCompressed() && a.rows() == b.rows() && a.cols() == b.cols() &&
+         a.nonZeros() == b.nonZeros() &&
+         std::equal(a.outerIndexPtr(), a.outerIndexPtr() + a.outerSize() + 1, b.outerIndexPtr()) &&
+         std::equal(a.innerIndexPtr(), a.innerIndexPtr() + a.nonZeros(), b.innerIndexPtr());
+}
+} // namespace
+
+void SparseCholesky::analyze(const Eigen::SparseMatrix<double>& pattern) {
+  if (!impl_)
+    impl_ = std::make_unique<Impl>();
+  *impl_ = Impl{};
+  if (pattern.rows() != pattern.cols() || pattern.rows() == 0 || !pattern.isCompressed())
+    return; // factorize() reports a non-square matrix; nothing to analyze for an empty one
+  impl_->analyzed = pattern;
+  impl_->llt = std::make_unique<Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>>>();
+  impl_->llt->cholmod().print = 0;
+  impl_->llt->analyzePattern(impl_->analyzed);
+}
+
 void SparseCholesky::factorize(const Eigen::SparseMatrix<double>& A) {
   if (!impl_)
     impl_ = std::make_unique<Impl>();
+  // Reuse the symbolic analysis only for exactly the analyzed pattern.
+  std::unique_ptr<Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>>> analyzed;
+  if (impl_->llt && same_pattern(impl_->analyzed, A))
+    analyzed = std::move(impl_->llt);
   *impl_ = Impl{};
   if (A.rows() != A.cols())
     throw SolverError("sparse Cholesky: matrix is " + std::to_string(A.rows()) + " x " +
@@ -76,9 +103,14 @@ void SparseCholesky::factorize(const Eigen::SparseMatrix<double>& A) {
     return;
   }
 
-  next.llt = std::make_unique<Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>>>();
-  next.llt->cholmod().print = 0; // "not positive definite" is an expected outcome, not a warning to print
-  next.llt->compute(next.A);
+  if (analyzed) {
+    next.llt = std::move(analyzed);
+    next.llt->factorize(next.A);
+  } else {
+    next.llt = std::make_unique<Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>>>();
+    next.llt->cholmod().print = 0; // "not positive definite" is an expected outcome, not a warning to print
+    next.llt->compute(next.A);
+  }
   if (next.llt->info() == Eigen::Success) {
     next.kind = FactorizationKind::CholmodSupernodalLLT;
     *impl_ = std::move(next);

@@ -91,3 +91,35 @@ TEST(SparseCholesky, CopiesAreIndependentAndMovesKeepTheFactor) {
 }
 
 } // namespace
+
+namespace {
+
+// analyze() on the pattern, then factorize() on values with that pattern, solves like a one-shot
+// factorization; values on another pattern after analyze() are factorized from scratch, not wrongly.
+TEST(SparseCholesky, AnalyzeThenFactorizeReusesOnlyTheSamePattern) {
+  const auto A = path_laplacian(300, 0.0);
+  Eigen::SparseMatrix<double> pattern = A;
+  for (int k = 0; k < pattern.nonZeros(); ++k) pattern.valuePtr()[k] = 0.0;
+  const Eigen::MatrixXd B = Eigen::MatrixXd::Random(300, 3);
+  SparseCholesky chol;
+  chol.analyze(pattern);
+  EXPECT_EQ(chol.kind(), FactorizationKind::None);
+  chol.factorize(A);
+  EXPECT_EQ(chol.kind(), FactorizationKind::CholmodSupernodalLLT);
+  EXPECT_LT(residual(A, chol.solve(B), B), 1e-12);
+
+  const auto other = path_laplacian(200, 0.5);
+  chol.analyze(pattern);
+  chol.factorize(other);
+  const Eigen::MatrixXd B2 = Eigen::MatrixXd::Random(200, 2);
+  EXPECT_LT(residual(other, chol.solve(B2), B2), 1e-12);
+
+  // Indefinite values on the analyzed pattern still fall back to LDL^T.
+  const auto indefinite = path_laplacian(300, -1.0 + 1e-3);
+  chol.analyze(pattern);
+  chol.factorize(indefinite);
+  EXPECT_EQ(chol.kind(), FactorizationKind::SimplicialLDLT);
+  EXPECT_LT(residual(indefinite, chol.solve(B), B), 1e-9);
+}
+
+} // namespace

@@ -48,10 +48,16 @@ struct ArapOptions {
   bool pin_unconstrained_components = false;
 };
 
+// Wall-clock parts of arap_precompute; they add up to its duration.
 struct ArapPrecomputeTimings {
   double intrinsic_ms = 0; // intrinsic Delaunay flips, tracing and segments (iARAP only)
   double assembly_ms = 0;  // elements and L
-  double factor_ms = 0;    // components check, L_ff / L_fc extraction and factorization
+  // Components, constraint check, the pattern of L, L_ff / L_fc extraction and the factorization, including
+  // any wait for the symbolic analysis that ran beside the intrinsic and assembly steps.
+  double factor_ms = 0;
+  // The symbolic analysis alone (CHOLMOD ordering): with more than one thread it runs on its own thread
+  // during intrinsic_ms + assembly_ms and is not part of factor_ms; with one thread it is.
+  double analyze_ms = 0;
 };
 
 // What the intrinsic triangulation looked like (iARAP only; zeros otherwise).

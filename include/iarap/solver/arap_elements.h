@@ -25,6 +25,7 @@ struct ArapElements {
   ValueRows b_value;           // #E x 3 coefficients of b_e (sum 0)
   ValueRows s_hat;             // #E x 3 rest vectors V_rest^T b_e (Eq. 8), summed in slot order like V^T b_e
   Eigen::VectorXd w;           // #E weights; negative where the variant says so (never clamped)
+  std::vector<int> face;       // #E an input face holding every non-zero of b_e (system_pattern.h)
   std::vector<int> cell_start; // #E + 1: cells of element e are cell[cell_start[e] .. cell_start[e+1])
   std::vector<int> cell;       // cell (vertex) indices; a cell may repeat (intrinsic loop edges)
   std::vector<int>

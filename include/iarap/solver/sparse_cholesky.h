@@ -32,9 +32,15 @@ public:
   SparseCholesky& operator=(SparseCholesky&&) noexcept;
   ~SparseCholesky();
 
-  // Factorizes the n x n symmetric A: CHOLMOD supernodal LLT first; if A is not positive definite,
-  // Eigen's SimplicialLDLT. Throws SolverError when A is not square, has non-finite entries, or both
-  // factorizations fail (a zero or numerically zero pivot: A is singular); the object is then empty.
+  // The symbolic half of factorize (CHOLMOD's fill-reducing ordering and supernodal analysis) on the
+  // pattern of the square, compressed matrix `pattern` (values ignored). Forgets any factorization.
+  // Independent of the values, so it may run (on another thread) while they are being computed.
+  void analyze(const Eigen::SparseMatrix<double>& pattern);
+
+  // Factorizes the n x n symmetric A: CHOLMOD supernodal LLT first, reusing analyze()'s work when A is
+  // compressed with exactly the analyzed pattern; if A is not positive definite, Eigen's SimplicialLDLT.
+  // Throws SolverError when A is not square, has non-finite entries, or both factorizations fail (a zero
+  // or numerically zero pivot: A is singular); the object is then empty.
   void factorize(const Eigen::SparseMatrix<double>& A);
 
   // X with A X = B for B n x k (all columns in one call). Throws SolverError when nothing is factorized

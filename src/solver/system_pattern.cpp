@@ -1,0 +1,83 @@
+#include "iarap/solver/system_pattern.h"
+
+#include "iarap/core/errors.h"
+#include "iarap/mesh/edge_topology.h"
+
+#include <string>
+#include <vector>
+
+namespace iarap {
+
+SystemPattern system_pattern(const Eigen::MatrixXi& F, int num_vertices) {
+  const EdgeTopology topo = edge_topology(F, num_vertices);
+  const int nv = num_vertices, ne = static_cast<int>(topo.E.rows()), nf = static_cast<int>(F.rows());
+  // Column j holds j and its edge neighbours. Edges come sorted by (E(e,0), E(e,1)), so filling the
+  // columns in edge order and putting the diagonal between the smaller and larger rows keeps rows sorted:
+  // column j receives first the rows i < j (edges (i, j), increasing i), then j, then i > j.
+  std::vector<int> count(static_cast<size_t>(nv), 1);
+  for (int e = 0; e < ne; ++e) {
+    ++count[static_cast<size_t>(topo.E(e, 0))];
+    ++count[static_cast<size_t>(topo.E(e, 1))];
+  }
+  SystemPattern p;
+  p.matrix.resize(nv, nv);
+  int* outer = p.matrix.outerIndexPtr();
+  outer[0] = 0;
+  for (int j = 0; j < nv; ++j) outer[j + 1] = outer[j] + count[static_cast<size_t>(j)];
+  p.matrix.resizeNonZeros(outer[nv]);
+  int* inner = p.matrix.innerIndexPtr();
+  std::fill(p.matrix.valuePtr(), p.matrix.valuePtr() + outer[nv], 0.0);
+  std::vector<int> fill(outer, outer + nv);
+  // Edge e = (i, j), i < j: row i of column j (its lower rows, in increasing i) ...
+  for (int e = 0; e < ne; ++e) inner[fill[static_cast<size_t>(topo.E(e, 1))]++] = topo.E(e, 0);
+  for (int j = 0; j < nv; ++j) inner[fill[static_cast<size_t>(j)]++] = j;
+  // ... then row j of column i, in increasing j for each i.
+  for (int e = 0; e < ne; ++e) inner[fill[static_cast<size_t>(topo.E(e, 0))]++] = topo.E(e, 1);
+
+  // Slot of (r, c) for each face: r and c are on an edge of the face or equal, so the search is short.
+  auto slot = [&](int r, int c) {
+    for (int k = outer[c]; k < outer[c + 1]; ++k)
+      if (inner[k] == r) return k;
+    return -1; // unreachable: the pattern holds every face's pairs
+  };
+  p.face_slot.resize(nf, 9);
+#pragma omp parallel for schedule(static)
+  for (int f = 0; f < nf; ++f)
+    for (int k = 0; k < 3; ++k)
+      for (int l = 0; l < 3; ++l) p.face_slot(f, 3 * k + l) = slot(F(f, k), F(f, l));
+  return p;
+}
+
+Eigen::SparseMatrix<double> element_system_matrix(const ArapElements& el, const Eigen::MatrixXi& F,
+                                                  const SystemPattern& pattern) {
+  Eigen::SparseMatrix<double> L = pattern.matrix;
+  double* value = L.valuePtr();
+  const int nf = static_cast<int>(F.rows());
+  if (el.face.size() != static_cast<size_t>(el.size()))
+    throw InputError("system matrix: " + std::to_string(el.face.size()) + " element faces for " +
+                     std::to_string(el.size()) + " elements");
+  for (Eigen::Index e = 0; e < el.size(); ++e) {
+    const int f = el.face[static_cast<size_t>(e)];
+    if (f < 0 || f >= nf)
+      throw InputError("system matrix: element " + std::to_string(e) + " names face " + std::to_string(f) +
+                       "; the mesh has " + std::to_string(nf));
+    int corner[3];
+    for (int k = 0; k < 3; ++k) {
+      corner[k] = -1;
+      if (el.b_value(e, k) == 0.0) continue;
+      for (int c = 0; c < 3; ++c)
+        if (F(f, c) == el.b_index(e, k)) corner[k] = c;
+      if (corner[k] < 0)
+        throw InputError("system matrix: element " + std::to_string(e) + " has vertex " +
+                         std::to_string(el.b_index(e, k)) + " outside its face " + std::to_string(f));
+    }
+    const double cw = (el.cell_start[static_cast<size_t>(e) + 1] - el.cell_start[static_cast<size_t>(e)]) * el.w(e);
+    for (int k = 0; k < 3; ++k)
+      for (int l = 0; l < 3; ++l)
+        if (corner[k] >= 0 && corner[l] >= 0) // same products as the triplet assembly: bitwise symmetric
+          value[pattern.face_slot(f, 3 * corner[k] + corner[l])] += cw * (el.b_value(e, k) * el.b_value(e, l));
+  }
+  return L;
+}
+
+} // namespace iarap
