@@ -46,6 +46,29 @@ double peak_rss_mib() {
   return kib / 1024.0;
 }
 
+// Current resident memory (VmRSS), in MiB; 0 where /proc is not available.
+double rss_mib() {
+  std::FILE* status = std::fopen("/proc/self/status", "r");
+  if (!status) return 0.0;
+  char line[256];
+  double kib = 0.0;
+  while (std::fgets(line, sizeof line, status))
+    if (std::sscanf(line, "VmRSS: %lf kB", &kib) == 1) break;
+  std::fclose(status);
+  return kib / 1024.0;
+}
+
+// Bytes held by the segment arrays and B (issue 4's memory budget counts them).
+double segments_mib(const Segments& s) {
+  const double bytes = static_cast<double>(s.edge.size() + s.face.size() + s.b_index.size() + s.edge_start.size()) *
+                           sizeof(int) +
+                       static_cast<double>(s.b_value.size() + s.s_hat.size() + s.length.size() + s.weight.size()) *
+                           sizeof(double) +
+                       static_cast<double>(s.B.nonZeros()) * (sizeof(double) + sizeof(int)) +
+                       static_cast<double>(s.B.outerSize() + 1) * sizeof(int);
+  return bytes / (1 << 20);
+}
+
 double ms_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
@@ -112,10 +135,16 @@ void run(const IntrinsicArgs& args) {
   IntrinsicOptions options;
   options.mollify = !args.no_mollify;
   options.refine_boundary = args.refine_boundary;
+  const double rss_before_mib = rss_mib();
+  const double peak_before_mib = peak_rss_mib();
   const auto t0 = std::chrono::steady_clock::now();
   const IntrinsicDelaunay idt = intrinsic_delaunay(mesh.V, mesh.F, options);
   const double total_ms = ms_since(t0);
   const double rss_mib = peak_rss_mib();
+  // Extra memory the preprocess needed at its peak (valid when it raised the process's peak, which it does
+  // unless reading or subdividing peaked higher; reported as 0 then).
+  const double preprocess_peak_mib = rss_mib > peak_before_mib ? rss_mib - rss_before_mib : 0.0;
+  const double faces_mib = static_cast<double>(mesh.F.size() * sizeof(int)) / (1 << 20);
 
   nlohmann::json j = intrinsic_summary_json(idt);
   j["file"] = args.mesh;
@@ -128,6 +157,10 @@ void run(const IntrinsicArgs& args) {
   j["segment_ms"] = idt.segment_ms;
   j["peak_rss_mib"] = rss_mib; // after reading, (subdividing) and the intrinsic preprocess
   j["input_faces_mib"] = static_cast<double>(mesh.F.size() * sizeof(int) + mesh.V.size() * sizeof(double)) / (1 << 20);
+  j["connectivity_mib"] = faces_mib; // F, #F x 3 ints
+  j["segments_mib"] = segments_mib(idt.segments);
+  j["preprocess_peak_mib"] = preprocess_peak_mib;
+  j["memory_budget_mib"] = 2.0 * (faces_mib + j["segments_mib"].get<double>()); // 2 x (F + segments)
   j["obtuse_boundary_before"] = idt.triangulation.obtuse_boundary_before;
   j["obtuse_boundary_after"] = idt.triangulation.obtuse_boundary_after;
   j["inserted_points"] = idt.triangulation.inserted_t.size();
@@ -160,6 +193,9 @@ void run(const IntrinsicArgs& args) {
               j["max_segments_per_edge"].get<int>());
   std::printf("time %.1f ms (flip %.1f, trace %.1f, segments %.1f); peak memory %.1f MiB (input V+F %.1f MiB)\n",
               total_ms, idt.flip_ms, idt.trace_ms, idt.segment_ms, rss_mib, j["input_faces_mib"].get<double>());
+  std::printf("memory: the preprocess peaked %.1f MiB above its start; connectivity F %.1f MiB, segments %.1f MiB, "
+              "2 x (F + segments) = %.1f MiB\n",
+              preprocess_peak_mib, faces_mib, j["segments_mib"].get<double>(), j["memory_budget_mib"].get<double>());
   if (args.compare_factorization)
     std::printf("cotan Laplacian CHOLMOD factorization %.1f ms; intrinsic preprocess / factorization = %.3f\n",
                 j["cotan_factorization_ms"].get<double>(), j["intrinsic_over_factorization"].get<double>());

@@ -7,6 +7,7 @@
 #include "iarap/mesh/cotan.h"
 
 #include <chrono>
+#include <memory>
 #include <vector>
 
 namespace iarap {
@@ -17,8 +18,9 @@ double ms_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
+// inserted_ends: the input boundary edge (tail, head) of each inserted point, 2 per point.
 IntrinsicTriangulation export_triangulation(const detail::SignpostTriangulation& tri,
-                                            const detail::SignpostTriangulation& input) {
+                                            const std::vector<int>& inserted_ends) {
   const int nf = tri.num_faces(), ne = tri.num_edges();
   IntrinsicTriangulation out;
   out.F.resize(nf, 3);
@@ -60,9 +62,8 @@ IntrinsicTriangulation export_triangulation(const detail::SignpostTriangulation&
   out.inserted_on.resize(np, 2);
   out.inserted_t.resize(np);
   for (int q = 0; q < np; ++q) {
-    const int hb = tri.inserted_halfedge[static_cast<size_t>(q)];
-    out.inserted_on(q, 0) = input.tail(hb);
-    out.inserted_on(q, 1) = input.head(hb);
+    out.inserted_on(q, 0) = inserted_ends[static_cast<size_t>(2 * q)];
+    out.inserted_on(q, 1) = inserted_ends[static_cast<size_t>(2 * q + 1)];
     out.inserted_t(q) = tri.inserted_t[static_cast<size_t>(q)];
   }
   return out;
@@ -73,36 +74,51 @@ IntrinsicTriangulation export_triangulation(const detail::SignpostTriangulation&
 IntrinsicDelaunay intrinsic_delaunay(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
                                      const IntrinsicOptions& options) {
   IntrinsicDelaunay result;
-  auto t0 = std::chrono::steady_clock::now();
-  detail::VertexFans fans;
-  const detail::SignpostTriangulation input =
-      detail::build_signpost_triangulation(V, F, options.mollify, options.mollify_epsilon, &fans);
-  detail::SignpostTriangulation tri = input;
-  const detail::FlipStats stats = detail::flip_to_delaunay(tri, options.delaunay_tolerance);
-  detail::RefineStats refine;
-  refine.obtuse_before = refine.obtuse_after = detail::count_obtuse_boundary_edges(tri, options.delaunay_tolerance);
-  if (options.refine_boundary) {
-    int boundary_edges = 0;
-    for (int t : input.twin) boundary_edges += t < 0;
-    const int cap = options.max_boundary_insertions >= 0 ? options.max_boundary_insertions : 4 * boundary_edges + 100;
-    refine = detail::refine_obtuse_boundary(tri, input, options.delaunay_tolerance, cap);
+  {
+    // The signpost triangulations live in this scope only, and the input one and its fans are released
+    // as soon as the tracing is done: the peak memory stays near the size of the results (issue 4).
+    auto t0 = std::chrono::steady_clock::now();
+    detail::VertexFans fans;
+    auto input = std::make_unique<detail::SignpostTriangulation>(
+        detail::build_signpost_triangulation(V, F, options.mollify, options.mollify_epsilon, &fans));
+    detail::SignpostTriangulation tri = *input;
+    const detail::FlipStats stats = detail::flip_to_delaunay(tri, options.delaunay_tolerance);
+    detail::RefineStats refine;
+    refine.obtuse_before = refine.obtuse_after = detail::count_obtuse_boundary_edges(tri, options.delaunay_tolerance);
+    if (options.refine_boundary) {
+      int boundary_edges = 0;
+      for (int t : input->twin) boundary_edges += t < 0;
+      const int cap = options.max_boundary_insertions >= 0 ? options.max_boundary_insertions : 4 * boundary_edges + 100;
+      refine = detail::refine_obtuse_boundary(tri, *input, options.delaunay_tolerance, cap);
+    }
+    const int non_delaunay_after = refine.inserted > 0 ? detail::count_non_delaunay(tri, options.delaunay_tolerance)
+                                                       : stats.non_delaunay_after;
+    result.flip_ms = ms_since(t0);
+
+    t0 = std::chrono::steady_clock::now();
+    result.traces = detail::trace_edges(*input, fans, tri);
+    result.trace_ms = ms_since(t0);
+
+    t0 = std::chrono::steady_clock::now();
+    std::vector<int> inserted_ends;
+    for (int hb : tri.inserted_halfedge) {
+      inserted_ends.push_back(input->tail(hb));
+      inserted_ends.push_back(input->head(hb));
+    }
+    input.reset();
+    fans = {};
+    result.triangulation = export_triangulation(tri, inserted_ends);
+    IntrinsicTriangulation& out = result.triangulation;
+    out.obtuse_boundary_before = refine.obtuse_before;
+    out.obtuse_boundary_after = refine.obtuse_after;
+    out.refine_rounds = refine.rounds;
+    out.flips = stats.flips + refine.flips;
+    out.non_delaunay_before = stats.non_delaunay_before;
+    out.non_delaunay_after = non_delaunay_after;
+    result.flip_ms += ms_since(t0);
   }
-  result.triangulation = export_triangulation(tri, input);
-  result.triangulation.obtuse_boundary_before = refine.obtuse_before;
-  result.triangulation.obtuse_boundary_after = refine.obtuse_after;
-  result.triangulation.refine_rounds = refine.rounds;
-  result.triangulation.flips = stats.flips + refine.flips;
-  result.triangulation.non_delaunay_before = stats.non_delaunay_before;
-  result.triangulation.non_delaunay_after = refine.inserted > 0
-                                                ? detail::count_non_delaunay(tri, options.delaunay_tolerance)
-                                                : stats.non_delaunay_after;
-  result.flip_ms = ms_since(t0);
 
-  t0 = std::chrono::steady_clock::now();
-  result.traces = detail::trace_edges(input, fans, tri);
-  result.trace_ms = ms_since(t0);
-
-  t0 = std::chrono::steady_clock::now();
+  const auto t0 = std::chrono::steady_clock::now();
   result.segments = detail::build_segments(V, result.triangulation, result.traces);
   result.segment_ms = ms_since(t0);
   return result;

@@ -56,6 +56,13 @@ double SignpostTriangulation::face_geometry(int f, double (&angle)[3], double (&
   return 0.25 * four_area;
 }
 
+void SignpostTriangulation::face_cotangents(int f, double (&cot)[3]) const {
+  const double l[3] = {halfedge_length(3 * f), halfedge_length(3 * f + 1), halfedge_length(3 * f + 2)};
+  const double four_area = 4.0 * triangle_area_from_lengths(l[0], l[1], l[2]);
+  for (int k = 0; k < 3; ++k)
+    cot[k] = (l[(k + 1) % 3] * l[(k + 1) % 3] + l[(k + 2) % 3] * l[(k + 2) % 3] - l[k] * l[k]) / four_area;
+}
+
 SignpostTriangulation build_signpost_triangulation(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
                                                    bool mollify, double mollify_epsilon, VertexFans* fans_out) {
   const int nv = static_cast<int>(V.rows());
@@ -340,8 +347,8 @@ std::vector<int> non_delaunay_edges(const SignpostTriangulation& tri, double tol
   std::vector<double> cot(static_cast<size_t>(3 * nf)); // one area per face instead of one per halfedge
 #pragma omp parallel for schedule(static)
   for (int f = 0; f < nf; ++f) {
-    double angle[3], c[3];
-    tri.face_geometry(f, angle, c);
+    double c[3];
+    tri.face_cotangents(f, c);
     for (int k = 0; k < 3; ++k) cot[static_cast<size_t>(3 * f + k)] = c[k];
   }
   std::vector<char> failing(static_cast<size_t>(ne));

@@ -51,6 +51,8 @@ struct SignpostTriangulation {
   // All of face f at once, from one area: angle[k] = corner_angle(3f + k), cot[k] = opposite_cotangent(3f + k).
   // Returns the face's area.
   double face_geometry(int f, double (&angle)[3], double (&cot)[3]) const;
+  // The cotangents alone (no atan2): cot[k] = opposite_cotangent(3f + k).
+  void face_cotangents(int f, double (&cot)[3]) const;
   int num_faces() const { return static_cast<int>(corner_vertex.size() / 3); }
   int num_edges() const { return static_cast<int>(length.size()); }
 };
