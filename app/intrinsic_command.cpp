@@ -15,6 +15,8 @@
 
 #include <chrono>
 #include <cstdio>
+#include <cstring>
+#include <string>
 #include <filesystem>
 #include <iostream>
 #include <sstream>
@@ -34,29 +36,21 @@ struct IntrinsicArgs {
   bool refine_boundary = false;
 };
 
-// Peak resident memory of this process (VmHWM), in MiB; 0 where /proc is not available.
-double peak_rss_mib() {
+// A memory line of /proc/self/status ("VmHWM": peak resident, "VmRSS": current), in MiB; 0 where /proc is
+// not available.
+double status_mib(const char* key) {
   std::FILE* status = std::fopen("/proc/self/status", "r");
   if (!status) return 0.0;
   char line[256];
+  const std::string prefix = std::string(key) + ":";
   double kib = 0.0;
   while (std::fgets(line, sizeof line, status))
-    if (std::sscanf(line, "VmHWM: %lf kB", &kib) == 1) break;
+    if (std::strncmp(line, prefix.c_str(), prefix.size()) == 0 && std::sscanf(line + prefix.size(), "%lf", &kib) == 1) break;
   std::fclose(status);
   return kib / 1024.0;
 }
-
-// Current resident memory (VmRSS), in MiB; 0 where /proc is not available.
-double rss_mib() {
-  std::FILE* status = std::fopen("/proc/self/status", "r");
-  if (!status) return 0.0;
-  char line[256];
-  double kib = 0.0;
-  while (std::fgets(line, sizeof line, status))
-    if (std::sscanf(line, "VmRSS: %lf kB", &kib) == 1) break;
-  std::fclose(status);
-  return kib / 1024.0;
-}
+double peak_rss_mib() { return status_mib("VmHWM"); }
+double rss_mib() { return status_mib("VmRSS"); }
 
 // Bytes held by the segment arrays and B (issue 4's memory budget counts them).
 double segments_mib(const Segments& s) {
