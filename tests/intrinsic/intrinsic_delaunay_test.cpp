@@ -9,6 +9,7 @@
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
+#include <map>
 #include <set>
 #include <string>
 
@@ -233,6 +234,52 @@ TEST(IntrinsicDelaunay, DeltaComplexWithDoubleEdges) {
     if (!pairs.insert({std::min(E(e, 0), E(e, 1)), std::max(E(e, 0), E(e, 1))}).second) ++repeated;
   EXPECT_GT(repeated, 0);
   expect_invariants(m.V, m.F, idt, "three-sided cone");
+}
+
+TEST(IntrinsicDelaunay, EdgeCrossesTheSameInputEdgeTwice) {
+  // Issue 4: an intrinsic edge winding round a sharp apex crosses one input edge twice. Its trace must still
+  // be one consistent polyline: two distinct crossings and the intrinsic length.
+  const TestMesh m = iarap::test::wrapped_pyramid();
+  const IntrinsicDelaunay idt = intrinsic_delaunay(m.V, m.F);
+  expect_invariants(m.V, m.F, idt, "wrapped pyramid");
+  const auto& tri = idt.triangulation;
+  const auto& tr = idt.traces;
+  auto point = [&](int k) {
+    return tr.c[k] < 0 ? Eigen::Vector3d(m.V.row(tr.a[k]))
+                       : Eigen::Vector3d((1 - tr.t[k]) * m.V.row(tr.a[k]) + tr.t[k] * m.V.row(tr.c[k]));
+  };
+  int most = 0;
+  std::string most_where = "none";
+  for (int e = 0; e < tri.E.rows(); ++e) {
+    // The interior trace points by the input edge {x, y} (x < y) they cross, as parameters from x to y.
+    std::map<std::pair<int, int>, std::vector<double>> crossings;
+    for (int k = tr.start[e] + 1; k + 1 < tr.start[e + 1]; ++k)
+      crossings[std::minmax(tr.a[k], tr.c[k])].push_back(tr.a[k] < tr.c[k] ? tr.t[k] : 1 - tr.t[k]);
+    for (const auto& [input_edge, t] : crossings) {
+      std::string where = "edge " + std::to_string(e) + " (" + std::to_string(tri.E(e, 0)) + " -> " +
+                          std::to_string(tri.E(e, 1)) + ") crossing input edge {" +
+                          std::to_string(input_edge.first) + ", " + std::to_string(input_edge.second) + "}";
+      where += " at t =";
+      for (double ti : t) where += " " + std::to_string(ti);
+      if (static_cast<int>(t.size()) > most) {
+        most = static_cast<int>(t.size());
+        most_where = where;
+      }
+      if (t.size() < 2) continue;
+      for (size_t i = 0; i < t.size(); ++i) {
+        EXPECT_GT(t[i], 0.0) << where;
+        EXPECT_LT(t[i], 1.0) << where;
+        for (size_t j = 0; j < i; ++j)
+          EXPECT_GT(std::abs(t[i] - t[j]), 1e-6) << "two crossings coincide: " << where;
+      }
+      // Each piece of the trace is straight in its input face, so the polyline has the intrinsic length.
+      double traced = 0.0;
+      for (int k = tr.start[e]; k + 1 < tr.start[e + 1]; ++k) traced += (point(k + 1) - point(k)).norm();
+      EXPECT_NEAR(traced, tri.length(e), 1e-9 * tri.length(e)) << where;
+    }
+  }
+  EXPECT_GE(most, 2) << "no intrinsic edge crosses one input edge twice; the most crossings: " << most_where
+                     << " (" << tri.flips << " flips)";
 }
 
 TEST(IntrinsicDelaunay, DegenerateTriangleIsMollifiedOrNamed) {

@@ -1,5 +1,5 @@
 // Small meshes built in code for the intrinsic-triangulation tests: flat grids (Delaunay or made
-// non-Delaunay by flips), a zigzag strip, a high-valence fan and cones.
+// non-Delaunay by flips), a zigzag strip, a high-valence fan, cones and a pyramid with a wrapping edge.
 #pragma once
 #include <Eigen/Core>
 
@@ -162,6 +162,46 @@ inline TestMesh sheared_strip(int cols, int rows, double bend_radius = 0.0) {
         m.F.row(f++) << a, b, e;
       }
     }
+  return m;
+}
+
+// An open three-sided pyramid with a sharp apex. Every vertex but the apex lies on a panel or a ridge, so the
+// lateral surface is intrinsically a flat cone of angle 0.76 (about 0.24 pi). In the middle panel the input
+// edge x2 -> y leaves base vertex x2 nearly parallel to the panel's other ridge; p lies on one side of it and
+// q on the other, further out. Besides a short p-q edge crossing x2 -> y once, the intrinsic Delaunay
+// triangulation has a second p-q edge that goes the long way round the apex (sweeping 0.725 of the cone
+// angle 0.76, across all three ridges) and so crosses x2 -> y twice: just after leaving p and again before
+// reaching q (issue 4). The double crossing survives random changes of all lengths and angles by 5%.
+// Vertices: 0 apex, 1-3 base x0..x2 and 4-6 far points on the three ridges, 7 y, 8 p, 9 q.
+inline TestMesh wrapped_pyramid() {
+  const double panel[3] = {0.17, 0.33, 0.26}; // apex angle of each panel (ridge i to ridge i + 1)
+  const double base[3] = {0.7, 0.75, 0.85}, far = 5.0;
+  // Unit ridge directions, consecutive ones at the panel angles (a spherical triangle).
+  Eigen::Vector3d ridge[3];
+  ridge[0] << 1, 0, 0;
+  ridge[1] << std::cos(panel[0]), std::sin(panel[0]), 0;
+  const double y2 = (std::cos(panel[1]) - std::cos(panel[0]) * std::cos(panel[2])) / std::sin(panel[0]);
+  ridge[2] << std::cos(panel[2]), y2, std::sqrt(1 - std::cos(panel[2]) * std::cos(panel[2]) - y2 * y2);
+  // The point of the middle panel at `angle` from ridge 1 and distance r from the apex.
+  const Eigen::Vector3d u = ridge[1], v = (ridge[2] - ridge[1].dot(ridge[2]) * ridge[1]).normalized();
+  auto middle_panel = [&](double angle, double r) {
+    return Eigen::Vector3d(r * (std::cos(angle) * u + std::sin(angle) * v));
+  };
+  TestMesh m;
+  m.V.resize(10, 3);
+  m.V.row(0).setZero();
+  for (int i = 0; i < 3; ++i) {
+    m.V.row(1 + i) = base[i] * ridge[i];
+    m.V.row(4 + i) = far * ridge[i];
+  }
+  m.V.row(7) = middle_panel(panel[1] - 0.27, 3.5);  // y
+  m.V.row(8) = middle_panel(panel[1] - 0.15, 1.13); // p
+  m.V.row(9) = middle_panel(panel[1] - 0.185, 2.6); // q
+  m.F.resize(15, 3);
+  m.F << 0, 1, 2, 0, 2, 3, 0, 3, 1, // the apex's star
+      1, 4, 5, 1, 5, 2,             // panel 0
+      2, 8, 3, 3, 8, 7, 3, 7, 9, 3, 9, 6, 9, 7, 6, 6, 7, 5, 2, 5, 7, 2, 7, 8, // middle panel; 3-7 is x2 -> y
+      3, 6, 4, 3, 4, 1;             // panel 2
   return m;
 }
 
