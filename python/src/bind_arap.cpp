@@ -129,6 +129,7 @@ py::object report_py(const ArapSolver& solver) {
   d["intrinsic_ms"] = timings.intrinsic_ms;
   d["assembly_ms"] = timings.assembly_ms;
   d["factor_ms"] = timings.factor_ms;
+  d["analyze_ms"] = timings.analyze_ms;
   return std::move(d);
 }
 
@@ -211,7 +212,8 @@ tolerance: stop when one iteration lowers the energy by at most tolerance * ener
                              R"(The last solve as a dict (None before the first solve): iterations, converged,
 initial_energy, energies (float64 (iterations,), energy after each iteration), local_ms, global_ms,
 local_ms_per_iteration, global_ms_per_iteration, solve_ms (the whole C++ solve), and the precomputation's
-intrinsic_ms, assembly_ms, factor_ms. Times in milliseconds.)")
+intrinsic_ms, assembly_ms, factor_ms, analyze_ms (the symbolic analysis, on its own thread beside
+intrinsic_ms + assembly_ms when threads > 1). Times in milliseconds.)")
       .def_property_readonly(
           "rotations", &rotations_py,
           "float64 (#cells, 3, 3): the rotation of each vertex's cell (then of each point inserted by "
