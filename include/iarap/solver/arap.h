@@ -52,11 +52,11 @@ struct ArapOptions {
 struct ArapPrecomputeTimings {
   double intrinsic_ms = 0; // intrinsic Delaunay flips, tracing and segments (iARAP only)
   double assembly_ms = 0;  // elements and L
-  // Components, constraint check, the pattern of L, L_ff / L_fc extraction and the factorization, including
-  // any wait for the symbolic analysis that ran beside the intrinsic and assembly steps.
+  // Components, constraint check, L_ff / L_fc extraction and the numeric factorization, plus any wait for
+  // the pattern of L and the symbolic analysis, which run on their own thread beside the intrinsic and
+  // element steps when there is more than one thread (and are part of factor_ms with one thread).
   double factor_ms = 0;
-  // The symbolic analysis alone (CHOLMOD ordering): with more than one thread it runs on its own thread
-  // during intrinsic_ms + assembly_ms and is not part of factor_ms; with one thread it is.
+  // The symbolic analysis alone (CHOLMOD ordering), wherever it ran.
   double analyze_ms = 0;
 };
 
