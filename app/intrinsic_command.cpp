@@ -13,6 +13,7 @@
 #include "iarap/mesh/subdivide.h"
 #include "iarap/solver/sparse_cholesky.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstring>
@@ -32,6 +33,7 @@ struct IntrinsicArgs {
   int threads = 0;
   int subdivide = 0;
   bool compare_factorization = false;
+  int rounds = 1;
   bool no_mollify = false;
   bool refine_boundary = false;
 };
@@ -131,10 +133,20 @@ void run(const IntrinsicArgs& args) {
   options.refine_boundary = args.refine_boundary;
   const double rss_before_mib = rss_mib();
   const double peak_before_mib = peak_rss_mib();
-  const auto t0 = std::chrono::steady_clock::now();
-  const IntrinsicDelaunay idt = intrinsic_delaunay(mesh.V, mesh.F, options);
-  const double total_ms = ms_since(t0);
-  const double rss_mib = peak_rss_mib();
+  // The first round is also the one whose memory is reported: later rounds reuse the heap it grew.
+  IntrinsicDelaunay idt;
+  double total_ms = 0.0;
+  double rss_mib = 0.0;
+  for (int round = 0; round < args.rounds; ++round) {
+    const auto t0 = std::chrono::steady_clock::now();
+    IntrinsicDelaunay next = intrinsic_delaunay(mesh.V, mesh.F, options);
+    const double ms = ms_since(t0);
+    if (round == 0) rss_mib = peak_rss_mib();
+    if (round == 0 || ms < total_ms) {
+      total_ms = ms;
+      idt = std::move(next);
+    }
+  }
   // Extra memory the preprocess needed at its peak (valid when it raised the process's peak, which it does
   // unless reading or subdividing peaked higher; reported as 0 then).
   const double preprocess_peak_mib = rss_mib > peak_before_mib ? rss_mib - rss_before_mib : 0.0;
@@ -146,6 +158,7 @@ void run(const IntrinsicArgs& args) {
   j["faces"] = mesh.F.rows();
   j["threads"] = thread_count();
   j["time_ms"] = total_ms;
+  j["rounds"] = args.rounds;
   j["flip_ms"] = idt.flip_ms;
   j["trace_ms"] = idt.trace_ms;
   j["segment_ms"] = idt.segment_ms;
@@ -159,7 +172,8 @@ void run(const IntrinsicArgs& args) {
   j["obtuse_boundary_after"] = idt.triangulation.obtuse_boundary_after;
   j["inserted_points"] = idt.triangulation.inserted_t.size();
   if (args.compare_factorization) {
-    const double factor_ms = cotan_factorization_ms(mesh.V, mesh.F);
+    double factor_ms = cotan_factorization_ms(mesh.V, mesh.F);
+    for (int round = 1; round < args.rounds; ++round) factor_ms = std::min(factor_ms, cotan_factorization_ms(mesh.V, mesh.F));
     j["cotan_factorization_ms"] = factor_ms;
     j["intrinsic_over_factorization"] = total_ms / factor_ms;
   }
@@ -209,6 +223,10 @@ const bool registered = register_command(
            ->check(CLI::Range(0, 4));
        sub->add_flag("--compare-factorization", args->compare_factorization,
                      "Also time a CHOLMOD factorization of the mesh's cotan Laplacian");
+       sub->add_option("--rounds", args->rounds,
+                       "Run the preprocess (and the factorization) R times and report the fastest of each; "
+                       "the first round is a cold start that also pays for the process's first page faults")
+           ->check(CLI::Range(1, 1000));
        sub->add_flag("--no-mollify", args->no_mollify, "Fail on degenerate triangles instead of mollifying");
        sub->add_flag("--refine-boundary", args->refine_boundary,
                      "Split boundary edges with an obtuse opposite angle (boundary-robust iARAP)");

@@ -27,17 +27,15 @@ IntrinsicTriangulation export_triangulation(const detail::SignpostTriangulation&
   out.FE.resize(nf, 3);
   out.corner_angle.resize(nf, 3);
   out.face_area.resize(nf);
-  std::vector<double> cot(static_cast<size_t>(3 * nf)); // opposite each halfedge, for the edge weights
 #pragma omp parallel for schedule(static)
   for (int f = 0; f < nf; ++f) {
-    double angle[3], c[3];
-    out.face_area(f) = tri.face_geometry(f, angle, c);
+    out.face_area(f) = triangle_area_from_lengths(tri.halfedge_length(3 * f), tri.halfedge_length(3 * f + 1),
+                                                  tri.halfedge_length(3 * f + 2));
     for (int k = 0; k < 3; ++k) {
       const int h = 3 * f + k;
       out.F(f, k) = tri.tail(h);
       out.FE(f, (k + 2) % 3) = tri.edge[static_cast<size_t>(h)]; // halfedge k is opposite corner k + 2
-      out.corner_angle(f, k) = angle[k];
-      cot[static_cast<size_t>(h)] = c[k];
+      out.corner_angle(f, k) = tri.angle[static_cast<size_t>(h)];
     }
   }
   out.E.resize(ne, 2);
@@ -52,7 +50,7 @@ IntrinsicTriangulation export_triangulation(const detail::SignpostTriangulation&
     out.E(e, 1) = tri.edge_vertex[static_cast<size_t>(2 * e + 1)];
     out.length(e) = tri.length[static_cast<size_t>(e)];
     const int t = tri.twin[static_cast<size_t>(h)];
-    out.cot_weight(e) = 0.5 * (cot[static_cast<size_t>(h)] + (t >= 0 ? cot[static_cast<size_t>(t)] : 0.0));
+    out.cot_weight(e) = 0.5 * (tri.cot[static_cast<size_t>(h)] + (t >= 0 ? tri.cot[static_cast<size_t>(t)] : 0.0));
     out.is_boundary(e) = t < 0;
     out.original_edge(e) = tri.original_edge[static_cast<size_t>(e)];
   }
@@ -82,6 +80,10 @@ IntrinsicDelaunay intrinsic_delaunay(const Eigen::MatrixXd& V, const Eigen::Matr
     auto input = std::make_unique<detail::SignpostTriangulation>(
         detail::build_signpost_triangulation(V, F, options.mollify, options.mollify_epsilon, &fans));
     detail::SignpostTriangulation tri = *input;
+    // What only flipping needs goes from the input copy: the tracer reads its connectivity, lengths and
+    // edge_halfedge, and the fans (which carry their own angles).
+    for (auto* v : {&input->phi, &input->angle, &input->cot}) std::vector<double>().swap(*v);
+    for (auto* v : {&input->edge_vertex, &input->original_edge}) std::vector<int>().swap(*v);
     const detail::FlipStats stats = detail::flip_to_delaunay(tri, options.delaunay_tolerance);
     detail::RefineStats refine;
     refine.obtuse_before = refine.obtuse_after = detail::count_obtuse_boundary_edges(tri, options.delaunay_tolerance);

@@ -44,23 +44,25 @@ double SignpostTriangulation::cotan_weight(int e) const {
   return w;
 }
 
-double SignpostTriangulation::face_geometry(int f, double (&angle)[3], double (&cot)[3]) const {
+double SignpostTriangulation::face_geometry(int f, double (&angles)[3], double (&cots)[3]) const {
   const double l[3] = {halfedge_length(3 * f), halfedge_length(3 * f + 1), halfedge_length(3 * f + 2)};
   const double four_area = 4.0 * triangle_area_from_lengths(l[0], l[1], l[2]);
   double d[3]; // d[k] = 2 l_a l_b cos(angle opposite halfedge k), by the law of cosines
   for (int k = 0; k < 3; ++k) d[k] = l[(k + 1) % 3] * l[(k + 1) % 3] + l[(k + 2) % 3] * l[(k + 2) % 3] - l[k] * l[k];
   for (int k = 0; k < 3; ++k) {
-    cot[k] = d[k] / four_area;
-    angle[k] = std::atan2(four_area, d[(k + 1) % 3]); // the corner at the tail of halfedge k faces halfedge k + 1
+    cots[k] = d[k] / four_area;
+    angles[k] = std::atan2(four_area, d[(k + 1) % 3]); // the corner at the tail of halfedge k faces halfedge k + 1
   }
   return 0.25 * four_area;
 }
 
-void SignpostTriangulation::face_cotangents(int f, double (&cot)[3]) const {
-  const double l[3] = {halfedge_length(3 * f), halfedge_length(3 * f + 1), halfedge_length(3 * f + 2)};
-  const double four_area = 4.0 * triangle_area_from_lengths(l[0], l[1], l[2]);
-  for (int k = 0; k < 3; ++k)
-    cot[k] = (l[(k + 1) % 3] * l[(k + 1) % 3] + l[(k + 2) % 3] * l[(k + 2) % 3] - l[k] * l[k]) / four_area;
+void SignpostTriangulation::update_face_geometry(int f) {
+  double a[3], c[3];
+  face_geometry(f, a, c);
+  for (int k = 0; k < 3; ++k) {
+    angle[static_cast<size_t>(3 * f + k)] = a[k];
+    cot[static_cast<size_t>(3 * f + k)] = c[k];
+  }
 }
 
 SignpostTriangulation build_signpost_triangulation(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
@@ -185,19 +187,18 @@ SignpostTriangulation build_signpost_triangulation(const Eigen::MatrixXd& V, con
   if (fans_out) {
     fans_out->start = start;
     fans_out->halfedge.assign(static_cast<size_t>(3 * nf), -1);
+    fans_out->phi.assign(static_cast<size_t>(3 * nf), 0.0);
   }
   std::vector<char> swept(static_cast<size_t>(3 * nf), 0);
   tri.phi.assign(static_cast<size_t>(3 * nf), 0.0);
   tri.vertex_angle_sum.assign(static_cast<size_t>(nv), 0.0);
   tri.boundary_vertex.assign(static_cast<size_t>(nv), 0);
-  // Corner angles once per face, in parallel; the fan sweeps below only add them up.
-  std::vector<double> corner(static_cast<size_t>(3 * nf));
+  // Corner angles and cotangents once per face, in parallel; the fan sweeps below only add angles up.
+  tri.angle.resize(static_cast<size_t>(3 * nf));
+  tri.cot.resize(static_cast<size_t>(3 * nf));
 #pragma omp parallel for schedule(static)
-  for (int f = 0; f < nf; ++f) {
-    double angle[3], cot[3];
-    tri.face_geometry(f, angle, cot);
-    for (int k = 0; k < 3; ++k) corner[static_cast<size_t>(3 * f + k)] = angle[k];
-  }
+  for (int f = 0; f < nf; ++f) tri.update_face_geometry(f);
+  const std::vector<double>& corner = tri.angle;
   // Each vertex's sweeps touch only the halfedges leaving it, so vertices run in parallel. Open fans come
   // first, from their boundary halfedge, then the closed fan; within each, in increasing halfedge index.
   int bad_vertex = nv;
@@ -212,7 +213,10 @@ SignpostTriangulation build_signpost_triangulation(const Eigen::MatrixXd& V, con
       while (true) {
         swept[static_cast<size_t>(h)] = 1;
         tri.phi[static_cast<size_t>(h)] = angle;
-        if (fans_out) fans_out->halfedge[static_cast<size_t>(fill++)] = h;
+        if (fans_out) {
+          fans_out->phi[static_cast<size_t>(fill)] = angle;
+          fans_out->halfedge[static_cast<size_t>(fill++)] = h;
+        }
         angle += corner[static_cast<size_t>(h)];
         const int t = tri.twin[static_cast<size_t>(prev_halfedge(h))];
         if (t < 0) break;
@@ -275,10 +279,6 @@ bool flip_edge(SignpostTriangulation& tri, int e) {
   const double x_cross = cx + (dx - cx) * cy / (cy - dy);
   if (!(x_cross > 0.0 && x_cross < l_ab)) return false;
   const double l_cd = std::hypot(cx - dx, cy - dy);
-  // Angles of the new faces at c (between c->a and c->d) and at d (between d->b and d->c), from the layout.
-  const double angle_c = std::atan2(std::abs(cx * (dy - cy) - cy * (dx - cx)), -cx * (dx - cx) - cy * (dy - cy));
-  const double angle_d = std::atan2(std::abs((l_ab - dx) * (cy - dy) + dy * (cx - dx)),
-                                    (l_ab - dx) * (cx - dx) - dy * (cy - dy));
 
   // Old halfedge -> new slot, so that twins pointing into the two faces follow their halfedge.
   const int n_ca = 3 * f0 + 0, n_ad = 3 * f0 + 1, n_dc = 3 * f0 + 2;
@@ -327,8 +327,10 @@ bool flip_edge(SignpostTriangulation& tri, int e) {
     if (tri.boundary_vertex[static_cast<size_t>(v)]) return std::min(angle, theta);
     return angle >= theta ? angle - theta : angle;
   };
-  tri.phi[static_cast<size_t>(n_cd)] = wrap(c, phi_ca + angle_c);
-  tri.phi[static_cast<size_t>(n_dc)] = wrap(d, phi_db + angle_d);
+  tri.update_face_geometry(f0);
+  tri.update_face_geometry(f1);
+  tri.phi[static_cast<size_t>(n_cd)] = wrap(c, phi_ca + tri.angle[static_cast<size_t>(n_ca)]);
+  tri.phi[static_cast<size_t>(n_dc)] = wrap(d, phi_db + tri.angle[static_cast<size_t>(n_db)]);
   tri.original_edge[static_cast<size_t>(e)] = -1;
   return true;
 }
@@ -338,26 +340,15 @@ namespace {
 bool is_non_delaunay(const SignpostTriangulation& tri, int e, double tolerance) {
   const int h = tri.edge_halfedge[static_cast<size_t>(e)];
   const int t = tri.twin[static_cast<size_t>(h)];
-  return t >= 0 && tri.opposite_cotangent(h) + tri.opposite_cotangent(t) < -tolerance;
+  return t >= 0 && tri.cot[static_cast<size_t>(h)] + tri.cot[static_cast<size_t>(t)] < -tolerance;
 }
 
 // The interior edges failing the Delaunay test, in increasing order (parallel scan).
 std::vector<int> non_delaunay_edges(const SignpostTriangulation& tri, double tolerance) {
-  const int ne = tri.num_edges(), nf = tri.num_faces();
-  std::vector<double> cot(static_cast<size_t>(3 * nf)); // one area per face instead of one per halfedge
-#pragma omp parallel for schedule(static)
-  for (int f = 0; f < nf; ++f) {
-    double c[3];
-    tri.face_cotangents(f, c);
-    for (int k = 0; k < 3; ++k) cot[static_cast<size_t>(3 * f + k)] = c[k];
-  }
+  const int ne = tri.num_edges();
   std::vector<char> failing(static_cast<size_t>(ne));
 #pragma omp parallel for schedule(static)
-  for (int e = 0; e < ne; ++e) {
-    const int h = tri.edge_halfedge[static_cast<size_t>(e)];
-    const int t = tri.twin[static_cast<size_t>(h)];
-    failing[static_cast<size_t>(e)] = t >= 0 && cot[static_cast<size_t>(h)] + cot[static_cast<size_t>(t)] < -tolerance;
-  }
+  for (int e = 0; e < ne; ++e) failing[static_cast<size_t>(e)] = is_non_delaunay(tri, e, tolerance);
   std::vector<int> edges;
   for (int e = 0; e < ne; ++e)
     if (failing[static_cast<size_t>(e)]) edges.push_back(e);
@@ -425,7 +416,7 @@ int count_obtuse_boundary_edges(const SignpostTriangulation& tri, double toleran
   int count = 0;
   for (int e = 0; e < tri.num_edges(); ++e) {
     const int h = tri.edge_halfedge[static_cast<size_t>(e)];
-    if (tri.twin[static_cast<size_t>(h)] < 0 && tri.opposite_cotangent(h) < -tolerance) ++count;
+    if (tri.twin[static_cast<size_t>(h)] < 0 && tri.cot[static_cast<size_t>(h)] < -tolerance) ++count;
   }
   return count;
 }
@@ -487,7 +478,7 @@ void split_boundary_edge(SignpostTriangulation& tri, const SignpostTriangulation
   tri.length[static_cast<size_t>(e)] = t * l_ij;
   tri.original_edge[static_cast<size_t>(e)] = -1;
   for (auto* v : {&tri.corner_vertex, &tri.twin, &tri.edge}) v->resize(static_cast<size_t>(3 * g + 3));
-  tri.phi.resize(static_cast<size_t>(3 * g + 3));
+  for (auto* v : {&tri.phi, &tri.angle, &tri.cot}) v->resize(static_cast<size_t>(3 * g + 3));
 
   const int x_jk = tri.twin[static_cast<size_t>(h1)], x_ki = tri.twin[static_cast<size_t>(h2)];
   const double phi_ij = tri.phi[static_cast<size_t>(h)], phi_ki = tri.phi[static_cast<size_t>(h2)];
@@ -516,10 +507,12 @@ void split_boundary_edge(SignpostTriangulation& tri, const SignpostTriangulation
     if (x >= 0 && (tri.tail(x) < tri.tail(s) || (tri.tail(x) == tri.tail(s) && x < s))) best = x;
     tri.edge_halfedge[static_cast<size_t>(tri.edge[static_cast<size_t>(s)])] = best;
   }
+  tri.update_face_geometry(f);
+  tri.update_face_geometry(g);
   // Signposts at p: 0 along the boundary towards j, then counter-clockwise; at k: from k -> i by the new corner.
-  tri.phi[static_cast<size_t>(s_pk)] = tri.corner_angle(s_pj);
-  tri.vertex_angle_sum[static_cast<size_t>(p)] = tri.corner_angle(s_pj) + tri.corner_angle(s_pk);
-  double phi_kp = phi_ki + tri.corner_angle(s_ki);
+  tri.phi[static_cast<size_t>(s_pk)] = tri.angle[static_cast<size_t>(s_pj)];
+  tri.vertex_angle_sum[static_cast<size_t>(p)] = tri.angle[static_cast<size_t>(s_pj)] + tri.angle[static_cast<size_t>(s_pk)];
+  double phi_kp = phi_ki + tri.angle[static_cast<size_t>(s_ki)];
   const double theta_k = tri.vertex_angle_sum[static_cast<size_t>(k)];
   if (tri.boundary_vertex[static_cast<size_t>(k)]) phi_kp = std::min(phi_kp, theta_k);
   else if (phi_kp >= theta_k) phi_kp -= theta_k;
@@ -536,7 +529,7 @@ RefineStats refine_obtuse_boundary(SignpostTriangulation& tri, const SignpostTri
   std::vector<int> boundary;
   for (int e = 0; e < tri.num_edges(); ++e)
     if (tri.twin[static_cast<size_t>(tri.edge_halfedge[static_cast<size_t>(e)])] < 0) boundary.push_back(e);
-  auto obtuse = [&](int e) { return tri.opposite_cotangent(tri.edge_halfedge[static_cast<size_t>(e)]) < -tolerance; };
+  auto obtuse = [&](int e) { return tri.cot[static_cast<size_t>(tri.edge_halfedge[static_cast<size_t>(e)])] < -tolerance; };
   stats.obtuse_before = static_cast<int>(std::count_if(boundary.begin(), boundary.end(), obtuse));
   while (stats.inserted < max_insertions) {
     std::vector<int> candidates;

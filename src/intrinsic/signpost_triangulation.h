@@ -33,6 +33,11 @@ struct SignpostTriangulation {
   std::vector<double> vertex_angle_sum;  // #V total angle around each vertex (Theta_v)
   std::vector<char> boundary_vertex;     // #V
   std::vector<int> original_edge;  // #E input edge this edge still is, -1 once flipped
+  // Per halfedge, kept up to date by flips and splits so that Delaunay tests, flips and the export never
+  // recompute them: the corner angle at the tail of h inside its face, and the cotangent of the angle
+  // opposite h. (Recomputing them took a third of the preprocess on large meshes: one atan2 per corner.)
+  std::vector<double> angle;       // 3F
+  std::vector<double> cot;         // 3F
   double mollify_delta = 0.0;
   // Inserted vertex v = num_input_vertices + q lies on input boundary halfedge inserted_halfedge[q] at
   // parameter inserted_t[q] from its tail: a fixed barycentric point, not a degree of freedom.
@@ -48,11 +53,11 @@ struct SignpostTriangulation {
   double opposite_cotangent(int h) const;
   // w_e = (cot a + cot b) / 2, one term on boundary edges.
   double cotan_weight(int e) const;
-  // All of face f at once, from one area: angle[k] = corner_angle(3f + k), cot[k] = opposite_cotangent(3f + k).
+  // All of face f at once, from one area: angles[k] = corner_angle(3f + k), cots[k] = opposite_cotangent(3f + k).
   // Returns the face's area.
-  double face_geometry(int f, double (&angle)[3], double (&cot)[3]) const;
-  // The cotangents alone (no atan2): cot[k] = opposite_cotangent(3f + k).
-  void face_cotangents(int f, double (&cot)[3]) const;
+  double face_geometry(int f, double (&angles)[3], double (&cots)[3]) const;
+  // Recomputes angle[] and cot[] of face f's three halfedges from the current lengths.
+  void update_face_geometry(int f);
   int num_faces() const { return static_cast<int>(corner_vertex.size() / 3); }
   int num_edges() const { return static_cast<int>(length.size()); }
 };
@@ -62,6 +67,7 @@ struct SignpostTriangulation {
 struct VertexFans {
   std::vector<int> start;    // #V + 1
   std::vector<int> halfedge; // 3F
+  std::vector<double> phi;   // 3F signpost angle of each entry, increasing within a vertex
 };
 
 // Builds the triangulation of the input mesh: validates manifoldness and orientation (TopologyError

@@ -27,15 +27,6 @@ struct TracePoint {
   double t;
 };
 
-// The signpost angle of each entry of the vertex fans, contiguous for the binary search of trace_one.
-std::vector<double> fan_angles(const SignpostTriangulation& input, const VertexFans& fans) {
-  std::vector<double> phi(fans.halfedge.size());
-#pragma omp parallel for schedule(static)
-  for (long k = 0; k < static_cast<long>(phi.size()); ++k)
-    phi[static_cast<size_t>(k)] = input.phi[static_cast<size_t>(fans.halfedge[static_cast<size_t>(k)])];
-  return phi;
-}
-
 // Position of the third corner of the face left of the directed segment pa -> pb.
 Vec2 third_corner(Vec2 pa, Vec2 pb, double l_ab, double l_ac, double l_bc) {
   const Vec2 ex = (pb - pa) * (1.0 / norm(pb - pa));
@@ -178,7 +169,7 @@ void trace_one(const SignpostTriangulation& input, const VertexFans& fans, const
 
 TracedEdges trace_edges(const SignpostTriangulation& input, const VertexFans& fans,
                         const SignpostTriangulation& intrinsic) {
-  const std::vector<double> fan_phi = fan_angles(input, fans);
+  const std::vector<double>& fan_phi = fans.phi;
   const int ne = intrinsic.num_edges();
   // Pass 1 traces the flipped edges into per-thread buffers (an edge never flipped is its input edge: two
   // points, nothing to trace). Pass 2 writes every edge's points at its CSR offset, the unflipped ones
