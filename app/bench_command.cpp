@@ -72,7 +72,7 @@ double elapsed_ms(std::chrono::steady_clock::time_point start) {
 }
 
 nlohmann::json bench_one(const std::string& path, const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
-                         const ConstraintSet& constraints, const std::string& name, int iterations, int rounds) {
+                         const ConstraintSet& constraints, const std::string& name, int iterations) {
   // "iarap" is the tool's default iARAP, with boundary refinement (issue 8, as `deform --boundary refine`);
   // "iarap-paper" is the paper's exact discretization (`deform --boundary paper`).
   ArapOptions options;
@@ -81,33 +81,17 @@ nlohmann::json bench_one(const std::string& path, const Eigen::MatrixXd& V, cons
   // Real-world meshes (e.g. ogre.obj, 44 components) have pieces the fixed scene does not reach; pinning
   // one vertex of each keeps them benchmarkable instead of singular.
   options.pin_unconstrained_components = true;
-  // Several rounds keep the fastest precomputation and the fastest median iteration: on a shared machine
-  // the minimum is the figure least disturbed by other load.
-  ArapData data;
-  ArapReport report;
-  double precompute_ms = 0.0;
-  std::vector<double> iteration_ms;
-  for (int round = 0; round < rounds; ++round) {
-    const auto start = std::chrono::steady_clock::now();
-    ArapData next = arap_precompute(V, F, constraints.fixed, options);
-    const double ms = elapsed_ms(start);
-    Eigen::MatrixXd U = V;
-    ArapSolveOptions solve_options;
-    solve_options.max_iterations = iterations + 1; // the first is the warm-up
-    solve_options.tolerance = -1;                  // run them all
-    const ArapReport next_report = arap_solve(next, constraints.targets, U, solve_options);
-    std::vector<double> next_iteration_ms(next_report.local_ms_per_iteration.size());
-    for (std::size_t k = 0; k < next_iteration_ms.size(); ++k)
-      next_iteration_ms[k] = next_report.local_ms_per_iteration[k] + next_report.global_ms_per_iteration[k];
-    if (round == 0 || ms < precompute_ms) {
-      precompute_ms = ms;
-      data = std::move(next);
-    }
-    if (round == 0 || median_after(next_iteration_ms, 1) < median_after(iteration_ms, 1)) {
-      iteration_ms = std::move(next_iteration_ms);
-      report = next_report;
-    }
-  }
+  const auto start = std::chrono::steady_clock::now();
+  ArapData data = arap_precompute(V, F, constraints.fixed, options);
+  const double precompute_ms = elapsed_ms(start);
+  Eigen::MatrixXd U = V;
+  ArapSolveOptions solve_options;
+  solve_options.max_iterations = iterations + 1; // the first is the warm-up
+  solve_options.tolerance = -1;                  // run them all
+  const ArapReport report = arap_solve(data, constraints.targets, U, solve_options);
+  std::vector<double> iteration_ms(report.local_ms_per_iteration.size());
+  for (std::size_t k = 0; k < iteration_ms.size(); ++k)
+    iteration_ms[k] = report.local_ms_per_iteration[k] + report.global_ms_per_iteration[k];
   nlohmann::json j;
   j["mesh"] = path;
   j["vertices"] = V.rows();
@@ -120,7 +104,6 @@ nlohmann::json bench_one(const std::string& path, const Eigen::MatrixXd& V, cons
   j["factor_ms"] = data.timings.factor_ms;
   j["analyze_ms"] = data.timings.analyze_ms;
   j["analysis_overlapped"] = thread_count() > 1;
-  j["rounds"] = rounds;
   j["iteration_ms"] = median_after(iteration_ms, 1);
   j["local_ms"] = median_after(report.local_ms_per_iteration, 1);
   j["global_ms"] = median_after(report.global_ms_per_iteration, 1);
@@ -196,7 +179,7 @@ void run_bench(const BenchArguments& args) {
           std::cerr << "bench: " << path << " (" << mesh.V.rows() << " vertices), " << method << "\n";
         }
         try {
-          nlohmann::json r = bench_one(path, mesh.V, mesh.F, constraints, method, args.iterations, 1);
+          nlohmann::json r = bench_one(path, mesh.V, mesh.F, constraints, method, args.iterations);
           r["rounds"] = args.rounds;
           if (best[m].is_null()) {
             best[m] = r;

@@ -78,16 +78,17 @@ IntrinsicDelaunay intrinsic_delaunay(const Eigen::MatrixXd& V, const Eigen::Matr
     auto t0 = std::chrono::steady_clock::now();
     detail::VertexFans fans;
     auto input = std::make_unique<detail::SignpostTriangulation>(
-        detail::build_signpost_triangulation(V, F, options.mollify, options.mollify_epsilon, &fans));
+        detail::build_signpost_triangulation(V, F, options.mollify, options.mollify_epsilon, fans));
     detail::SignpostTriangulation tri = *input;
     // What only flipping needs goes from the input copy: the tracer reads its connectivity, lengths and
     // edge_halfedge, and the fans (which carry their own angles).
     for (auto* v : {&input->phi, &input->angle, &input->cot}) std::vector<double>().swap(*v);
     for (auto* v : {&input->edge_vertex, &input->original_edge}) std::vector<int>().swap(*v);
     const detail::FlipStats stats = detail::flip_to_delaunay(tri, options.delaunay_tolerance);
-    detail::RefineStats refine;
-    refine.obtuse_before = refine.obtuse_after = detail::count_obtuse_boundary_edges(tri, options.delaunay_tolerance);
-    if (options.refine_boundary) {
+    detail::RefineStats refine; // refine_obtuse_boundary counts the obtuse boundary edges itself
+    if (!options.refine_boundary) {
+      refine.obtuse_before = refine.obtuse_after = detail::count_obtuse_boundary_edges(tri, options.delaunay_tolerance);
+    } else {
       int boundary_edges = 0;
       for (int t : input->twin) boundary_edges += t < 0;
       const int cap = options.max_boundary_insertions >= 0 ? options.max_boundary_insertions : 4 * boundary_edges + 100;

@@ -31,19 +31,6 @@ double SignpostTriangulation::corner_angle(int h) const {
                             halfedge_length(prev_halfedge(h)));
 }
 
-double SignpostTriangulation::opposite_cotangent(int h) const {
-  return cotangent_from_lengths(halfedge_length(h), halfedge_length(next_halfedge(h)),
-                                halfedge_length(prev_halfedge(h)));
-}
-
-double SignpostTriangulation::cotan_weight(int e) const {
-  const int h = edge_halfedge[static_cast<size_t>(e)];
-  double w = 0.5 * opposite_cotangent(h);
-  const int t = twin[static_cast<size_t>(h)];
-  if (t >= 0) w += 0.5 * opposite_cotangent(t);
-  return w;
-}
-
 double SignpostTriangulation::face_geometry(int f, double (&angles)[3], double (&cots)[3]) const {
   const double l[3] = {halfedge_length(3 * f), halfedge_length(3 * f + 1), halfedge_length(3 * f + 2)};
   const double four_area = 4.0 * triangle_area_from_lengths(l[0], l[1], l[2]);
@@ -66,7 +53,7 @@ void SignpostTriangulation::update_face_geometry(int f) {
 }
 
 SignpostTriangulation build_signpost_triangulation(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
-                                                   bool mollify, double mollify_epsilon, VertexFans* fans_out) {
+                                                   bool mollify, double mollify_epsilon, VertexFans& fans_out) {
   const int nv = static_cast<int>(V.rows());
   const int nf = static_cast<int>(F.rows());
   if (F.cols() != 3) throw InputError("faces must have 3 columns, got " + std::to_string(F.cols()));
@@ -184,11 +171,9 @@ SignpostTriangulation build_signpost_triangulation(const Eigen::MatrixXd& V, con
     std::vector<int> fill(start.begin(), start.end() - 1);
     for (int h = 0; h < 3 * nf; ++h) outgoing[static_cast<size_t>(fill[static_cast<size_t>(tri.tail(h))]++)] = h;
   }
-  if (fans_out) {
-    fans_out->start = start;
-    fans_out->halfedge.assign(static_cast<size_t>(3 * nf), -1);
-    fans_out->phi.assign(static_cast<size_t>(3 * nf), 0.0);
-  }
+  fans_out.start = start;
+  fans_out.halfedge.assign(static_cast<size_t>(3 * nf), -1);
+  fans_out.phi.assign(static_cast<size_t>(3 * nf), 0.0);
   std::vector<char> swept(static_cast<size_t>(3 * nf), 0);
   tri.phi.assign(static_cast<size_t>(3 * nf), 0.0);
   tri.vertex_angle_sum.assign(static_cast<size_t>(nv), 0.0);
@@ -213,10 +198,8 @@ SignpostTriangulation build_signpost_triangulation(const Eigen::MatrixXd& V, con
       while (true) {
         swept[static_cast<size_t>(h)] = 1;
         tri.phi[static_cast<size_t>(h)] = angle;
-        if (fans_out) {
-          fans_out->phi[static_cast<size_t>(fill)] = angle;
-          fans_out->halfedge[static_cast<size_t>(fill++)] = h;
-        }
+        fans_out.phi[static_cast<size_t>(fill)] = angle;
+        fans_out.halfedge[static_cast<size_t>(fill++)] = h;
         angle += corner[static_cast<size_t>(h)];
         const int t = tri.twin[static_cast<size_t>(prev_halfedge(h))];
         if (t < 0) break;

@@ -49,11 +49,8 @@ struct SignpostTriangulation {
   double halfedge_length(int h) const { return length[static_cast<size_t>(edge[static_cast<size_t>(h)])]; }
   // Interior angle at the tail of h, inside h's face.
   double corner_angle(int h) const;
-  // Cotangent of the angle opposite halfedge h, inside h's face.
-  double opposite_cotangent(int h) const;
-  // w_e = (cot a + cot b) / 2, one term on boundary edges.
-  double cotan_weight(int e) const;
-  // All of face f at once, from one area: angles[k] = corner_angle(3f + k), cots[k] = opposite_cotangent(3f + k).
+  // All of face f at once, from one area: angles[k] = corner_angle(3f + k), cots[k] = the cotangent of the
+  // angle opposite halfedge 3f + k.
   // Returns the face's area.
   double face_geometry(int f, double (&angles)[3], double (&cots)[3]) const;
   // Recomputes angle[] and cot[] of face f's three halfedges from the current lengths.
@@ -72,11 +69,11 @@ struct VertexFans {
 
 // Builds the triangulation of the input mesh: validates manifoldness and orientation (TopologyError
 // naming the edge or vertex), computes edge lengths (mollified if asked and needed), vertex angle sums and
-// the signpost angles of the input halfedges. Edge ids equal those of edge_topology(F). When `fans` is
-// given, it receives the vertex fans, which the angle sweep visits in order anyway.
+// the signpost angles of the input halfedges. Edge ids equal those of edge_topology(F). `fans` receives the
+// vertex fans, which the angle sweep visits in order anyway.
 SignpostTriangulation build_signpost_triangulation(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
                                                    bool mollify, double mollify_epsilon,
-                                                   VertexFans* fans = nullptr);
+                                                   VertexFans& fans);
 
 // Flips edge e in place; false (and no change) when the edge cannot be flipped: boundary, both sides in
 // one face, or a non-convex intrinsic quad.
