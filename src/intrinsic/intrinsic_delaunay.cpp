@@ -7,7 +7,6 @@
 #include "iarap/mesh/cotan.h"
 
 #include <chrono>
-#include <memory>
 #include <vector>
 
 namespace iarap {
@@ -73,44 +72,49 @@ IntrinsicDelaunay intrinsic_delaunay(const Eigen::MatrixXd& V, const Eigen::Matr
                                      const IntrinsicOptions& options) {
   IntrinsicDelaunay result;
   {
-    // The signpost triangulations live in this scope only, and the input one and its fans are released
-    // as soon as the tracing is done: the peak memory stays near the size of the results (issue 4).
+    // The signpost triangulations live in this scope only, each released as soon as it is no longer needed,
+    // so that the peak memory stays near the size of the results (issue 4).
     auto t0 = std::chrono::steady_clock::now();
     detail::VertexFans fans;
-    auto input = std::make_unique<detail::SignpostTriangulation>(
-        detail::build_signpost_triangulation(V, F, options.mollify, options.mollify_epsilon, fans));
-    detail::SignpostTriangulation tri = *input;
-    // What only flipping needs goes from the input copy: the tracer reads its connectivity, lengths and
-    // edge_halfedge, and the fans (which carry their own angles).
-    for (auto* v : {&input->phi, &input->angle, &input->cot}) std::vector<double>().swap(*v);
-    for (auto* v : {&input->edge_vertex, &input->original_edge}) std::vector<int>().swap(*v);
+    detail::SignpostTriangulation tri = detail::build_signpost_triangulation(
+        V, F, options.mollify, options.mollify_epsilon, fans, options.refine_boundary);
+    // The tracer and the boundary refinement read the unflipped connectivity, lengths and angles only.
+    detail::SignpostTriangulation input = detail::tracing_copy(tri);
     const detail::FlipStats stats = detail::flip_to_delaunay(tri, options.delaunay_tolerance);
     detail::RefineStats refine; // refine_obtuse_boundary counts the obtuse boundary edges itself
     if (!options.refine_boundary) {
       refine.obtuse_before = refine.obtuse_after = detail::count_obtuse_boundary_edges(tri, options.delaunay_tolerance);
     } else {
       int boundary_edges = 0;
-      for (int t : input->twin) boundary_edges += t < 0;
+      for (int t : input.twin) boundary_edges += t < 0;
       const int cap = options.max_boundary_insertions >= 0 ? options.max_boundary_insertions : 4 * boundary_edges + 100;
-      refine = detail::refine_obtuse_boundary(tri, *input, options.delaunay_tolerance, cap);
+      refine = detail::refine_obtuse_boundary(tri, input, options.delaunay_tolerance, cap);
     }
     const int non_delaunay_after = refine.inserted > 0 ? detail::count_non_delaunay(tri, options.delaunay_tolerance)
                                                        : stats.non_delaunay_after;
     result.flip_ms = ms_since(t0);
 
+    // The tracer needs little of the flipped triangulation: its flipped edges (a compact list), and the
+    // endpoints of the others. The input copy and its fans are released right after tracing, before the
+    // triangulation is exported, so that the three are never in memory with the export.
     t0 = std::chrono::steady_clock::now();
-    result.traces = detail::trace_edges(*input, fans, tri);
+    {
+      const detail::EdgesToTrace flipped = detail::flipped_edges(tri);
+      std::vector<double>().swap(tri.phi);
+      result.traces = detail::trace_edges(input, fans, flipped, tri.edge_vertex, tri.original_edge);
+    }
+    std::vector<int> inserted_ends;
+    for (int hb : tri.inserted_halfedge) {
+      inserted_ends.push_back(input.tail(hb));
+      inserted_ends.push_back(input.head(hb));
+    }
+    input = {};
+    fans = {};
     result.trace_ms = ms_since(t0);
 
     t0 = std::chrono::steady_clock::now();
-    std::vector<int> inserted_ends;
-    for (int hb : tri.inserted_halfedge) {
-      inserted_ends.push_back(input->tail(hb));
-      inserted_ends.push_back(input->head(hb));
-    }
-    input.reset();
-    fans = {};
     result.triangulation = export_triangulation(tri, inserted_ends);
+    tri = {};
     IntrinsicTriangulation& out = result.triangulation;
     out.obtuse_boundary_before = refine.obtuse_before;
     out.obtuse_boundary_after = refine.obtuse_after;
@@ -122,7 +126,7 @@ IntrinsicDelaunay intrinsic_delaunay(const Eigen::MatrixXd& V, const Eigen::Matr
   }
 
   const auto t0 = std::chrono::steady_clock::now();
-  result.segments = detail::build_segments(V, result.triangulation, result.traces);
+  result.segments = detail::build_segments(V, result.triangulation, result.traces, options.assemble_B);
   result.segment_ms = ms_since(t0);
   return result;
 }

@@ -8,7 +8,8 @@
 
 namespace iarap::detail {
 
-Segments build_segments(const Eigen::MatrixXd& V, const IntrinsicTriangulation& tri, const TracedEdges& traces) {
+Segments build_segments(const Eigen::MatrixXd& V, const IntrinsicTriangulation& tri, const TracedEdges& traces,
+                        bool assemble_B) {
   const int ne = static_cast<int>(tri.E.rows());
   Segments seg;
   seg.edge_start.resize(ne + 1);
@@ -79,6 +80,7 @@ Segments build_segments(const Eigen::MatrixXd& V, const IntrinsicTriangulation& 
   if (bad)
     throw SolverError("segment " + std::to_string(bad_segment) +
                       " has end points on no common input face (more than 3 vertices in b)");
+  if (!assemble_B) return seg;
 
   // B in compressed column form directly (a counting sort by vertex): segments are visited in order, so
   // each column's rows come out sorted, with none of setFromTriplets' sort and temporary copies.

@@ -8,6 +8,8 @@ namespace iarap::detail {
 // points (each an input vertex or a point on an input edge of the carrying face), so it has at most three
 // non-zeros that sum to 0. weight = cot_weight(e) * length(e) / |s| (Eq. 11); a segment shorter than
 // 1e-12 |e| (a trace grazing a vertex) gets weight 0, since its b b^T / |s| term would be unbounded.
-Segments build_segments(const Eigen::MatrixXd& V, const IntrinsicTriangulation& tri, const TracedEdges& traces);
+// B is assembled only when asked.
+Segments build_segments(const Eigen::MatrixXd& V, const IntrinsicTriangulation& tri, const TracedEdges& traces,
+                        bool assemble_B);
 
 } // namespace iarap::detail

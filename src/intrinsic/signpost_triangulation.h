@@ -47,14 +47,14 @@ struct SignpostTriangulation {
   int tail(int h) const { return corner_vertex[static_cast<size_t>(h)]; }
   int head(int h) const { return corner_vertex[static_cast<size_t>(next_halfedge(h))]; }
   double halfedge_length(int h) const { return length[static_cast<size_t>(edge[static_cast<size_t>(h)])]; }
-  // Interior angle at the tail of h, inside h's face.
-  double corner_angle(int h) const;
-  // All of face f at once, from one area: angles[k] = corner_angle(3f + k), cots[k] = the cotangent of the
-  // angle opposite halfedge 3f + k.
+  // All of face f at once, from one area: angles[k] = the interior angle at the tail of halfedge 3f + k,
+  // cots[k] = the cotangent of the angle opposite halfedge 3f + k.
   // Returns the face's area.
   double face_geometry(int f, double (&angles)[3], double (&cots)[3]) const;
   // Recomputes angle[] and cot[] of face f's three halfedges from the current lengths.
   void update_face_geometry(int f);
+  // Recomputes cot[] only (flips update angle[] themselves).
+  void update_face_cotangents(int f);
   int num_faces() const { return static_cast<int>(corner_vertex.size() / 3); }
   int num_edges() const { return static_cast<int>(length.size()); }
 };
@@ -70,10 +70,15 @@ struct VertexFans {
 // Builds the triangulation of the input mesh: validates manifoldness and orientation (TopologyError
 // naming the edge or vertex), computes edge lengths (mollified if asked and needed), vertex angle sums and
 // the signpost angles of the input halfedges. Edge ids equal those of edge_topology(F). `fans` receives the
-// vertex fans, which the angle sweep visits in order anyway.
+// vertex fans, which the angle sweep visits in order anyway. With `room_for_boundary_splits`, the arrays
+// get capacity for one split per boundary edge, so that refine_obtuse_boundary does not reallocate them.
 SignpostTriangulation build_signpost_triangulation(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
                                                    bool mollify, double mollify_epsilon,
-                                                   VertexFans& fans);
+                                                   VertexFans& fans, bool room_for_boundary_splits = false);
+
+// What trace_edges reads of the input triangulation: connectivity, lengths, corner angles and
+// edge_halfedge (a third of the memory of a full copy; flips never touch it).
+SignpostTriangulation tracing_copy(const SignpostTriangulation& input);
 
 // Flips edge e in place; false (and no change) when the edge cannot be flipped: boundary, both sides in
 // one face, or a non-convex intrinsic quad.

@@ -20,7 +20,7 @@ struct Vec2 {
   Vec2 operator*(double s) const { return {x * s, y * s}; }
 };
 double cross(Vec2 a, Vec2 b) { return a.x * b.y - a.y * b.x; }
-double norm(Vec2 a) { return std::hypot(a.x, a.y); }
+double norm(Vec2 a) { return std::sqrt(a.x * a.x + a.y * a.y); } // mesh-scale values: no hypot needed
 
 struct TracePoint {
   int a, c, face;
@@ -49,11 +49,11 @@ struct InputPoint {
   int halfedge; // the input boundary halfedge of an inserted point, else -1
 };
 
-InputPoint input_point(const SignpostTriangulation& tri, const SignpostTriangulation& input, int v) {
-  if (v < tri.num_input_vertices) return {v, -1, 0.0, -1};
-  const size_t q = static_cast<size_t>(v - tri.num_input_vertices);
-  const int hb = tri.inserted_halfedge[q];
-  return {input.tail(hb), input.head(hb), tri.inserted_t[q], hb};
+InputPoint input_point(const EdgesToTrace& flipped, const SignpostTriangulation& input, int v) {
+  if (v < flipped.num_input_vertices) return {v, -1, 0.0, -1};
+  const size_t q = static_cast<size_t>(v - flipped.num_input_vertices);
+  const int hb = flipped.inserted_halfedge[q];
+  return {input.tail(hb), input.head(hb), flipped.inserted_t[q], hb};
 }
 
 // The 2D position of `target` if it lies on the face with corners (va, pa), (vb, pb), (vc, pc).
@@ -73,15 +73,15 @@ bool target_in_face(const InputPoint& target, const int (&v)[3], const Vec2 (&po
   return true;
 }
 
-// Appends the points of intrinsic edge e to `out`.
-void trace_one(const SignpostTriangulation& input, const VertexFans& fans, const std::vector<double>& fan_phi,
-               const SignpostTriangulation& tri, int e, std::vector<TracePoint>& out) {
-  const int h = tri.edge_halfedge[static_cast<size_t>(e)];
-  const int i = tri.tail(h), j = tri.head(h);
-  const double length = tri.length[static_cast<size_t>(e)];
-  const double phi = tri.phi[static_cast<size_t>(h)];
+// Appends the points of flipped edge number `job` to `out`.
+void trace_one(const SignpostTriangulation& input, const VertexFans& fans, const EdgesToTrace& flipped, int job,
+               std::vector<TracePoint>& out) {
+  const std::vector<double>& fan_phi = fans.phi;
+  const size_t x = static_cast<size_t>(job);
+  const int e = flipped.edge[x], i = flipped.tail[x], j = flipped.head[x];
+  const double length = flipped.length[x], phi = flipped.phi[x];
   const double tol = 1e-7 * length; // snapping distance at the end; tracing errors are ~1e-14 * length
-  const InputPoint start = input_point(tri, input, i), target = input_point(tri, input, j);
+  const InputPoint start = input_point(flipped, input, i), target = input_point(flipped, input, j);
 
   // State of the walk: the ray p + r dir is inside the face left of input halfedge `entry`, whose tail and
   // head sit at pa and pb. From an input vertex, the first face is the fan corner holding phi; the ray
@@ -112,7 +112,7 @@ void trace_one(const SignpostTriangulation& input, const VertexFans& fans, const
     int k = static_cast<int>(std::upper_bound(fan_phi.begin() + first, fan_phi.begin() + last, phi) - fan_phi.begin()) - 1;
     k = std::max(k, first);
     const int hin = fans.halfedge[static_cast<size_t>(k)];
-    const double alpha = std::clamp(phi - fan_phi[static_cast<size_t>(k)], 0.0, input.corner_angle(hin));
+    const double alpha = std::clamp(phi - fan_phi[static_cast<size_t>(k)], 0.0, input.angle[static_cast<size_t>(hin)]);
     const int u = input.head(hin), w = input.tail(prev_halfedge(hin));
     const double l_iu = input.halfedge_length(hin);
     const Vec2 pu{l_iu, 0};
@@ -167,15 +167,30 @@ void trace_one(const SignpostTriangulation& input, const VertexFans& fans, const
 
 } // namespace
 
-TracedEdges trace_edges(const SignpostTriangulation& input, const VertexFans& fans,
-                        const SignpostTriangulation& intrinsic) {
-  const std::vector<double>& fan_phi = fans.phi;
-  const int ne = intrinsic.num_edges();
-  // Pass 1 traces the flipped edges into per-thread buffers (an edge never flipped is its input edge: two
-  // points, nothing to trace). Pass 2 writes every edge's points at its CSR offset, the unflipped ones
-  // straight from edge-ordered arrays, so that neither pass chases the (mostly unflipped) edges through
-  // the face arrays.
-  std::vector<int> count(static_cast<size_t>(ne), 2), owner(static_cast<size_t>(ne), -1), offset(static_cast<size_t>(ne), 0);
+EdgesToTrace flipped_edges(const SignpostTriangulation& intrinsic) {
+  EdgesToTrace flipped;
+  flipped.num_input_vertices = intrinsic.num_input_vertices;
+  flipped.inserted_halfedge = intrinsic.inserted_halfedge;
+  flipped.inserted_t = intrinsic.inserted_t;
+  for (int e = 0; e < intrinsic.num_edges(); ++e) {
+    if (intrinsic.original_edge[static_cast<size_t>(e)] >= 0) continue;
+    const int h = intrinsic.edge_halfedge[static_cast<size_t>(e)];
+    flipped.edge.push_back(e);
+    flipped.tail.push_back(intrinsic.tail(h));
+    flipped.head.push_back(intrinsic.head(h));
+    flipped.phi.push_back(intrinsic.phi[static_cast<size_t>(h)]);
+    flipped.length.push_back(intrinsic.length[static_cast<size_t>(e)]);
+  }
+  return flipped;
+}
+
+TracedEdges trace_edges(const SignpostTriangulation& input, const VertexFans& fans, const EdgesToTrace& flipped,
+                        const std::vector<int>& edge_vertex, const std::vector<int>& original_edge) {
+  const int ne = static_cast<int>(original_edge.size());
+  const int nk = static_cast<int>(flipped.edge.size());
+  // Pass 1 traces the flipped edges into per-thread buffers. Pass 2 writes every edge's points at its CSR
+  // offset, the unflipped ones straight from edge-ordered arrays.
+  std::vector<int> count(static_cast<size_t>(nk)), owner(static_cast<size_t>(nk)), offset(static_cast<size_t>(nk));
   std::vector<std::vector<TracePoint>> buffers(static_cast<size_t>(omp_get_max_threads()));
   std::string error;
 #pragma omp parallel
@@ -183,19 +198,18 @@ TracedEdges trace_edges(const SignpostTriangulation& input, const VertexFans& fa
     const int thread = omp_get_thread_num();
     auto& buffer = buffers[static_cast<size_t>(thread)];
 #pragma omp for schedule(dynamic, 256)
-    for (int e = 0; e < ne; ++e) {
-      if (intrinsic.original_edge[static_cast<size_t>(e)] >= 0) continue;
+    for (int k = 0; k < nk; ++k) {
       const size_t before = buffer.size();
       try {
-        trace_one(input, fans, fan_phi, intrinsic, e, buffer);
+        trace_one(input, fans, flipped, k, buffer);
       } catch (const std::exception& ex) {
 #pragma omp critical
         if (error.empty()) error = ex.what();
         buffer.resize(before);
       }
-      count[static_cast<size_t>(e)] = static_cast<int>(buffer.size() - before);
-      owner[static_cast<size_t>(e)] = thread;
-      offset[static_cast<size_t>(e)] = static_cast<int>(before);
+      count[static_cast<size_t>(k)] = static_cast<int>(buffer.size() - before);
+      owner[static_cast<size_t>(k)] = thread;
+      offset[static_cast<size_t>(k)] = static_cast<int>(before);
     }
   }
   if (!error.empty()) throw SolverError(error);
@@ -203,7 +217,13 @@ TracedEdges trace_edges(const SignpostTriangulation& input, const VertexFans& fa
   TracedEdges traces;
   traces.start.resize(static_cast<size_t>(ne + 1));
   traces.start[0] = 0;
-  for (int e = 0; e < ne; ++e) traces.start[static_cast<size_t>(e + 1)] = traces.start[static_cast<size_t>(e)] + count[static_cast<size_t>(e)];
+  // job[e]: the index of e among the flipped edges, or -1 (kept in traces.start's slot until the scan).
+  std::vector<int> job(static_cast<size_t>(ne), -1);
+  for (int k = 0; k < nk; ++k) job[static_cast<size_t>(flipped.edge[static_cast<size_t>(k)])] = k;
+  for (int e = 0; e < ne; ++e) {
+    const int k = job[static_cast<size_t>(e)];
+    traces.start[static_cast<size_t>(e + 1)] = traces.start[static_cast<size_t>(e)] + (k < 0 ? 2 : count[static_cast<size_t>(k)]);
+  }
   const size_t np = static_cast<size_t>(traces.start.back());
   traces.a.resize(np);
   traces.c.resize(np);
@@ -212,23 +232,23 @@ TracedEdges trace_edges(const SignpostTriangulation& input, const VertexFans& fa
 #pragma omp parallel for schedule(static)
   for (int e = 0; e < ne; ++e) {
     const size_t p = static_cast<size_t>(traces.start[static_cast<size_t>(e)]);
-    const int original = intrinsic.original_edge[static_cast<size_t>(e)];
-    if (original >= 0) {
+    const int k = job[static_cast<size_t>(e)];
+    if (k < 0) {
       // The input halfedge with the edge's tail carries the one segment (same orientation rule as E).
-      traces.a[p] = intrinsic.edge_vertex[static_cast<size_t>(2 * e)];
-      traces.a[p + 1] = intrinsic.edge_vertex[static_cast<size_t>(2 * e + 1)];
+      traces.a[p] = edge_vertex[static_cast<size_t>(2 * e)];
+      traces.a[p + 1] = edge_vertex[static_cast<size_t>(2 * e + 1)];
       traces.c[p] = traces.c[p + 1] = -1;
       traces.t[p] = traces.t[p + 1] = 0.0;
-      traces.face[p] = input.edge_halfedge[static_cast<size_t>(original)] / 3;
+      traces.face[p] = input.edge_halfedge[static_cast<size_t>(original_edge[static_cast<size_t>(e)])] / 3;
       traces.face[p + 1] = -1;
       continue;
     }
-    const TracePoint* from = buffers[static_cast<size_t>(owner[static_cast<size_t>(e)])].data() + offset[static_cast<size_t>(e)];
-    for (int k = 0; k < count[static_cast<size_t>(e)]; ++k) {
-      traces.a[p + static_cast<size_t>(k)] = from[k].a;
-      traces.c[p + static_cast<size_t>(k)] = from[k].c;
-      traces.face[p + static_cast<size_t>(k)] = from[k].face;
-      traces.t[p + static_cast<size_t>(k)] = from[k].t;
+    const TracePoint* from = buffers[static_cast<size_t>(owner[static_cast<size_t>(k)])].data() + offset[static_cast<size_t>(k)];
+    for (int q = 0; q < count[static_cast<size_t>(k)]; ++q) {
+      traces.a[p + static_cast<size_t>(q)] = from[q].a;
+      traces.c[p + static_cast<size_t>(q)] = from[q].c;
+      traces.face[p + static_cast<size_t>(q)] = from[q].face;
+      traces.t[p + static_cast<size_t>(q)] = from[q].t;
     }
   }
   return traces;

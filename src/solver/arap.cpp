@@ -210,7 +210,9 @@ ArapData arap_precompute(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, con
     data.elements = spokes_rims_elements(V, F);
     break;
   case ArapMethod::Iarap: {
-    const IntrinsicDelaunay intrinsic = intrinsic_delaunay(V, F, options.intrinsic);
+    IntrinsicOptions intrinsic_options = options.intrinsic;
+    intrinsic_options.assemble_B = false; // L is summed from the elements
+    const IntrinsicDelaunay intrinsic = intrinsic_delaunay(V, F, intrinsic_options);
     data.timings.intrinsic_ms = ms_since(start);
     start = Clock::now();
     data.elements = iarap_elements(V, intrinsic);

@@ -30,6 +30,7 @@ void build_csr(int num_keys, const std::vector<int>& keys, const std::vector<int
 void finish_elements(const Eigen::MatrixXd& V, ArapElements& el) {
   const Eigen::Index m = el.size();
   el.s_hat.resize(m, 3);
+#pragma omp parallel for schedule(static)
   for (Eigen::Index e = 0; e < m; ++e)
     for (int d = 0; d < 3; ++d) {
       double s = 0.0;
@@ -55,6 +56,16 @@ void finish_elements(const Eigen::MatrixXd& V, ArapElements& el) {
         values.push_back(static_cast<int>(3 * e + k));
       }
   build_csr(el.num_vertices, keys, values, el.vertex_slot_start, el.vertex_slot);
+}
+
+// Sizes the per-element arrays for m elements of cells_per_element cells each.
+void resize_elements(ArapElements& el, Eigen::Index m, int cells_per_element) {
+  el.b_index.resize(m, 3);
+  el.b_value.resize(m, 3);
+  el.w.resize(m);
+  el.face.resize(static_cast<size_t>(m));
+  el.cell_start.resize(static_cast<size_t>(m) + 1);
+  el.cell.resize(static_cast<size_t>(cells_per_element * m));
 }
 
 void check_face_cotangents(const Eigen::MatrixXd& C) {
@@ -96,12 +107,7 @@ ArapElements arap_edge_elements(const Eigen::MatrixXd& V, const Eigen::MatrixXi&
   ArapElements el;
   el.num_vertices = el.num_cells = n;
   const Eigen::Index m = topo.E.rows();
-  el.b_index.resize(m, 3);
-  el.b_value.resize(m, 3);
-  el.w.resize(m);
-  el.face.resize(static_cast<size_t>(m));
-  el.cell_start.resize(static_cast<size_t>(m) + 1);
-  el.cell.resize(static_cast<size_t>(2 * m));
+  resize_elements(el, m, 2);
   for (Eigen::Index e = 0; e < m; ++e) {
     const int i = topo.E(e, 0), j = topo.E(e, 1);
     if (topo.face_count(e) > 2)
@@ -131,12 +137,7 @@ ArapElements spokes_rims_elements(const Eigen::MatrixXd& V, const Eigen::MatrixX
   ArapElements el;
   el.num_vertices = el.num_cells = static_cast<int>(V.rows());
   const Eigen::Index m = 3 * F.rows();
-  el.b_index.resize(m, 3);
-  el.b_value.resize(m, 3);
-  el.w.resize(m);
-  el.face.resize(static_cast<size_t>(m));
-  el.cell_start.resize(static_cast<size_t>(m) + 1);
-  el.cell.resize(static_cast<size_t>(3 * m));
+  resize_elements(el, m, 3);
   for (Eigen::Index f = 0; f < F.rows(); ++f)
     for (int k = 0; k < 3; ++k) {
       const Eigen::Index e = 3 * f + k;
@@ -159,7 +160,8 @@ ArapElements iarap_elements(const Eigen::MatrixXd& V, const IntrinsicDelaunay& i
   const Eigen::Index count = seg.edge.size();
   if (V.cols() != 3)
     throw InputError("iARAP: V must be #V x 3, got " + std::to_string(V.cols()) + " columns");
-  if (seg.b_index.rows() != count || seg.b_value.rows() != count || seg.weight.size() != count)
+  if (seg.b_index.rows() != count || seg.b_value.rows() != count || seg.weight.size() != count ||
+      static_cast<Eigen::Index>(seg.face.size()) != count)
     throw InputError("iARAP: segment arrays disagree in length (" + std::to_string(count) + " segments)");
   ArapElements el;
   el.num_vertices = el.num_cells = n;
@@ -170,47 +172,58 @@ ArapElements iarap_elements(const Eigen::MatrixXd& V, const IntrinsicDelaunay& i
                          std::to_string(E(e, k)));
       el.num_cells = std::max(el.num_cells, E(e, k) + 1); // inserted boundary points get their own cells
     }
-  el.b_index.resize(count, 3);
-  el.b_value.resize(count, 3);
-  el.w.resize(count);
-  el.cell_start.assign(1, 0);
-  el.cell.reserve(static_cast<size_t>(2 * count));
-  el.face.reserve(static_cast<size_t>(count));
-  Eigen::Index m = 0;
-  for (Eigen::Index s = 0; s < count; ++s) {
+  // Checks as a parallel scan keeping the first bad segment (the error names it); a zero-length segment
+  // (b = 0) adds nothing to E, L or the rotations and is left out, so kept[s] numbers the elements.
+  const int ns = static_cast<int>(count);
+  std::vector<int> kept(static_cast<size_t>(ns) + 1, 0);
+  int bad = ns;
+#pragma omp parallel for schedule(static) reduction(min : bad)
+  for (int s = 0; s < ns; ++s) {
     const int edge = seg.edge(s);
-    if (edge < 0 || edge >= E.rows())
-      throw InputError("iARAP: segment " + std::to_string(s) + " names intrinsic edge " +
-                       std::to_string(edge) + "; the triangulation has " + std::to_string(E.rows()));
-    if (!std::isfinite(seg.weight(s)))
-      throw InputError("iARAP: segment " + std::to_string(s) + " has a non-finite weight");
-    int first = -1;
-    for (int k = 0; k < 3; ++k) {
-      const double value = seg.b_value(s, k);
-      const int index = seg.b_index(s, k);
-      if (value != 0.0 && (index < 0 || index >= n))
-        throw InputError("iARAP: segment " + std::to_string(s) + " uses vertex " + std::to_string(index) +
-                         "; mesh has " + std::to_string(n));
-      if (value != 0.0 && first < 0)
-        first = index;
-    }
-    if (first < 0)
-      continue; // a zero-length segment (b = 0) adds nothing to E, L or the rotations
-    for (int k = 0; k < 3; ++k) {
-      const double value = seg.b_value(s, k);
-      el.b_index(m, k) = value != 0.0 ? seg.b_index(s, k) : first; // unused slots may hold any index
-      el.b_value(m, k) = value;
-    }
-    el.w(m) = seg.weight(s);
-    el.face.push_back(seg.face(s));
-    el.cell.push_back(E(edge, 0)); // Eq. 16: the segment belongs to the cells of both ends of its edge
-    el.cell.push_back(E(edge, 1));
-    el.cell_start.push_back(static_cast<int>(el.cell.size()));
-    ++m;
+    bool ok = edge >= 0 && edge < E.rows() && std::isfinite(seg.weight(s));
+    bool nonzero = false;
+    for (int k = 0; k < 3; ++k)
+      if (seg.b_value(s, k) != 0.0) {
+        nonzero = true;
+        ok &= seg.b_index(s, k) >= 0 && seg.b_index(s, k) < n;
+      }
+    if (!ok) bad = std::min(bad, s);
+    kept[static_cast<size_t>(s) + 1] = nonzero;
   }
-  el.b_index.conservativeResize(m, 3);
-  el.b_value.conservativeResize(m, 3);
-  el.w.conservativeResize(m);
+  if (bad < ns) {
+    const int edge = seg.edge(bad);
+    if (edge < 0 || edge >= E.rows())
+      throw InputError("iARAP: segment " + std::to_string(bad) + " names intrinsic edge " + std::to_string(edge) +
+                       "; the triangulation has " + std::to_string(E.rows()));
+    if (!std::isfinite(seg.weight(bad)))
+      throw InputError("iARAP: segment " + std::to_string(bad) + " has a non-finite weight");
+    for (int k = 0; k < 3; ++k)
+      if (seg.b_value(bad, k) != 0.0 && (seg.b_index(bad, k) < 0 || seg.b_index(bad, k) >= n))
+        throw InputError("iARAP: segment " + std::to_string(bad) + " uses vertex " +
+                         std::to_string(seg.b_index(bad, k)) + "; mesh has " + std::to_string(n));
+  }
+  for (int s = 0; s < ns; ++s) kept[static_cast<size_t>(s) + 1] += kept[static_cast<size_t>(s)];
+  const int m = kept[static_cast<size_t>(ns)];
+  resize_elements(el, m, 2);
+#pragma omp parallel for schedule(static)
+  for (int s = 0; s < ns; ++s) {
+    const int x = kept[static_cast<size_t>(s)];
+    if (kept[static_cast<size_t>(s) + 1] == x) continue;
+    int first = -1;
+    for (int k = 0; k < 3 && first < 0; ++k)
+      if (seg.b_value(s, k) != 0.0) first = seg.b_index(s, k);
+    for (int k = 0; k < 3; ++k) {
+      const double value = seg.b_value(s, k);
+      el.b_index(x, k) = value != 0.0 ? seg.b_index(s, k) : first; // unused slots may hold any index
+      el.b_value(x, k) = value;
+    }
+    el.w(x) = seg.weight(s);
+    el.face[static_cast<size_t>(x)] = seg.face(s);
+    el.cell_start[static_cast<size_t>(x)] = 2 * x;
+    el.cell[static_cast<size_t>(2 * x)] = E(seg.edge(s), 0); // Eq. 16: a segment belongs to the cells of both
+    el.cell[static_cast<size_t>(2 * x + 1)] = E(seg.edge(s), 1); // ends of its intrinsic edge
+  }
+  el.cell_start[static_cast<size_t>(m)] = 2 * m;
   finish_elements(V, el);
   return el;
 }

@@ -34,6 +34,41 @@ int expect_invariants(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const 
   EXPECT_EQ(tri.non_delaunay_after, 0) << name;
   int max_segments = 0;
   int failures = 0;
+  // Corner angles and areas are kept up to date through the flips (two atan2 per flip, the other angles
+  // as sums and differences), so compare them with a fresh computation from the final lengths. Each flip
+  // adds ~1e-16 rad of rounding to a corner; 1e-9 rad leaves room for 10^6 flips at one vertex.
+  Eigen::VectorXd angle_sum = Eigen::VectorXd::Zero(V.rows() + inserted);
+  for (int f = 0; f < tri.F.rows() && failures < 5; ++f) {
+    double l[3];
+    for (int k = 0; k < 3; ++k) l[k] = tri.length(tri.FE(f, k)); // side opposite corner k
+    const double s = 0.5 * (l[0] + l[1] + l[2]);
+    const double area = std::sqrt(std::max(s * (s - l[0]) * (s - l[1]) * (s - l[2]), 0.0));
+    EXPECT_NEAR(tri.face_area(f), area, 1e-9 * (l[0] * l[0] + l[1] * l[1] + l[2] * l[2])) << name << " face " << f;
+    for (int k = 0; k < 3; ++k) {
+      const double a = l[k], b = l[(k + 1) % 3], c = l[(k + 2) % 3];
+      const double expected = std::atan2(4.0 * area, b * b + c * c - a * a);
+      if (std::abs(tri.corner_angle(f, k) - expected) > 1e-9) {
+        ADD_FAILURE() << name << ": face " << f << " corner " << k << " angle " << tri.corner_angle(f, k)
+                      << " vs " << expected << " from its lengths";
+        ++failures;
+      }
+      angle_sum(tri.F(f, k)) += tri.corner_angle(f, k);
+    }
+  }
+  // Flips keep each vertex's total angle: compare with the input's (unmollified meshes only).
+  if (tri.mollify_delta == 0.0) {
+    Eigen::VectorXd input_sum = Eigen::VectorXd::Zero(V.rows());
+    for (int f = 0; f < F.rows(); ++f)
+      for (int k = 0; k < 3; ++k) {
+        const Eigen::Vector3d u = V.row(F(f, (k + 1) % 3)) - V.row(F(f, k)), w = V.row(F(f, (k + 2) % 3)) - V.row(F(f, k));
+        input_sum(F(f, k)) += std::atan2(u.cross(w).norm(), u.dot(w));
+      }
+    for (int v = 0; v < V.rows() && failures < 5; ++v)
+      if (std::abs(angle_sum(v) - input_sum(v)) > 1e-8) {
+        ADD_FAILURE() << name << ": vertex " << v << " angle sum " << angle_sum(v) << " vs input " << input_sum(v);
+        ++failures;
+      }
+  }
   for (int e = 0; e < tri.E.rows() && failures < 5; ++e) {
     // Delaunay: cot a + cot b >= 0 up to the flip tolerance (cotangents are scale-free).
     if (!tri.is_boundary(e) && 2 * tri.cot_weight(e) < -1e-9) {
@@ -172,6 +207,28 @@ TEST(IntrinsicDelaunay, BundledBunny) {
   EXPECT_GE(max_segments, 2);
   // Every weight of a closed intrinsic Delaunay mesh is non-negative (Eq. 11 keeps the sign of w_ij).
   EXPECT_GE(idt.segments.weight.minCoeff(), -1e-12);
+}
+
+TEST(IntrinsicDelaunay, MatrixBIsOptional) {
+  const MeshData mesh = read_mesh(iarap::test::data_path("bunny.off"));
+  IntrinsicOptions options;
+  const IntrinsicDelaunay with_B = intrinsic_delaunay(mesh.V, mesh.F, options);
+  options.assemble_B = false;
+  const IntrinsicDelaunay without_B = intrinsic_delaunay(mesh.V, mesh.F, options);
+  EXPECT_EQ(without_B.segments.B.nonZeros(), 0);
+  EXPECT_EQ(with_B.segments.B.rows(), with_B.segments.edge.size());
+  EXPECT_EQ(with_B.segments.B.cols(), mesh.V.rows());
+  // Everything else is the same, bit for bit.
+  EXPECT_EQ(without_B.segments.b_index, with_B.segments.b_index);
+  EXPECT_EQ(without_B.segments.b_value, with_B.segments.b_value);
+  EXPECT_EQ(without_B.segments.weight, with_B.segments.weight);
+  // Row s of B is b_s.
+  const Eigen::MatrixXd B = Eigen::MatrixXd(with_B.segments.B);
+  for (int s = 0; s < with_B.segments.edge.size(); s += 97) {
+    Eigen::VectorXd row = Eigen::VectorXd::Zero(mesh.V.rows());
+    for (int k = 0; k < 3; ++k) row(with_B.segments.b_index(s, k)) += with_B.segments.b_value(s, k);
+    EXPECT_EQ((B.row(s).transpose() - row).cwiseAbs().maxCoeff(), 0.0) << "segment " << s;
+  }
 }
 
 TEST(IntrinsicDelaunay, SharedSurfaceMeshes) {

@@ -25,6 +25,9 @@ struct IntrinsicOptions {
   // boundary edge, not degrees of freedom; each has its own rotation cell.
   bool refine_boundary = false;
   int max_boundary_insertions = -1;
+  // Assemble Segments::B. The ARAP solver sums its system matrix from the segments' b and weights
+  // directly and turns this off (B is 12 bytes per non-zero and a sequential counting sort).
+  bool assemble_B = true;
 };
 
 // The intrinsic triangulation after flipping to Delaunay. In general a Delta-complex: two edges may
@@ -75,7 +78,8 @@ struct Segments {
   Eigen::VectorXd length;                                      // #S |s| at rest
   Eigen::VectorXd weight;                                      // #S w_ij |e_ij| / |s| (Eq. 11)
   Eigen::VectorXi edge_start;                                  // #E + 1 offsets
-  Eigen::SparseMatrix<double> B;                               // #S x #V, row s holds b_s^T; L = B^T D_w B (Eq. 17)
+  Eigen::SparseMatrix<double> B;                               // #S x #V, row s holds b_s^T; L = B^T D_w B (Eq. 17);
+                                                               // 0 x 0 when IntrinsicOptions::assemble_B is off
 };
 
 struct IntrinsicDelaunay {
