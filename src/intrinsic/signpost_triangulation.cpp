@@ -25,11 +25,15 @@ double SignpostTriangulation::face_geometry(int f, double (&angles)[3], double (
   const double four_area = 4.0 * triangle_area_from_lengths(l[0], l[1], l[2]);
   double d[3]; // d[k] = 2 l_a l_b cos(angle opposite halfedge k), by the law of cosines
   for (int k = 0; k < 3; ++k) d[k] = l[(k + 1) % 3] * l[(k + 1) % 3] + l[(k + 2) % 3] * l[(k + 2) % 3] - l[k] * l[k];
-  for (int k = 0; k < 3; ++k) {
-    cots[k] = d[k] / four_area;
-    // atan2 keeps needles accurate where acos fails; the corner at the tail of halfedge k faces halfedge k + 1
-    angles[k] = std::atan2(four_area, d[(k + 1) % 3]);
-  }
+  for (int k = 0; k < 3; ++k) cots[k] = d[k] / four_area;
+  // atan2 keeps needles accurate where acos fails; the corner at the tail of halfedge k faces halfedge k + 1.
+  // The largest angle (facing the longest side, at least pi/3) is pi minus the other two: no accuracy lost,
+  // one atan2 saved per face.
+  const int longest = l[0] >= l[1] ? (l[0] >= l[2] ? 0 : 2) : (l[1] >= l[2] ? 1 : 2);
+  const int big = (longest + 2) % 3, k1 = (big + 1) % 3, k2 = (big + 2) % 3;
+  angles[k1] = std::atan2(four_area, d[(k1 + 1) % 3]);
+  angles[k2] = std::atan2(four_area, d[(k2 + 1) % 3]);
+  angles[big] = std::max(kPi - angles[k1] - angles[k2], 0.0);
   return 0.25 * four_area;
 }
 
