@@ -79,14 +79,14 @@ IntrinsicDelaunay intrinsic_delaunay(const Eigen::MatrixXd& V, const Eigen::Matr
     detail::SignpostTriangulation tri = detail::build_signpost_triangulation(
         V, F, options.mollify, options.mollify_epsilon, fans, options.refine_boundary);
     // The tracer and the boundary refinement read the unflipped connectivity, lengths and angles only.
-    detail::SignpostTriangulation input = detail::tracing_copy(tri);
+    detail::InputTriangulation input = detail::input_triangulation(tri);
     const detail::FlipStats stats = detail::flip_to_delaunay(tri, options.delaunay_tolerance);
     detail::RefineStats refine; // refine_obtuse_boundary counts the obtuse boundary edges itself
     if (!options.refine_boundary) {
       refine.obtuse_before = refine.obtuse_after = detail::count_obtuse_boundary_edges(tri, options.delaunay_tolerance);
     } else {
       int boundary_edges = 0;
-      for (int t : input.twin) boundary_edges += t < 0;
+      for (const auto& h : input.halfedge) boundary_edges += h.twin < 0;
       const int cap = options.max_boundary_insertions >= 0 ? options.max_boundary_insertions : 4 * boundary_edges + 100;
       refine = detail::refine_obtuse_boundary(tri, input, options.delaunay_tolerance, cap);
     }

@@ -190,12 +190,11 @@ SignpostTriangulation build_signpost_triangulation(const Eigen::MatrixXd& V, con
   std::vector<int>& start = fans_out.start;
   for (int h = 0; h < 3 * nf; ++h) ++start[static_cast<size_t>(tri.tail(h)) + 1];
   for (int v = 0; v < nv; ++v) start[static_cast<size_t>(v) + 1] += start[static_cast<size_t>(v)];
-  fans_out.halfedge.resize(static_cast<size_t>(3 * nf));
+  fans_out.entry.resize(static_cast<size_t>(3 * nf));
   {
     std::vector<int> fill(start.begin(), start.end() - 1);
-    for (int h = 0; h < 3 * nf; ++h) fans_out.halfedge[static_cast<size_t>(fill[static_cast<size_t>(tri.tail(h))]++)] = h;
+    for (int h = 0; h < 3 * nf; ++h) fans_out.entry[static_cast<size_t>(fill[static_cast<size_t>(tri.tail(h))]++)] = {0.0, h};
   }
-  fans_out.phi.assign(static_cast<size_t>(3 * nf), 0.0);
   tri.phi.assign(static_cast<size_t>(3 * nf), -1.0);
   tri.vertex_angle_sum.assign(static_cast<size_t>(nv), 0.0);
   tri.boundary_vertex.assign(static_cast<size_t>(nv), 0);
@@ -214,7 +213,8 @@ SignpostTriangulation build_signpost_triangulation(const Eigen::MatrixXd& V, con
 #pragma omp for schedule(dynamic, 1024)
     for (int v = 0; v < nv; ++v) {
       const int first = start[static_cast<size_t>(v)], last = start[static_cast<size_t>(v) + 1];
-      outgoing.assign(fans_out.halfedge.begin() + first, fans_out.halfedge.begin() + last);
+      outgoing.clear();
+      for (int k = first; k < last; ++k) outgoing.push_back(fans_out.entry[static_cast<size_t>(k)].halfedge);
       int fans = 0, fill = first;
       bool closed = false;
       double angle = 0.0;
@@ -223,8 +223,7 @@ SignpostTriangulation build_signpost_triangulation(const Eigen::MatrixXd& V, con
         int h = h0;
         while (true) {
           tri.phi[static_cast<size_t>(h)] = angle;
-          fans_out.phi[static_cast<size_t>(fill)] = angle;
-          fans_out.halfedge[static_cast<size_t>(fill++)] = h;
+          fans_out.entry[static_cast<size_t>(fill++)] = {angle, h};
           angle += corner[static_cast<size_t>(h)];
           const int t = tri.twin[static_cast<size_t>(prev_halfedge(h))];
           if (t < 0) break;
@@ -257,18 +256,16 @@ SignpostTriangulation build_signpost_triangulation(const Eigen::MatrixXd& V, con
   return tri;
 }
 
-SignpostTriangulation tracing_copy(const SignpostTriangulation& input) {
-  SignpostTriangulation copy;
-  copy.num_vertices = input.num_vertices;
-  copy.num_input_vertices = input.num_input_vertices;
-  copy.corner_vertex = input.corner_vertex;
-  copy.twin = input.twin;
-  copy.edge = input.edge;
-  copy.edge_halfedge = input.edge_halfedge;
-  copy.length = input.length;
-  copy.angle = input.angle;
-  copy.mollify_delta = input.mollify_delta;
-  return copy;
+InputTriangulation input_triangulation(const SignpostTriangulation& unflipped) {
+  InputTriangulation input;
+  const int nh = 3 * unflipped.num_faces();
+  input.halfedge.resize(static_cast<size_t>(nh));
+#pragma omp parallel for schedule(static)
+  for (int h = 0; h < nh; ++h)
+    input.halfedge[static_cast<size_t>(h)] = {unflipped.tail(h), unflipped.twin[static_cast<size_t>(h)],
+                                              unflipped.halfedge_length(h), unflipped.angle[static_cast<size_t>(h)]};
+  input.edge_halfedge = unflipped.edge_halfedge;
+  return input;
 }
 
 bool flip_edge(SignpostTriangulation& tri, int e) {
@@ -459,7 +456,7 @@ namespace {
 // Where a point at parameter t along intrinsic boundary halfedge h lies on the input: the input boundary
 // halfedge and its parameter. Intrinsic boundary edges are never flipped, so h is a piece of one input
 // boundary halfedge, from tail point to head point.
-std::pair<int, double> locate_on_input_boundary(const SignpostTriangulation& tri, const SignpostTriangulation& input,
+std::pair<int, double> locate_on_input_boundary(const SignpostTriangulation& tri, const InputTriangulation& input,
                                                 int h, double t) {
   auto position = [&](int v, int hb_hint) -> std::pair<int, double> {
     if (v >= tri.num_input_vertices) {
@@ -482,7 +479,7 @@ std::pair<int, double> locate_on_input_boundary(const SignpostTriangulation& tri
 }
 
 // Splits boundary edge e of face (i, j, k) at parameter t from i: faces (i, p, k) and (p, j, k).
-void split_boundary_edge(SignpostTriangulation& tri, const SignpostTriangulation& input, int e, double t) {
+void split_boundary_edge(SignpostTriangulation& tri, const InputTriangulation& input, int e, double t) {
   const int h = tri.edge_halfedge[static_cast<size_t>(e)];
   const int f = h / 3, g = tri.num_faces();
   const int h1 = next_halfedge(h), h2 = prev_halfedge(h);
@@ -554,7 +551,7 @@ void split_boundary_edge(SignpostTriangulation& tri, const SignpostTriangulation
 
 } // namespace
 
-RefineStats refine_obtuse_boundary(SignpostTriangulation& tri, const SignpostTriangulation& input,
+RefineStats refine_obtuse_boundary(SignpostTriangulation& tri, const InputTriangulation& input,
                                    double tolerance, int max_insertions) {
   RefineStats stats;
   // Boundary edges are never flipped and a split keeps e on the boundary and adds e_pj, so this list

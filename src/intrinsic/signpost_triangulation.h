@@ -61,10 +61,15 @@ struct SignpostTriangulation {
 
 // The outgoing halfedges of each vertex of the input triangulation in increasing signpost angle (CSR):
 // where the tracer finds the input face that holds a direction. Not kept up to date by flips.
+// One record per entry (angle and halfedge side by side): the tracer's lookups are random, so each costs
+// one cache miss instead of two.
 struct VertexFans {
+  struct Entry {
+    double phi;   // signpost angle, increasing within a vertex
+    int halfedge;
+  };
   std::vector<int> start;    // #V + 1
-  std::vector<int> halfedge; // 3F
-  std::vector<double> phi;   // 3F signpost angle of each entry, increasing within a vertex
+  std::vector<Entry> entry;  // 3F
 };
 
 // Builds the triangulation of the input mesh: validates manifoldness and orientation (TopologyError
@@ -76,9 +81,25 @@ SignpostTriangulation build_signpost_triangulation(const Eigen::MatrixXd& V, con
                                                    bool mollify, double mollify_epsilon,
                                                    VertexFans& fans, bool room_for_boundary_splits = false);
 
-// What trace_edges reads of the input triangulation: connectivity, lengths, corner angles and
-// edge_halfedge (a third of the memory of a full copy; flips never touch it).
-SignpostTriangulation tracing_copy(const SignpostTriangulation& input);
+// The unflipped input as the tracer and the boundary refinement read it. The tracer's walk jumps between
+// faces at random, so each halfedge is one record (a face's three records share one or two cache lines)
+// rather than four arrays: tail, twin, length and corner angle each cost a cache miss otherwise.
+struct InputTriangulation {
+  struct Halfedge {
+    int tail;
+    int twin;      // -1 on the boundary
+    double length;
+    double angle;  // interior angle at the tail
+  };
+  std::vector<Halfedge> halfedge; // 3F, same numbering as SignpostTriangulation
+  std::vector<int> edge_halfedge; // #E
+
+  const Halfedge& operator[](int h) const { return halfedge[static_cast<size_t>(h)]; }
+  int tail(int h) const { return (*this)[h].tail; }
+  int head(int h) const { return (*this)[next_halfedge(h)].tail; }
+  int num_faces() const { return static_cast<int>(halfedge.size() / 3); }
+};
+InputTriangulation input_triangulation(const SignpostTriangulation& unflipped);
 
 // Flips edge e in place; false (and no change) when the edge cannot be flipped: boundary, both sides in
 // one face, or a non-convex intrinsic quad.
@@ -113,7 +134,7 @@ int count_obtuse_boundary_edges(const SignpostTriangulation& tri, double toleran
 // vertex (both new opposite angles are then acute), re-flips to Delaunay, and repeats until no boundary
 // edge is obtuse or `max_insertions` is reached. `input` is the unflipped input triangulation, which
 // locates each inserted point on its input boundary edge. Returns what it did.
-RefineStats refine_obtuse_boundary(SignpostTriangulation& tri, const SignpostTriangulation& input,
+RefineStats refine_obtuse_boundary(SignpostTriangulation& tri, const InputTriangulation& input,
                                    double tolerance, int max_insertions);
 
 } // namespace iarap::detail

@@ -49,7 +49,7 @@ struct InputPoint {
   int halfedge; // the input boundary halfedge of an inserted point, else -1
 };
 
-InputPoint input_point(const EdgesToTrace& flipped, const SignpostTriangulation& input, int v) {
+InputPoint input_point(const EdgesToTrace& flipped, const InputTriangulation& input, int v) {
   if (v < flipped.num_input_vertices) return {v, -1, 0.0, -1};
   const size_t q = static_cast<size_t>(v - flipped.num_input_vertices);
   const int hb = flipped.inserted_halfedge[q];
@@ -74,9 +74,8 @@ bool target_in_face(const InputPoint& target, const int (&v)[3], const Vec2 (&po
 }
 
 // Appends the points of flipped edge number `job` to `out`.
-void trace_one(const SignpostTriangulation& input, const VertexFans& fans, const EdgesToTrace& flipped, int job,
+void trace_one(const InputTriangulation& input, const VertexFans& fans, const EdgesToTrace& flipped, int job,
                std::vector<TracePoint>& out) {
-  const std::vector<double>& fan_phi = fans.phi;
   const size_t x = static_cast<size_t>(job);
   const int e = flipped.edge[x], i = flipped.tail[x], j = flipped.head[x];
   const double length = flipped.length[x], phi = flipped.phi[x];
@@ -98,7 +97,7 @@ void trace_one(const SignpostTriangulation& input, const VertexFans& fans, const
     const double s = std::clamp(cross(q0 - p, dir) / denom, 0.0, 1.0);
     if (!(r < remaining - tol))
       trace_failure(e, i, j, "the line ends inside input face " + std::to_string(x / 3) + " away from the end vertex");
-    const int tx = input.twin[static_cast<size_t>(x)];
+    const int tx = input[x].twin;
     if (tx < 0) trace_failure(e, i, j, "the line leaves the surface through boundary halfedge " + std::to_string(x));
     out.push_back({input.tail(x), input.head(x), tx / 3, s});
     p = p + dir * r;
@@ -109,15 +108,16 @@ void trace_one(const SignpostTriangulation& input, const VertexFans& fans, const
   };
   if (start.c < 0) {
     const int first = fans.start[static_cast<size_t>(i)], last = fans.start[static_cast<size_t>(i + 1)];
-    int k = static_cast<int>(std::upper_bound(fan_phi.begin() + first, fan_phi.begin() + last, phi) - fan_phi.begin()) - 1;
-    k = std::max(k, first);
-    const int hin = fans.halfedge[static_cast<size_t>(k)];
-    const double alpha = std::clamp(phi - fan_phi[static_cast<size_t>(k)], 0.0, input.angle[static_cast<size_t>(hin)]);
+    const auto fan = fans.entry.begin();
+    const auto above = std::upper_bound(fan + first, fan + last, phi,
+                                        [](double x, const VertexFans::Entry& entry) { return x < entry.phi; });
+    const VertexFans::Entry& corner = fans.entry[static_cast<size_t>(std::max(static_cast<int>(above - fan) - 1, first))];
+    const int hin = corner.halfedge;
+    const double alpha = std::clamp(phi - corner.phi, 0.0, input[hin].angle);
     const int u = input.head(hin), w = input.tail(prev_halfedge(hin));
-    const double l_iu = input.halfedge_length(hin);
+    const double l_iu = input[hin].length;
     const Vec2 pu{l_iu, 0};
-    const Vec2 pw = third_corner(p, pu, l_iu, input.halfedge_length(prev_halfedge(hin)),
-                                 input.halfedge_length(next_halfedge(hin)));
+    const Vec2 pw = third_corner(p, pu, l_iu, input[prev_halfedge(hin)].length, input[next_halfedge(hin)].length);
     dir = {std::cos(alpha), std::sin(alpha)};
     out.push_back({i, -1, hin / 3, 0.0});
     Vec2 goal;
@@ -130,7 +130,7 @@ void trace_one(const SignpostTriangulation& input, const VertexFans& fans, const
   } else {
     // An inserted point on input boundary halfedge a -> c: phi = 0 points towards c, the face is on the left.
     entry = start.halfedge;
-    const double l_ac = input.halfedge_length(entry);
+    const double l_ac = input[entry].length;
     pa = {-start.t * l_ac, 0};
     pb = {(1 - start.t) * l_ac, 0};
     dir = {std::cos(phi), std::sin(phi)};
@@ -141,8 +141,8 @@ void trace_one(const SignpostTriangulation& input, const VertexFans& fans, const
   for (int step = 0; step < max_steps; ++step) {
     // In the face left of `entry` (tail at pa, head at pb); its third corner is c.
     const int va = input.tail(entry), vb = input.head(entry), c = input.tail(prev_halfedge(entry));
-    const Vec2 pc = third_corner(pa, pb, input.halfedge_length(entry), input.halfedge_length(prev_halfedge(entry)),
-                                 input.halfedge_length(next_halfedge(entry)));
+    const Vec2 pc = third_corner(pa, pb, input[entry].length, input[prev_halfedge(entry)].length,
+                                 input[next_halfedge(entry)].length);
     Vec2 goal;
     if (target_in_face(target, {va, vb, c}, {pa, pb, pc}, goal) && norm(p + dir * remaining - goal) <= tol) {
       out.push_back({target.a, target.c, -1, target.t});
@@ -184,7 +184,7 @@ EdgesToTrace flipped_edges(const SignpostTriangulation& intrinsic) {
   return flipped;
 }
 
-TracedEdges trace_edges(const SignpostTriangulation& input, const VertexFans& fans, const EdgesToTrace& flipped,
+TracedEdges trace_edges(const InputTriangulation& input, const VertexFans& fans, const EdgesToTrace& flipped,
                         const std::vector<int>& edge_vertex, const std::vector<int>& original_edge) {
   const int ne = static_cast<int>(original_edge.size());
   const int nk = static_cast<int>(flipped.edge.size());

@@ -21,7 +21,7 @@ EdgesToTrace flipped_edges(const SignpostTriangulation& intrinsic);
 // its head (SolverError naming the edge otherwise). Edges never flipped (original_edge >= 0) are written
 // as their one input edge, from edge_vertex (SignpostTriangulation's layout). `fans` are the input's vertex
 // fans (from build_signpost_triangulation). Parallel over edges.
-TracedEdges trace_edges(const SignpostTriangulation& input, const VertexFans& fans, const EdgesToTrace& flipped,
+TracedEdges trace_edges(const InputTriangulation& input, const VertexFans& fans, const EdgesToTrace& flipped,
                         const std::vector<int>& edge_vertex, const std::vector<int>& original_edge);
 
 } // namespace iarap::detail
