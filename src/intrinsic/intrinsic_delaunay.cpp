@@ -4,6 +4,7 @@
 #include "signpost_triangulation.h"
 #include "trace_edges.h"
 
+#include "iarap/core/threads.h"
 #include "iarap/mesh/cotan.h"
 
 #include <chrono>
@@ -26,7 +27,7 @@ IntrinsicTriangulation export_triangulation(const detail::SignpostTriangulation&
   out.FE.resize(nf, 3);
   out.corner_angle.resize(nf, 3);
   out.face_area.resize(nf);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for num_threads(loop_thread_count()) schedule(static)
   for (int f = 0; f < nf; ++f) {
     out.face_area(f) = triangle_area_from_lengths(tri.halfedge_length(3 * f), tri.halfedge_length(3 * f + 1),
                                                   tri.halfedge_length(3 * f + 2));
@@ -42,7 +43,7 @@ IntrinsicTriangulation export_triangulation(const detail::SignpostTriangulation&
   out.cot_weight.resize(ne);
   out.is_boundary.resize(ne);
   out.original_edge.resize(ne);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for num_threads(loop_thread_count()) schedule(static)
   for (int e = 0; e < ne; ++e) {
     const int h = tri.edge_halfedge[static_cast<size_t>(e)];
     out.E(e, 0) = tri.edge_vertex[static_cast<size_t>(2 * e)];

@@ -1,6 +1,7 @@
 #include "segments.h"
 
 #include "iarap/core/errors.h"
+#include "iarap/core/threads.h"
 
 #include <algorithm>
 #include <string>
@@ -25,7 +26,7 @@ Segments build_segments(const Eigen::MatrixXd& V, const IntrinsicTriangulation& 
   bool bad = false;
   int bad_segment = -1;
 
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for num_threads(loop_thread_count()) schedule(static)
   for (int e = 0; e < ne; ++e) {
     const double w = tri.cot_weight(e), l = tri.length(e);
     for (int m = traces.start[static_cast<size_t>(e)]; m + 1 < traces.start[static_cast<size_t>(e + 1)]; ++m) {

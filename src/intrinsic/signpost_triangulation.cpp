@@ -1,6 +1,7 @@
 #include "signpost_triangulation.h"
 
 #include "iarap/core/errors.h"
+#include "iarap/core/threads.h"
 #include "iarap/mesh/cotan.h"
 #include "iarap/mesh/edge_topology.h"
 
@@ -62,7 +63,7 @@ SignpostTriangulation build_signpost_triangulation(const Eigen::MatrixXd& V, con
   if (F.cols() != 3) throw InputError("faces must have 3 columns, got " + std::to_string(F.cols()));
   // Checks run as parallel scans that keep the first offending index; the error is thrown afterwards.
   int bad_face = nf;
-#pragma omp parallel for schedule(static) reduction(min : bad_face)
+#pragma omp parallel for num_threads(loop_thread_count()) schedule(static) reduction(min : bad_face)
   for (int f = 0; f < nf; ++f)
     for (int k = 0; k < 3; ++k)
       if (F(f, k) < 0 || F(f, k) >= nv || F(f, k) == F(f, (k + 1) % 3)) bad_face = std::min(bad_face, f);
@@ -84,7 +85,7 @@ SignpostTriangulation build_signpost_triangulation(const Eigen::MatrixXd& V, con
     // A split adds one face, one vertex and two edges. Reserving before the arrays are filled costs no copy,
     // and untouched capacity costs no page faults.
     int boundary_edges = 0;
-#pragma omp parallel for schedule(static) reduction(+ : boundary_edges)
+#pragma omp parallel for num_threads(loop_thread_count()) schedule(static) reduction(+ : boundary_edges)
     for (int e = 0; e < ne; ++e) boundary_edges += topo.face_count(e) == 1;
     const size_t halfedges = static_cast<size_t>(3 * (nf + boundary_edges));
     const size_t edges = static_cast<size_t>(ne + 2 * boundary_edges);
@@ -102,7 +103,7 @@ SignpostTriangulation build_signpost_triangulation(const Eigen::MatrixXd& V, con
   tri.edge_halfedge.assign(static_cast<size_t>(ne), -1);
   tri.original_edge.resize(static_cast<size_t>(ne));
   tri.edge_vertex.resize(static_cast<size_t>(2 * ne));
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for num_threads(loop_thread_count()) schedule(static)
   for (int f = 0; f < nf; ++f)
     for (int k = 0; k < 3; ++k) {
       tri.corner_vertex[static_cast<size_t>(3 * f + k)] = F(f, k);
@@ -112,7 +113,7 @@ SignpostTriangulation build_signpost_triangulation(const Eigen::MatrixXd& V, con
   tri.length.resize(static_cast<size_t>(ne));
   double length_sum = 0.0;
   int bad_edge = ne;
-#pragma omp parallel for schedule(static) reduction(+ : length_sum) reduction(min : bad_edge)
+#pragma omp parallel for num_threads(loop_thread_count()) schedule(static) reduction(+ : length_sum) reduction(min : bad_edge)
   for (int e = 0; e < ne; ++e) {
     tri.original_edge[static_cast<size_t>(e)] = e;
     const int i = topo.E(e, 0), j = topo.E(e, 1);
@@ -155,7 +156,7 @@ SignpostTriangulation build_signpost_triangulation(const Eigen::MatrixXd& V, con
   const double eps = mollify_epsilon * length_sum / std::max(ne, 1);
   double delta = 0.0;
   bad_face = nf;
-#pragma omp parallel for schedule(static) reduction(max : delta) reduction(min : bad_face)
+#pragma omp parallel for num_threads(loop_thread_count()) schedule(static) reduction(max : delta) reduction(min : bad_face)
   for (int f = 0; f < nf; ++f) {
     for (int k = 0; k < 3; ++k) {
       const double a = tri.halfedge_length(3 * f + k), b = tri.halfedge_length(3 * f + (k + 1) % 3),
@@ -201,13 +202,13 @@ SignpostTriangulation build_signpost_triangulation(const Eigen::MatrixXd& V, con
   // Corner angles and cotangents once per face, in parallel; the fan sweeps below only add angles up.
   tri.angle.resize(static_cast<size_t>(3 * nf));
   tri.cot.resize(static_cast<size_t>(3 * nf));
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for num_threads(loop_thread_count()) schedule(static)
   for (int f = 0; f < nf; ++f) tri.update_face_geometry(f);
   const std::vector<double>& corner = tri.angle;
   // Each vertex's sweeps touch only the halfedges leaving it, so vertices run in parallel. Open fans come
   // first, from their boundary halfedge, then the closed fan; within each, in increasing halfedge index.
   int bad_vertex = nv;
-#pragma omp parallel reduction(min : bad_vertex)
+#pragma omp parallel num_threads(loop_thread_count()) reduction(min : bad_vertex)
   {
     std::vector<int> outgoing;
 #pragma omp for schedule(dynamic, 1024)
@@ -260,7 +261,7 @@ InputTriangulation input_triangulation(const SignpostTriangulation& unflipped) {
   InputTriangulation input;
   const int nh = 3 * unflipped.num_faces();
   input.halfedge.resize(static_cast<size_t>(nh));
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for num_threads(loop_thread_count()) schedule(static)
   for (int h = 0; h < nh; ++h)
     input.halfedge[static_cast<size_t>(h)] = {unflipped.tail(h), unflipped.twin[static_cast<size_t>(h)],
                                               unflipped.halfedge_length(h), unflipped.angle[static_cast<size_t>(h)]};
@@ -377,7 +378,7 @@ bool is_non_delaunay(const SignpostTriangulation& tri, int e, double tolerance) 
 std::vector<int> non_delaunay_edges(const SignpostTriangulation& tri, double tolerance) {
   const int ne = tri.num_edges();
   std::vector<char> failing(static_cast<size_t>(ne));
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for num_threads(loop_thread_count()) schedule(static)
   for (int e = 0; e < ne; ++e) failing[static_cast<size_t>(e)] = is_non_delaunay(tri, e, tolerance);
   std::vector<int> edges;
   for (int e = 0; e < ne; ++e)

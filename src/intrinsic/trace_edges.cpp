@@ -1,6 +1,7 @@
 #include "trace_edges.h"
 
 #include "iarap/core/errors.h"
+#include "iarap/core/threads.h"
 
 #include <omp.h>
 
@@ -193,7 +194,7 @@ TracedEdges trace_edges(const InputTriangulation& input, const VertexFans& fans,
   std::vector<int> count(static_cast<size_t>(nk)), owner(static_cast<size_t>(nk)), offset(static_cast<size_t>(nk));
   std::vector<std::vector<TracePoint>> buffers(static_cast<size_t>(omp_get_max_threads()));
   std::string error;
-#pragma omp parallel
+#pragma omp parallel num_threads(loop_thread_count())
   {
     const int thread = omp_get_thread_num();
     auto& buffer = buffers[static_cast<size_t>(thread)];
@@ -229,7 +230,7 @@ TracedEdges trace_edges(const InputTriangulation& input, const VertexFans& fans,
   traces.c.resize(np);
   traces.face.resize(np);
   traces.t.resize(np);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for num_threads(loop_thread_count()) schedule(static)
   for (int e = 0; e < ne; ++e) {
     const size_t p = static_cast<size_t>(traces.start[static_cast<size_t>(e)]);
     const int k = job[static_cast<size_t>(e)];

@@ -1,5 +1,7 @@
 #include "iarap/mesh/edge_topology.h"
 
+#include "iarap/core/threads.h"
+
 #include <vector>
 
 namespace iarap {
@@ -36,7 +38,7 @@ EdgeTopology edge_topology(const Eigen::MatrixXi& F, int num_vertices) {
   // edges by a prefix sum over vertices and fill the incidences, again per vertex.
   const int nvi = num_vertices;
   std::vector<int> edge_start(nv + 1, 0);
-#pragma omp parallel for schedule(dynamic, 4096)
+#pragma omp parallel for num_threads(loop_thread_count()) schedule(dynamic, 4096)
   for (int v = 0; v < nvi; ++v) {
     const int first = start[static_cast<size_t>(v)], last = start[static_cast<size_t>(v) + 1];
     int distinct = 0;
@@ -60,7 +62,7 @@ EdgeTopology edge_topology(const Eigen::MatrixXi& F, int num_vertices) {
   t.EK.setConstant(ne, 2, -1);
   t.face_count.setZero(ne);
   t.FE.resize(nf, 3);
-#pragma omp parallel for schedule(dynamic, 4096)
+#pragma omp parallel for num_threads(loop_thread_count()) schedule(dynamic, 4096)
   for (int v = 0; v < nvi; ++v) {
     const int first = start[static_cast<size_t>(v)], last = start[static_cast<size_t>(v) + 1];
     int e = edge_start[static_cast<size_t>(v)] - 1;

@@ -1,6 +1,7 @@
 #include "iarap/solver/arap.h"
 
 #include "iarap/core/errors.h"
+#include "iarap/core/threads.h"
 #include "iarap/mesh/connected_components.h"
 #include "iarap/solver/arap_rhs.h"
 #include "iarap/solver/fit_rotations.h"
@@ -197,7 +198,14 @@ ArapData arap_precompute(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, con
     analyze_ms = ms_since(t);
   };
   std::future<void> analysis;
-  if (omp_get_max_threads() > 1) analysis = std::async(std::launch::async, analyze);
+  if (omp_get_max_threads() > 1) {
+    // The analysis holds a core until it ends: meanwhile the loops of the element / intrinsic build run on
+    // the others (threads.h says why), then on all.
+    analysis = std::async(std::launch::async, [&analyze, core = CoreReservation()]() mutable {
+      const CoreReservation held = std::move(core);
+      analyze();
+    });
+  }
   else analyze();
   data.timings.factor_ms = ms_since(start);
 

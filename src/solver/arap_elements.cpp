@@ -1,6 +1,7 @@
 #include "iarap/solver/arap_elements.h"
 
 #include "iarap/core/errors.h"
+#include "iarap/core/threads.h"
 #include "iarap/mesh/cotan.h"
 #include "iarap/mesh/edge_topology.h"
 
@@ -30,7 +31,7 @@ void build_csr(int num_keys, const std::vector<int>& keys, const std::vector<int
 void finish_elements(const Eigen::MatrixXd& V, ArapElements& el) {
   const Eigen::Index m = el.size();
   el.s_hat.resize(m, 3);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for num_threads(loop_thread_count()) schedule(static)
   for (Eigen::Index e = 0; e < m; ++e)
     for (int d = 0; d < 3; ++d) {
       double s = 0.0;
@@ -177,7 +178,7 @@ ArapElements iarap_elements(const Eigen::MatrixXd& V, const IntrinsicDelaunay& i
   const int ns = static_cast<int>(count);
   std::vector<int> kept(static_cast<size_t>(ns) + 1, 0);
   int bad = ns;
-#pragma omp parallel for schedule(static) reduction(min : bad)
+#pragma omp parallel for num_threads(loop_thread_count()) schedule(static) reduction(min : bad)
   for (int s = 0; s < ns; ++s) {
     const int edge = seg.edge(s);
     bool ok = edge >= 0 && edge < E.rows() && std::isfinite(seg.weight(s));
@@ -205,7 +206,7 @@ ArapElements iarap_elements(const Eigen::MatrixXd& V, const IntrinsicDelaunay& i
   for (int s = 0; s < ns; ++s) kept[static_cast<size_t>(s) + 1] += kept[static_cast<size_t>(s)];
   const int m = kept[static_cast<size_t>(ns)];
   resize_elements(el, m, 2);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for num_threads(loop_thread_count()) schedule(static)
   for (int s = 0; s < ns; ++s) {
     const int x = kept[static_cast<size_t>(s)];
     if (kept[static_cast<size_t>(s) + 1] == x) continue;

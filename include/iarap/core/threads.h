@@ -9,4 +9,26 @@ void set_thread_count(int n);
 // The number of threads parallel loops will use.
 int thread_count();
 
+// The threads a parallel loop of the preprocess should use now: thread_count() less the cores that
+// reservations hold, at least 1. While another thread of ours keeps a core busy (arap_precompute's symbolic
+// analysis beside the intrinsic triangulation), a loop split over every core waits at its end for the
+// thread that analysis displaced: a scheduler time slice, often longer than the loop. Measured on a 2-core
+// machine, the intrinsic preprocess then ran no faster than on one thread.
+int loop_thread_count();
+
+// Holds one core for a helper thread from construction to destruction (movable, so that the helper can
+// own it): loop_thread_count() is one lower meanwhile. Make it before starting the helper.
+class CoreReservation {
+public:
+  CoreReservation();
+  ~CoreReservation();
+  CoreReservation(CoreReservation&& other) noexcept;
+  CoreReservation& operator=(CoreReservation&&) = delete;
+  CoreReservation(const CoreReservation&) = delete;
+  CoreReservation& operator=(const CoreReservation&) = delete;
+
+private:
+  bool held_ = true;
+};
+
 } // namespace iarap
