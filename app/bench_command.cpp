@@ -114,6 +114,13 @@ nlohmann::json bench_one(const std::string& path, const Eigen::MatrixXd& V, cons
   return j;
 }
 
+// Median over k of a[k] / b[k] (same length, > 0 entries).
+double median_paired_ratio(const nlohmann::json& a, const nlohmann::json& b) {
+  std::vector<double> ratio;
+  for (std::size_t k = 0; k < a.size(); ++k) ratio.push_back(a[k].get<double>() / b[k].get<double>());
+  return median_after(ratio, 0);
+}
+
 void print_table(const nlohmann::json& results) {
   std::printf("%-28s %9s %-12s %4s %12s %12s %12s %12s %12s %10s %10s\n", "mesh", "vertices", "method", "thr",
               "precompute", "intrinsic", "assembly", "factor", "iteration", "local", "global");
@@ -134,16 +141,25 @@ void print_table(const nlohmann::json& results) {
   }
   std::printf("(milliseconds; iteration, local and global are medians over the measured iterations; with more "
               "than one thread the symbolic analysis runs beside intrinsic + assembly, outside factor)\n");
-  // Ratios to original ARAP on the same mesh, from this one run.
+  // Ratios to original ARAP on the same mesh, from this one run: fastest to fastest, and with several rounds
+  // also the median of the per-round ratios (round k of each method ran back to back, so a burst of other
+  // load mostly cancels out of its ratio: the steadier figure on a shared machine).
   for (const auto& r : results) {
     if (r.contains("error") || r["method"] == "arap") continue;
-    for (const auto& base : results)
-      if (!base.contains("error") && base["method"] == "arap" && base["mesh"] == r["mesh"])
-        std::printf("%s: %s / arap: precompute %.2fx, iteration %.2fx, local %.2fx\n",
-                    r["mesh"].get<std::string>().c_str(), r["method"].get<std::string>().c_str(),
-                    r["precompute_ms"].get<double>() / base["precompute_ms"].get<double>(),
-                    r["iteration_ms"].get<double>() / base["iteration_ms"].get<double>(),
-                    r["local_ms"].get<double>() / base["local_ms"].get<double>());
+    for (const auto& base : results) {
+      if (base.contains("error") || base["method"] != "arap" || base["mesh"] != r["mesh"]) continue;
+      std::printf("%s: %s / arap: precompute %.2fx, iteration %.2fx, local %.2fx",
+                  r["mesh"].get<std::string>().c_str(), r["method"].get<std::string>().c_str(),
+                  r["precompute_ms"].get<double>() / base["precompute_ms"].get<double>(),
+                  r["iteration_ms"].get<double>() / base["iteration_ms"].get<double>(),
+                  r["local_ms"].get<double>() / base["local_ms"].get<double>());
+      const std::size_t rounds = r["precompute_ms_rounds"].size();
+      if (rounds > 1 && base["precompute_ms_rounds"].size() == rounds)
+        std::printf("; median of %zu paired rounds: precompute %.2fx, iteration %.2fx", rounds,
+                    median_paired_ratio(r["precompute_ms_rounds"], base["precompute_ms_rounds"]),
+                    median_paired_ratio(r["iteration_ms_rounds"], base["iteration_ms_rounds"]));
+      std::printf("\n");
+    }
   }
 }
 
@@ -183,8 +199,12 @@ void run_bench(const BenchArguments& args) {
           r["rounds"] = args.rounds;
           if (best[m].is_null()) {
             best[m] = r;
+            best[m]["precompute_ms_rounds"] = nlohmann::json::array({r["precompute_ms"]});
+            best[m]["iteration_ms_rounds"] = nlohmann::json::array({r["iteration_ms"]});
             continue;
           }
+          best[m]["precompute_ms_rounds"].push_back(r["precompute_ms"]);
+          best[m]["iteration_ms_rounds"].push_back(r["iteration_ms"]);
           if (r["precompute_ms"].get<double>() < best[m]["precompute_ms"].get<double>())
             for (const char* key : {"precompute_ms", "intrinsic_ms", "assembly_ms", "factor_ms", "analyze_ms"})
               best[m][key] = r[key];

@@ -313,6 +313,24 @@ TEST(Cli, BenchJsonHasEveryTiming) {
   EXPECT_GT(j["results"][1]["intrinsic_ms"].get<double>(), 0.0);
 }
 
+TEST(Cli, BenchRoundsKeepEveryRoundAndThePairedMedian) {
+  const CliRun run =
+      iarap_cli("bench '" + bunny + "' --methods arap,iarap --iterations 1 --rounds 3 --threads 1 --json");
+  ASSERT_EQ(run.code, 0) << run.out;
+  const json j = parse_json(run);
+  for (const auto& r : j["results"]) {
+    ASSERT_EQ(r["precompute_ms_rounds"].size(), 3u);
+    ASSERT_EQ(r["iteration_ms_rounds"].size(), 3u);
+    double fastest = r["precompute_ms_rounds"][0].get<double>();
+    for (const auto& ms : r["precompute_ms_rounds"]) fastest = std::min(fastest, ms.get<double>());
+    EXPECT_EQ(r["precompute_ms"].get<double>(), fastest); // the table keeps the fastest round
+  }
+  const CliRun text = iarap_cli("bench '" + bunny + "' --methods arap,iarap --iterations 1 --rounds 3 --threads 1");
+  ASSERT_EQ(text.code, 0) << text.out;
+  EXPECT_NE(text.out.find("iarap / arap: precompute"), std::string::npos) << text.out;
+  EXPECT_NE(text.out.find("median of 3 paired rounds: precompute"), std::string::npos) << text.out;
+}
+
 TEST(Cli, BenchSubdivideAndTable) {
   const CliRun run = iarap_cli("bench '" + bunny + "' --methods spokes-rims --iterations 1 --subdivide 1");
   ASSERT_EQ(run.code, 0) << run.out;
