@@ -28,7 +28,9 @@ TEST(IarapRefinedLaplacian, SymmetricConstantsInKernelAndLinearlyPreciseOnFlatBo
   for (int axis = 0; axis < 2; ++axis) {
     const Eigen::VectorXd Lx = L * m.V.col(axis);
     for (int v = 0; v < m.V.rows(); ++v)
-      if (!boundary[static_cast<size_t>(v)]) EXPECT_NEAR(Lx(v), 0.0, 1e-10 * scale) << "vertex " << v;
+      if (!boundary[static_cast<size_t>(v)]) {
+        EXPECT_NEAR(Lx(v), 0.0, 1e-10 * scale) << "vertex " << v;
+      }
   }
   // Same sparsity as the input mesh: inserted points are no unknowns.
   EXPECT_EQ(L.rows(), m.V.rows());

@@ -36,7 +36,9 @@ TEST(SystemPattern, HoldsTheDiagonalAndTheEdgesWithFaceSlots) {
   for (int j = 0; j < n; ++j)
     for (int k = p.matrix.outerIndexPtr()[j]; k < p.matrix.outerIndexPtr()[j + 1]; ++k) {
       got.insert({p.matrix.innerIndexPtr()[k], j});
-      if (k > p.matrix.outerIndexPtr()[j]) EXPECT_LT(p.matrix.innerIndexPtr()[k - 1], p.matrix.innerIndexPtr()[k]);
+      if (k > p.matrix.outerIndexPtr()[j]) {
+        EXPECT_LT(p.matrix.innerIndexPtr()[k - 1], p.matrix.innerIndexPtr()[k]);
+      }
     }
   EXPECT_EQ(got, expected);
   for (int f = 0; f < m.F.rows(); ++f)
