@@ -19,40 +19,38 @@ constexpr double kPi = 3.14159265358979323846;
 
 std::string edge_name(int a, int b) { return "(" + std::to_string(a) + ", " + std::to_string(b) + ")"; }
 
+// Writes the cotangents of face f's three halfedges (of the angle opposite each) from the current lengths;
+// returns 4 x its area, with l[k] the length of halfedge 3f + k and d[k] = 2 l_a l_b cos(angle opposite it)
+// by the law of cosines.
+double set_face_cotangents(SignpostTriangulation& tri, int f, double (&l)[3], double (&d)[3]) {
+  for (int k = 0; k < 3; ++k) l[k] = tri.halfedge_length(3 * f + k);
+  const double four_area = 4.0 * triangle_area_from_lengths(l[0], l[1], l[2]);
+  for (int k = 0; k < 3; ++k) {
+    d[k] = l[(k + 1) % 3] * l[(k + 1) % 3] + l[(k + 2) % 3] * l[(k + 2) % 3] - l[k] * l[k];
+    tri.cot[static_cast<size_t>(3 * f + k)] = d[k] / four_area;
+  }
+  return four_area;
+}
+
 } // namespace
 
-double SignpostTriangulation::face_geometry(int f, double (&angles)[3], double (&cots)[3]) const {
-  const double l[3] = {halfedge_length(3 * f), halfedge_length(3 * f + 1), halfedge_length(3 * f + 2)};
-  const double four_area = 4.0 * triangle_area_from_lengths(l[0], l[1], l[2]);
-  double d[3]; // d[k] = 2 l_a l_b cos(angle opposite halfedge k), by the law of cosines
-  for (int k = 0; k < 3; ++k) d[k] = l[(k + 1) % 3] * l[(k + 1) % 3] + l[(k + 2) % 3] * l[(k + 2) % 3] - l[k] * l[k];
-  for (int k = 0; k < 3; ++k) cots[k] = d[k] / four_area;
+void SignpostTriangulation::update_face_cotangents(int f) {
+  double l[3], d[3];
+  set_face_cotangents(*this, f, l, d);
+}
+
+void SignpostTriangulation::update_face_geometry(int f) {
+  double l[3], d[3];
+  const double four_area = set_face_cotangents(*this, f, l, d);
   // atan2 keeps needles accurate where acos fails; the corner at the tail of halfedge k faces halfedge k + 1.
   // The largest angle (facing the longest side, at least pi/3) is pi minus the other two: no accuracy lost,
   // one atan2 saved per face.
   const int longest = l[0] >= l[1] ? (l[0] >= l[2] ? 0 : 2) : (l[1] >= l[2] ? 1 : 2);
   const int big = (longest + 2) % 3, k1 = (big + 1) % 3, k2 = (big + 2) % 3;
-  angles[k1] = std::atan2(four_area, d[(k1 + 1) % 3]);
-  angles[k2] = std::atan2(four_area, d[(k2 + 1) % 3]);
-  angles[big] = std::max(kPi - angles[k1] - angles[k2], 0.0);
-  return 0.25 * four_area;
-}
-
-void SignpostTriangulation::update_face_cotangents(int f) {
-  const double l[3] = {halfedge_length(3 * f), halfedge_length(3 * f + 1), halfedge_length(3 * f + 2)};
-  const double four_area = 4.0 * triangle_area_from_lengths(l[0], l[1], l[2]);
-  for (int k = 0; k < 3; ++k)
-    cot[static_cast<size_t>(3 * f + k)] =
-        (l[(k + 1) % 3] * l[(k + 1) % 3] + l[(k + 2) % 3] * l[(k + 2) % 3] - l[k] * l[k]) / four_area;
-}
-
-void SignpostTriangulation::update_face_geometry(int f) {
-  double a[3], c[3];
-  face_geometry(f, a, c);
-  for (int k = 0; k < 3; ++k) {
-    angle[static_cast<size_t>(3 * f + k)] = a[k];
-    cot[static_cast<size_t>(3 * f + k)] = c[k];
-  }
+  double* a = angle.data() + 3 * static_cast<size_t>(f);
+  a[k1] = std::atan2(four_area, d[(k1 + 1) % 3]);
+  a[k2] = std::atan2(four_area, d[(k2 + 1) % 3]);
+  a[big] = std::max(kPi - a[k1] - a[k2], 0.0);
 }
 
 SignpostTriangulation build_signpost_triangulation(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
@@ -345,7 +343,7 @@ bool flip_edge(SignpostTriangulation& tri, int e) {
     return angle >= theta ? angle - theta : angle;
   };
   // Corner angles: those at a and b are sums of the old ones and the diagonal splits those at c and d, so
-  // only f0's new angles at c and d need an atan2 (from f0's area, as in face_geometry): two per flip, not six.
+  // only f0's new angles at c and d need an atan2 (from f0's area, as in update_face_geometry): two per flip, not six.
   const double angle_a = tri.angle[static_cast<size_t>(h)] + tri.angle[static_cast<size_t>(t1)];
   const double angle_b = tri.angle[static_cast<size_t>(h1)] + tri.angle[static_cast<size_t>(t)];
   const double angle_c = tri.angle[static_cast<size_t>(h2)], angle_d = tri.angle[static_cast<size_t>(t2)];

@@ -47,11 +47,7 @@ struct SignpostTriangulation {
   int tail(int h) const { return corner_vertex[static_cast<size_t>(h)]; }
   int head(int h) const { return corner_vertex[static_cast<size_t>(next_halfedge(h))]; }
   double halfedge_length(int h) const { return length[static_cast<size_t>(edge[static_cast<size_t>(h)])]; }
-  // All of face f at once, from one area: angles[k] = the interior angle at the tail of halfedge 3f + k,
-  // cots[k] = the cotangent of the angle opposite halfedge 3f + k.
-  // Returns the face's area.
-  double face_geometry(int f, double (&angles)[3], double (&cots)[3]) const;
-  // Recomputes angle[] and cot[] of face f's three halfedges from the current lengths.
+  // Recomputes angle[] and cot[] of face f's three halfedges from the current lengths, from one area.
   void update_face_geometry(int f);
   // Recomputes cot[] only (flips update angle[] themselves).
   void update_face_cotangents(int f);

@@ -123,8 +123,8 @@ ConstraintLayout constraint_layout(const ArapData& data, const Eigen::VectorXi& 
   return layout;
 }
 
-// Column `column` of the symmetric L restricted to the free rows, renumbered (rows stay sorted because
-// free_slot is increasing), appended to out_inner / out_value.
+// Calls emit(row, value) for column `column` of the symmetric L restricted to the free rows, renumbered
+// (rows stay sorted because free_slot is increasing).
 template <typename Emit>
 void free_rows_of_column(const Eigen::SparseMatrix<double>& L, int column, const Eigen::VectorXi& free_slot,
                          Emit&& emit) {
