@@ -65,7 +65,9 @@ void run_info(const InfoArguments& args) {
     if (ok && !args.no_intrinsic) {
       try {
         const auto start = std::chrono::steady_clock::now();
-        const IntrinsicDelaunay intrinsic = intrinsic_delaunay(mesh.V, mesh.F);
+        IntrinsicOptions options;
+        options.keep_traces = false; // the summary reads the segments
+        const IntrinsicDelaunay intrinsic = intrinsic_delaunay(mesh.V, mesh.F, options);
         const std::chrono::duration<double, std::milli> elapsed = std::chrono::steady_clock::now() - start;
         j["intrinsic"] = intrinsic_summary_json(intrinsic);
         j["intrinsic"]["time_ms"] = elapsed.count();

@@ -36,6 +36,7 @@ struct IntrinsicArgs {
   int rounds = 1;
   bool no_mollify = false;
   bool refine_boundary = false;
+  bool keep_traces = false;
 };
 
 // A memory line of /proc/self/status ("VmHWM": peak resident, "VmRSS": current), in MiB; 0 where /proc is
@@ -131,6 +132,7 @@ void run(const IntrinsicArgs& args) {
   IntrinsicOptions options;
   options.mollify = !args.no_mollify;
   options.refine_boundary = args.refine_boundary;
+  options.keep_traces = args.keep_traces || !args.out_edges.empty();
   const double rss_before_mib = rss_mib();
   const double peak_before_mib = peak_rss_mib();
   // The first round is also the one whose memory is reported: later rounds reuse the heap it grew.
@@ -166,6 +168,7 @@ void run(const IntrinsicArgs& args) {
   j["input_faces_mib"] = static_cast<double>(mesh.F.size() * sizeof(int) + mesh.V.size() * sizeof(double)) / (1 << 20);
   j["connectivity_mib"] = faces_mib; // F, #F x 3 ints
   j["segments_mib"] = segments_mib(idt.segments);
+  j["traces_kept"] = options.keep_traces;
   j["preprocess_peak_mib"] = preprocess_peak_mib;
   j["memory_budget_mib"] = 2.0 * (faces_mib + j["segments_mib"].get<double>()); // 2 x (F + segments)
   j["obtuse_boundary_before"] = idt.triangulation.obtuse_boundary_before;
@@ -201,9 +204,9 @@ void run(const IntrinsicArgs& args) {
               j["max_segments_per_edge"].get<int>());
   std::printf("time %.1f ms (flip %.1f, trace %.1f, segments %.1f); peak memory %.1f MiB (input V+F %.1f MiB)\n",
               total_ms, idt.flip_ms, idt.trace_ms, idt.segment_ms, rss_mib, j["input_faces_mib"].get<double>());
-  std::printf("memory: the preprocess peaked %.1f MiB above its start; connectivity F %.1f MiB, segments %.1f MiB, "
+  std::printf("memory%s: the preprocess peaked %.1f MiB above its start; connectivity F %.1f MiB, segments %.1f MiB, "
               "2 x (F + segments) = %.1f MiB\n",
-              preprocess_peak_mib, faces_mib, j["segments_mib"].get<double>(), j["memory_budget_mib"].get<double>());
+              options.keep_traces ? " (traces kept)" : "", preprocess_peak_mib, faces_mib, j["segments_mib"].get<double>(), j["memory_budget_mib"].get<double>());
   if (args.compare_factorization)
     std::printf("cotan Laplacian CHOLMOD factorization %.1f ms; intrinsic preprocess / factorization = %.3f\n",
                 j["cotan_factorization_ms"].get<double>(), j["intrinsic_over_factorization"].get<double>());
@@ -230,6 +233,8 @@ const bool registered = register_command(
        sub->add_flag("--no-mollify", args->no_mollify, "Fail on degenerate triangles instead of mollifying");
        sub->add_flag("--refine-boundary", args->refine_boundary,
                      "Split boundary edges with an obtuse opposite angle (boundary-robust iARAP)");
+       sub->add_flag("--keep-traces", args->keep_traces,
+                     "Keep every edge's traced polyline, as --out-edges does (the memory figures then count them)");
        sub->callback([args] { run(*args); });
      }});
 

@@ -72,6 +72,7 @@ IntrinsicTriangulation export_triangulation(const detail::SignpostTriangulation&
 IntrinsicDelaunay intrinsic_delaunay(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
                                      const IntrinsicOptions& options) {
   IntrinsicDelaunay result;
+  detail::CompactTraces traces;
   {
     // The signpost triangulations live in this scope only, each released as soon as it is no longer needed,
     // so that the peak memory stays near the size of the results (issue 4).
@@ -102,7 +103,7 @@ IntrinsicDelaunay intrinsic_delaunay(const Eigen::MatrixXd& V, const Eigen::Matr
     {
       const detail::EdgesToTrace flipped = detail::flipped_edges(tri);
       std::vector<double>().swap(tri.phi);
-      result.traces = detail::trace_edges(input, fans, flipped, tri.edge_vertex, tri.original_edge);
+      traces = detail::trace_edges(input, fans, flipped, tri.original_edge);
     }
     std::vector<int> inserted_ends;
     for (int hb : tri.inserted_halfedge) {
@@ -126,9 +127,14 @@ IntrinsicDelaunay intrinsic_delaunay(const Eigen::MatrixXd& V, const Eigen::Matr
     result.flip_ms += ms_since(t0);
   }
 
-  const auto t0 = std::chrono::steady_clock::now();
-  result.segments = detail::build_segments(V, result.triangulation, result.traces, options.assemble_B);
+  auto t0 = std::chrono::steady_clock::now();
+  result.segments = detail::build_segments(V, result.triangulation, traces, options.assemble_B);
   result.segment_ms = ms_since(t0);
+  if (options.keep_traces) {
+    t0 = std::chrono::steady_clock::now();
+    result.traces = detail::expand_traces(traces, result.triangulation.E);
+    result.trace_ms += ms_since(t0);
+  }
   return result;
 }
 

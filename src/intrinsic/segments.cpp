@@ -9,12 +9,16 @@
 
 namespace iarap::detail {
 
-Segments build_segments(const Eigen::MatrixXd& V, const IntrinsicTriangulation& tri, const TracedEdges& traces,
+Segments build_segments(const Eigen::MatrixXd& V, const IntrinsicTriangulation& tri, const CompactTraces& traces,
                         bool assemble_B) {
   const int ne = static_cast<int>(tri.E.rows());
   Segments seg;
   seg.edge_start.resize(ne + 1);
-  for (int e = 0; e <= ne; ++e) seg.edge_start(e) = traces.start[static_cast<size_t>(e)] - e;
+  seg.edge_start(0) = 0;
+  for (int e = 0; e < ne; ++e) {
+    const int k = traces.job[static_cast<size_t>(e)];
+    seg.edge_start(e + 1) = seg.edge_start(e) + (k < 0 ? 1 : traces.start[static_cast<size_t>(k) + 1] - traces.start[static_cast<size_t>(k)] - 1);
+  }
   const int ns = seg.edge_start(ne);
   seg.edge.resize(ns);
   seg.face.resize(ns);
@@ -29,8 +33,11 @@ Segments build_segments(const Eigen::MatrixXd& V, const IntrinsicTriangulation& 
 #pragma omp parallel for num_threads(loop_thread_count()) schedule(static)
   for (int e = 0; e < ne; ++e) {
     const double w = tri.cot_weight(e), l = tri.length(e);
-    for (int m = traces.start[static_cast<size_t>(e)]; m + 1 < traces.start[static_cast<size_t>(e + 1)]; ++m) {
-      const int s = m - e;
+    TracePoint ends[2];
+    int count = 0;
+    const TracePoint* points = traces.edge_points(e, tri.E, ends, count);
+    for (int m = 0; m + 1 < count; ++m) {
+      const int s = seg.edge_start(e) + m;
       int idx[3];
       double val[3] = {0, 0, 0};
       int n = 0;
@@ -45,13 +52,13 @@ Segments build_segments(const Eigen::MatrixXd& V, const IntrinsicTriangulation& 
         val[n++] = coefficient;
         return true;
       };
-      const size_t p0 = static_cast<size_t>(m), p1 = static_cast<size_t>(m + 1);
+      const TracePoint &p0 = points[m], &p1 = points[m + 1];
       bool ok = true;
       // b = b(end point) - b(start point); a point is (1 - t) e_a + t e_c, or e_a alone.
-      if (traces.c[p1] < 0) ok &= add(traces.a[p1], 1.0);
-      else ok &= add(traces.a[p1], 1.0 - traces.t[p1]) && add(traces.c[p1], traces.t[p1]);
-      if (traces.c[p0] < 0) ok &= add(traces.a[p0], -1.0);
-      else ok &= add(traces.a[p0], -(1.0 - traces.t[p0])) && add(traces.c[p0], -traces.t[p0]);
+      if (p1.c < 0) ok &= add(p1.a, 1.0);
+      else ok &= add(p1.a, 1.0 - p1.t) && add(p1.c, p1.t);
+      if (p0.c < 0) ok &= add(p0.a, -1.0);
+      else ok &= add(p0.a, -(1.0 - p0.t)) && add(p0.c, -p0.t);
       if (!ok) {
 #pragma omp critical
         {
@@ -72,7 +79,7 @@ Segments build_segments(const Eigen::MatrixXd& V, const IntrinsicTriangulation& 
       }
       const double len = s_hat.norm();
       seg.edge(s) = e;
-      seg.face(s) = traces.face[p0];
+      seg.face(s) = p0.face;
       seg.s_hat.row(s) = s_hat.transpose();
       seg.length(s) = len;
       seg.weight(s) = len > 1e-12 * l ? w * l / len : 0.0; // Eq. 11: w_ij^t = sigma_ij^t w_ij, sigma = |e| / |s|

@@ -23,11 +23,6 @@ struct Vec2 {
 double cross(Vec2 a, Vec2 b) { return a.x * b.y - a.y * b.x; }
 double norm(Vec2 a) { return std::sqrt(a.x * a.x + a.y * a.y); } // mesh-scale values: no hypot needed
 
-struct TracePoint {
-  int a, c, face;
-  double t;
-};
-
 // Position of the third corner of the face left of the directed segment pa -> pb.
 Vec2 third_corner(Vec2 pa, Vec2 pb, double l_ab, double l_ac, double l_bc) {
   const Vec2 ex = (pb - pa) * (1.0 / norm(pb - pa));
@@ -185,12 +180,11 @@ EdgesToTrace flipped_edges(const SignpostTriangulation& intrinsic) {
   return flipped;
 }
 
-TracedEdges trace_edges(const InputTriangulation& input, const VertexFans& fans, const EdgesToTrace& flipped,
-                        const std::vector<int>& edge_vertex, const std::vector<int>& original_edge) {
+CompactTraces trace_edges(const InputTriangulation& input, const VertexFans& fans, const EdgesToTrace& flipped,
+                          const std::vector<int>& original_edge) {
   const int ne = static_cast<int>(original_edge.size());
   const int nk = static_cast<int>(flipped.edge.size());
-  // Pass 1 traces the flipped edges into per-thread buffers. Pass 2 writes every edge's points at its CSR
-  // offset, the unflipped ones straight from edge-ordered arrays.
+  // The flipped edges are traced into per-thread buffers, then concatenated in edge order.
   std::vector<int> count(static_cast<size_t>(nk)), owner(static_cast<size_t>(nk)), offset(static_cast<size_t>(nk));
   std::vector<std::vector<TracePoint>> buffers(static_cast<size_t>(omp_get_max_threads()));
   std::string error;
@@ -215,15 +209,38 @@ TracedEdges trace_edges(const InputTriangulation& input, const VertexFans& fans,
   }
   if (!error.empty()) throw SolverError(error);
 
-  TracedEdges traces;
-  traces.start.resize(static_cast<size_t>(ne + 1));
-  traces.start[0] = 0;
-  // job[e]: the index of e among the flipped edges, or -1 (kept in traces.start's slot until the scan).
-  std::vector<int> job(static_cast<size_t>(ne), -1);
-  for (int k = 0; k < nk; ++k) job[static_cast<size_t>(flipped.edge[static_cast<size_t>(k)])] = k;
+  CompactTraces compact;
+  compact.start.resize(static_cast<size_t>(nk) + 1);
+  compact.start[0] = 0;
+  for (int k = 0; k < nk; ++k) compact.start[static_cast<size_t>(k) + 1] = compact.start[static_cast<size_t>(k)] + count[static_cast<size_t>(k)];
+  compact.points.resize(static_cast<size_t>(compact.start.back()));
+  for (int k = 0; k < nk; ++k) {
+    const TracePoint* from = buffers[static_cast<size_t>(owner[static_cast<size_t>(k)])].data() + offset[static_cast<size_t>(k)];
+    std::copy(from, from + count[static_cast<size_t>(k)], compact.points.begin() + compact.start[static_cast<size_t>(k)]);
+  }
+  compact.job.assign(static_cast<size_t>(ne), -1);
+  compact.unflipped_face.resize(static_cast<size_t>(ne));
+  for (int k = 0; k < nk; ++k) compact.job[static_cast<size_t>(flipped.edge[static_cast<size_t>(k)])] = k;
+#pragma omp parallel for num_threads(loop_thread_count()) schedule(static)
   for (int e = 0; e < ne; ++e) {
-    const int k = job[static_cast<size_t>(e)];
-    traces.start[static_cast<size_t>(e + 1)] = traces.start[static_cast<size_t>(e)] + (k < 0 ? 2 : count[static_cast<size_t>(k)]);
+    // The input halfedge with the edge's tail carries the one segment (same orientation rule as E).
+    const int original = original_edge[static_cast<size_t>(e)];
+    compact.unflipped_face[static_cast<size_t>(e)] =
+        original >= 0 ? input.edge_halfedge[static_cast<size_t>(original)] / 3 : -1;
+  }
+  return compact;
+}
+
+TracedEdges expand_traces(const CompactTraces& compact, const Eigen::MatrixXi& E) {
+  const int ne = static_cast<int>(compact.job.size());
+  TracedEdges traces;
+  traces.start.resize(static_cast<size_t>(ne) + 1);
+  traces.start[0] = 0;
+  for (int e = 0; e < ne; ++e) {
+    const int k = compact.job[static_cast<size_t>(e)];
+    traces.start[static_cast<size_t>(e) + 1] =
+        traces.start[static_cast<size_t>(e)] +
+        (k < 0 ? 2 : compact.start[static_cast<size_t>(k) + 1] - compact.start[static_cast<size_t>(k)]);
   }
   const size_t np = static_cast<size_t>(traces.start.back());
   traces.a.resize(np);
@@ -232,20 +249,11 @@ TracedEdges trace_edges(const InputTriangulation& input, const VertexFans& fans,
   traces.t.resize(np);
 #pragma omp parallel for num_threads(loop_thread_count()) schedule(static)
   for (int e = 0; e < ne; ++e) {
+    TracePoint ends[2];
+    int count = 0;
+    const TracePoint* from = compact.edge_points(e, E, ends, count);
     const size_t p = static_cast<size_t>(traces.start[static_cast<size_t>(e)]);
-    const int k = job[static_cast<size_t>(e)];
-    if (k < 0) {
-      // The input halfedge with the edge's tail carries the one segment (same orientation rule as E).
-      traces.a[p] = edge_vertex[static_cast<size_t>(2 * e)];
-      traces.a[p + 1] = edge_vertex[static_cast<size_t>(2 * e + 1)];
-      traces.c[p] = traces.c[p + 1] = -1;
-      traces.t[p] = traces.t[p + 1] = 0.0;
-      traces.face[p] = input.edge_halfedge[static_cast<size_t>(original_edge[static_cast<size_t>(e)])] / 3;
-      traces.face[p + 1] = -1;
-      continue;
-    }
-    const TracePoint* from = buffers[static_cast<size_t>(owner[static_cast<size_t>(k)])].data() + offset[static_cast<size_t>(k)];
-    for (int q = 0; q < count[static_cast<size_t>(k)]; ++q) {
+    for (int q = 0; q < count; ++q) {
       traces.a[p + static_cast<size_t>(q)] = from[q].a;
       traces.c[p + static_cast<size_t>(q)] = from[q].c;
       traces.face[p + static_cast<size_t>(q)] = from[q].face;

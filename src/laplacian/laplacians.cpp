@@ -52,6 +52,7 @@ Eigen::SparseMatrix<double> laplacian(const Eigen::MatrixXd& V, const Eigen::Mat
     // Its own triangulation: the refined one has inserted boundary points a precomputed plain one lacks.
     IntrinsicOptions options;
     options.refine_boundary = true;
+    options.keep_traces = false;
     return iarap_laplacian(intrinsic_delaunay(V, F, options).segments, static_cast<int>(V.rows()));
   }
   std::optional<IntrinsicDelaunay> storage;

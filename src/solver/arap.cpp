@@ -220,6 +220,7 @@ ArapData arap_precompute(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, con
   case ArapMethod::Iarap: {
     IntrinsicOptions intrinsic_options = options.intrinsic;
     intrinsic_options.assemble_B = false; // L is summed from the elements
+    intrinsic_options.keep_traces = false;
     const IntrinsicDelaunay intrinsic = intrinsic_delaunay(V, F, intrinsic_options);
     data.timings.intrinsic_ms = ms_since(start);
     start = Clock::now();

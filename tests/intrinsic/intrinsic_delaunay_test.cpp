@@ -231,6 +231,55 @@ TEST(IntrinsicDelaunay, MatrixBIsOptional) {
   }
 }
 
+namespace {
+// A flat strip whose boundary triangles are obtuse: the top row is shifted so that the Delaunay
+// triangle of every bottom edge has its apex inside the edge's diametral circle.
+TestMesh obtuse_strip() {
+  TestMesh m;
+  const int n = 8;
+  m.V.resize(2 * (n + 1), 3);
+  for (int i = 0; i <= n; ++i) {
+    m.V.row(i) << i, 0, 0;
+    m.V.row(n + 1 + i) << i + 0.5, 0.2, 0;
+  }
+  m.F.resize(2 * n, 3);
+  for (int i = 0; i < n; ++i) {
+    m.F.row(2 * i) << i, i + 1, n + 1 + i;
+    m.F.row(2 * i + 1) << i + 1, n + 2 + i, n + 1 + i;
+  }
+  return m;
+}
+} // namespace
+
+// Without traces the segments come from the compact traces (points of flipped edges only): they must be
+// the same bit for bit, on a non-Delaunay closed mesh and on a boundary mesh with inserted points.
+TEST(IntrinsicDelaunay, TracesAreOptional) {
+  const MeshData bunny = read_mesh(iarap::test::data_path("bunny.off"));
+  TestMesh grid = iarap::test::planar_grid(10, 0.3, 3);
+  iarap::test::random_planar_flips(grid, 120, 11);
+  const TestMesh strip = obtuse_strip();
+  const std::pair<const char*, std::pair<Eigen::MatrixXd, Eigen::MatrixXi>> cases[] = {
+      {"bunny", {bunny.V, bunny.F}}, {"flipped grid", {grid.V, grid.F}}, {"obtuse strip", {strip.V, strip.F}}};
+  for (const auto& [name, mesh] : cases) {
+    IntrinsicOptions options;
+    options.refine_boundary = true;
+    const IntrinsicDelaunay with = intrinsic_delaunay(mesh.first, mesh.second, options);
+    options.keep_traces = false;
+    const IntrinsicDelaunay without = intrinsic_delaunay(mesh.first, mesh.second, options);
+    EXPECT_TRUE(without.traces.start.empty() && without.traces.a.empty()) << name;
+    EXPECT_EQ(with.traces.start.size(), static_cast<size_t>(with.triangulation.E.rows()) + 1) << name;
+    // Edges that are not input edges (flipped, or made by a boundary split) exist, so the compact path runs.
+    if (name == std::string("obtuse strip")) EXPECT_GT(with.triangulation.inserted_t.size(), 0);
+    else EXPECT_GT(with.triangulation.flips, 0) << name;
+    EXPECT_EQ(without.segments.edge_start, with.segments.edge_start) << name;
+    EXPECT_EQ(without.segments.face, with.segments.face) << name;
+    EXPECT_EQ(without.segments.b_index, with.segments.b_index) << name;
+    EXPECT_EQ(without.segments.b_value, with.segments.b_value) << name;
+    EXPECT_EQ(without.segments.weight, with.segments.weight) << name;
+    EXPECT_EQ(Eigen::MatrixXd(without.segments.B - with.segments.B).cwiseAbs().maxCoeff(), 0.0) << name;
+  }
+}
+
 TEST(IntrinsicDelaunay, SharedSurfaceMeshes) {
   int tested = 0;
   for (const std::string name :
@@ -376,20 +425,7 @@ TEST(IntrinsicDelaunay, NonManifoldInputIsNamed) {
 }
 
 TEST(IntrinsicDelaunay, BoundaryRefinementRemovesObtuseBoundaryAngles) {
-  // A flat strip whose boundary triangles are obtuse: the top row is shifted so that the Delaunay
-  // triangle of every bottom edge has its apex inside the edge's diametral circle.
-  TestMesh m;
-  const int n = 8;
-  m.V.resize(2 * (n + 1), 3);
-  for (int i = 0; i <= n; ++i) {
-    m.V.row(i) << i, 0, 0;
-    m.V.row(n + 1 + i) << i + 0.5, 0.2, 0;
-  }
-  m.F.resize(2 * n, 3);
-  for (int i = 0; i < n; ++i) {
-    m.F.row(2 * i) << i, i + 1, n + 1 + i;
-    m.F.row(2 * i + 1) << i + 1, n + 2 + i, n + 1 + i;
-  }
+  const TestMesh m = obtuse_strip();
   IntrinsicOptions options;
   options.refine_boundary = true;
   const IntrinsicDelaunay paper = intrinsic_delaunay(m.V, m.F);

@@ -28,6 +28,11 @@ struct IntrinsicOptions {
   // Assemble Segments::B. The ARAP solver sums its system matrix from the segments' b and weights
   // directly and turns this off (B is 12 bytes per non-zero and a sequential counting sort).
   bool assemble_B = true;
+  // Return every edge's traced polyline (IntrinsicDelaunay::traces). The segments do not need them: an
+  // edge never flipped is its input edge, so the preprocess keeps points of the flipped edges only and
+  // builds the segments from those. Off, traces stays empty and the preprocess's peak memory drops by
+  // ~20 bytes per edge (the solver and the Laplacians built from segments turn it off).
+  bool keep_traces = true;
 };
 
 // The intrinsic triangulation after flipping to Delaunay. In general a Delta-complex: two edges may
@@ -84,7 +89,7 @@ struct Segments {
 
 struct IntrinsicDelaunay {
   IntrinsicTriangulation triangulation;
-  TracedEdges traces;
+  TracedEdges traces;             // empty when IntrinsicOptions::keep_traces is off
   Segments segments;
   double flip_ms = 0, trace_ms = 0, segment_ms = 0;
 };
