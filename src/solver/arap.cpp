@@ -9,9 +9,12 @@
 
 #include <omp.h>
 
+#include <functional>
+#include <optional>
+#include <exception>
+#include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <future>
 #include <string>
 
 namespace iarap {
@@ -169,12 +172,49 @@ void commit_layout(ArapData& data, const Eigen::VectorXi& fixed, ConstraintLayou
   data.free_slot = std::move(layout.free_slot);
 }
 
+// Runs analyze() and build() at the same time when two threads are allowed, else one after the other; the
+// first exception of either is rethrown after both have ended.
+//
+// Both run inside one OpenMP region of two threads: analyze() on the pool's second thread, build() on the
+// caller's. A separate std::thread for the analysis competed on a 2-core machine with the pool's idle
+// thread, which spins for milliseconds after every parallel loop (the previous solve's, say) before it
+// sleeps. Meanwhile build()'s own loops run on the cores the analysis leaves (CoreReservation; threads.h
+// says why): one on a 2-core machine; on more, as nested teams, which the region allows for its duration.
+void run_beside(const std::function<void()>& analyze, const std::function<void()>& build) {
+  std::exception_ptr analysis_error, build_error;
+  bool beside = false;
+  if (omp_get_max_threads() > 1 && !omp_in_parallel()) {
+    const CoreReservation core;
+    const int active_levels = omp_get_max_active_levels();
+    omp_set_max_active_levels(std::max(active_levels, 2));
+#pragma omp parallel num_threads(2)
+    {
+      if (omp_get_num_threads() == 2) {
+        if (omp_get_thread_num() == 0) beside = true;
+        try {
+          if (omp_get_thread_num() == 1) analyze();
+          else build();
+        } catch (...) {
+#pragma omp critical(iarap_run_beside)
+          (omp_get_thread_num() == 1 ? analysis_error : build_error) = std::current_exception();
+        }
+      }
+    }
+    omp_set_max_active_levels(active_levels);
+  }
+  if (!beside) {
+    analyze();
+    build();
+  }
+  if (build_error) std::rethrow_exception(build_error);
+  if (analysis_error) std::rethrow_exception(analysis_error);
+}
+
 } // namespace
 
 ArapData arap_precompute(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const Eigen::VectorXi& fixed,
                          const ArapOptions& options) {
   check_arap_mesh(V, F);
-  auto start = Clock::now();
   ArapData data;
   data.method = options.method;
   data.pin_unconstrained_components = options.pin_unconstrained_components;
@@ -184,8 +224,7 @@ ArapData arap_precompute(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, con
   ConstraintLayout layout = constraint_layout(data, fixed); // bad constraints fail before any heavy work
 
   // The pattern of L (hence of L_ff) follows from F alone, so the pattern and CHOLMOD's symbolic analysis are
-  // built on a second thread while the elements (for iARAP: the intrinsic triangulation) are built; with one
-  // thread, first. Nothing below reads `pattern`, `L_ff` or `solver` before analysis.get().
+  // built beside the elements (for iARAP: the intrinsic triangulation); with one thread, first.
   SystemPattern pattern;
   Eigen::SparseMatrix<double> L_ff, L_fc;
   SparseCholesky solver;
@@ -197,54 +236,51 @@ ArapData arap_precompute(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, con
     solver.analyze(L_ff);
     analyze_ms = ms_since(t);
   };
-  std::future<void> analysis;
-  if (omp_get_max_threads() > 1) {
-    // The analysis holds a core until it ends: meanwhile the loops of the element / intrinsic build run on
-    // the others (threads.h says why), then on all.
-    analysis = std::async(std::launch::async, [&analyze, core = CoreReservation()]() mutable {
-      const CoreReservation held = std::move(core);
-      analyze();
-    });
-  }
-  else analyze();
-  data.timings.factor_ms = ms_since(start);
-
+  // What is built beside the analysis: for iARAP the intrinsic triangulation (its elements follow on every
+  // thread once the analysis is done), for the others the elements.
+  std::optional<IntrinsicDelaunay> intrinsic;
+  double build_ms = 0.0;
+  auto build = [&] {
+    const auto t = Clock::now();
+    switch (options.method) {
+    case ArapMethod::Arap:
+      data.elements = arap_edge_elements(V, F);
+      break;
+    case ArapMethod::SpokesRims:
+      data.elements = spokes_rims_elements(V, F);
+      break;
+    case ArapMethod::Iarap: {
+      IntrinsicOptions intrinsic_options = options.intrinsic;
+      intrinsic_options.assemble_B = false; // L is summed from the elements
+      intrinsic_options.keep_traces = false;
+      intrinsic = intrinsic_delaunay(V, F, intrinsic_options);
+      break;
+    }
+    }
+    build_ms = ms_since(t);
+  };
+  auto start = Clock::now();
+  run_beside(analyze, build);
+  // What the build did not hide of the analysis counts as factorization time.
+  data.timings.factor_ms = std::max(0.0, ms_since(start) - build_ms);
+  if (intrinsic) data.timings.intrinsic_ms = build_ms;
+  else data.timings.assembly_ms = build_ms;
   start = Clock::now();
-  switch (options.method) {
-  case ArapMethod::Arap:
-    data.elements = arap_edge_elements(V, F);
-    break;
-  case ArapMethod::SpokesRims:
-    data.elements = spokes_rims_elements(V, F);
-    break;
-  case ArapMethod::Iarap: {
-    IntrinsicOptions intrinsic_options = options.intrinsic;
-    intrinsic_options.assemble_B = false; // L is summed from the elements
-    intrinsic_options.keep_traces = false;
-    const IntrinsicDelaunay intrinsic = intrinsic_delaunay(V, F, intrinsic_options);
-    data.timings.intrinsic_ms = ms_since(start);
-    start = Clock::now();
-    data.elements = iarap_elements(V, intrinsic);
-    const IntrinsicTriangulation& t = intrinsic.triangulation;
-    data.intrinsic = {t.flips,      t.non_delaunay_before,          t.non_delaunay_after,     t.mollify_delta,
-                      t.E.rows(),   intrinsic.segments.edge.size(), t.obtuse_boundary_before, t.obtuse_boundary_after,
+  if (intrinsic) {
+    data.elements = iarap_elements(V, *intrinsic);
+    const IntrinsicTriangulation& t = intrinsic->triangulation;
+    data.intrinsic = {t.flips,      t.non_delaunay_before,           t.non_delaunay_after,     t.mollify_delta,
+                      t.E.rows(),   intrinsic->segments.edge.size(), t.obtuse_boundary_before, t.obtuse_boundary_after,
                       t.inserted_t.size()};
-    break;
+    intrinsic.reset();
   }
-  }
-  data.timings.assembly_ms = ms_since(start);
-
-  start = Clock::now();
-  if (analysis.valid()) analysis.get();
-  const double wait_ms = ms_since(start);
-  start = Clock::now();
   data.L = element_system_matrix(data.elements, F, pattern);
   data.timings.assembly_ms += ms_since(start);
   start = Clock::now();
   split_system(data.L, layout, L_ff, &L_fc);
   solver.factorize(L_ff); // throws SolverError
   data.timings.analyze_ms = analyze_ms;
-  data.timings.factor_ms += wait_ms + ms_since(start);
+  data.timings.factor_ms += ms_since(start);
   data.R.assign(static_cast<size_t>(data.elements.num_cells), Eigen::Matrix3d::Identity());
   commit_layout(data, fixed, layout, solver, L_fc);
   return data;

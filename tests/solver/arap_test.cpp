@@ -245,6 +245,33 @@ TEST(Arap, BadConstraintSetsAreNamed) {
   EXPECT_NO_THROW(arap_solve(data, targets, U));
 }
 
+// The element build runs beside CHOLMOD's analysis in a two-thread region: an error it throws there must
+// come out of arap_precompute as the same typed exception, on one thread and on two.
+TEST(Arap, ErrorsFromTheBuildBesideTheAnalysisAreRethrown) {
+  Eigen::MatrixXd V(4, 3);
+  V << 0, 0, 0, 1, 0, 0, 0, 1, 0, 2, 0, 0;
+  Eigen::MatrixXi F(2, 3);
+  F << 0, 1, 2, 0, 3, 1; // face 1 has three collinear corners: zero area
+  ArapOptions iarap_strict = with_method(ArapMethod::Iarap);
+  iarap_strict.intrinsic.mollify = false;
+  for (const int threads : {1, 2}) {
+    set_thread_count(threads);
+    try {
+      arap_precompute(V, F, Eigen::Vector2i(0, 1), with_method(ArapMethod::Arap));
+      ADD_FAILURE() << "expected TopologyError, " << threads << " threads";
+    } catch (const TopologyError& e) {
+      EXPECT_NE(std::string(e.what()).find("face 1 is degenerate"), std::string::npos) << e.what();
+    }
+    try {
+      arap_precompute(V, F, Eigen::Vector2i(0, 1), iarap_strict);
+      ADD_FAILURE() << "expected TopologyError, " << threads << " threads";
+    } catch (const TopologyError& e) {
+      EXPECT_NE(std::string(e.what()).find("face 1 is degenerate"), std::string::npos) << e.what();
+    }
+  }
+  set_thread_count(0);
+}
+
 TEST(Arap, UnconstrainedComponentIsNamedOrPinned) {
   const SolverMesh m = test::two_copies(test::bumpy_patch(3)); // components 0 (0..15) and 1 (16..31)
   const Eigen::VectorXi fixed = Eigen::Vector2i(0, 3);
