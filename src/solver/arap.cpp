@@ -9,12 +9,12 @@
 
 #include <omp.h>
 
-#include <functional>
-#include <optional>
-#include <exception>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <exception>
+#include <functional>
+#include <optional>
 #include <string>
 
 namespace iarap {
