@@ -140,7 +140,7 @@ void print_table(const nlohmann::json& results) {
                 r["local_ms"].get<double>(), r["global_ms"].get<double>());
   }
   std::printf("(milliseconds; iteration, local and global are medians over the measured iterations; with more "
-              "than one thread the symbolic analysis runs beside the intrinsic triangulation (iarap) or the element build "
+              "than one thread the symbolic analysis runs beside the intrinsic flips (iarap) or the element build "
               "(the others), and factor counts only the part of it they did not hide)\n");
   // Ratios to original ARAP on the same mesh, from this one run: fastest to fastest, and with several rounds
   // also the median of the per-round ratios (round k of each method ran back to back, so a burst of other

@@ -1,5 +1,6 @@
 #include "iarap/intrinsic/intrinsic_delaunay.h"
 
+#include "intrinsic_phases.h"
 #include "segments.h"
 #include "signpost_triangulation.h"
 #include "trace_edges.h"
@@ -69,73 +70,82 @@ IntrinsicTriangulation export_triangulation(const detail::SignpostTriangulation&
 
 } // namespace
 
-IntrinsicDelaunay intrinsic_delaunay(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
-                                     const IntrinsicOptions& options) {
-  IntrinsicDelaunay result;
-  detail::CompactTraces traces;
-  {
-    // The signpost triangulations live in this scope only, each released as soon as it is no longer needed,
-    // so that the peak memory stays near the size of the results (issue 4).
-    auto t0 = std::chrono::steady_clock::now();
-    detail::VertexFans fans;
-    detail::SignpostTriangulation tri = detail::build_signpost_triangulation(
-        V, F, options.mollify, options.mollify_epsilon, fans, options.refine_boundary);
-    // The tracer and the boundary refinement read the unflipped connectivity, lengths and angles only.
-    detail::InputTriangulation input = detail::input_triangulation(tri);
-    const detail::FlipStats stats = detail::flip_to_delaunay(tri, options.delaunay_tolerance);
-    detail::RefineStats refine; // refine_obtuse_boundary counts the obtuse boundary edges itself
-    if (!options.refine_boundary) {
-      refine.obtuse_before = refine.obtuse_after = detail::count_obtuse_boundary_edges(tri, options.delaunay_tolerance);
-    } else {
-      int boundary_edges = 0;
-      for (const auto& h : input.halfedge) boundary_edges += h.twin < 0;
-      const int cap = options.max_boundary_insertions >= 0 ? options.max_boundary_insertions : 4 * boundary_edges + 100;
-      refine = detail::refine_obtuse_boundary(tri, input, options.delaunay_tolerance, cap);
-    }
-    const int non_delaunay_after = refine.inserted > 0 ? detail::count_non_delaunay(tri, options.delaunay_tolerance)
-                                                       : stats.non_delaunay_after;
-    result.flip_ms = ms_since(t0);
+namespace detail {
 
-    // The tracer needs little of the flipped triangulation: its flipped edges (a compact list), and the
-    // endpoints of the others. The input copy and its fans are released right after tracing, before the
-    // triangulation is exported, so that the three are never in memory with the export.
-    t0 = std::chrono::steady_clock::now();
-    {
-      const detail::EdgesToTrace flipped = detail::flipped_edges(tri);
-      std::vector<double>().swap(tri.phi);
-      traces = detail::trace_edges(input, fans, flipped, tri.original_edge);
-    }
-    std::vector<int> inserted_ends;
-    for (int hb : tri.inserted_halfedge) {
-      inserted_ends.push_back(input.tail(hb));
-      inserted_ends.push_back(input.head(hb));
-    }
-    input = {};
-    fans = {};
-    result.trace_ms = ms_since(t0);
-
-    t0 = std::chrono::steady_clock::now();
-    result.triangulation = export_triangulation(tri, inserted_ends);
-    tri = {};
-    IntrinsicTriangulation& out = result.triangulation;
-    out.obtuse_boundary_before = refine.obtuse_before;
-    out.obtuse_boundary_after = refine.obtuse_after;
-    out.refine_rounds = refine.rounds;
-    out.flips = stats.flips + refine.flips;
-    out.non_delaunay_before = stats.non_delaunay_before;
-    out.non_delaunay_after = non_delaunay_after;
-    result.flip_ms += ms_since(t0);
+FlippedTriangulation flip_phase(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const IntrinsicOptions& options) {
+  const auto t0 = std::chrono::steady_clock::now();
+  FlippedTriangulation out;
+  out.tri = build_signpost_triangulation(V, F, options.mollify, options.mollify_epsilon, out.fans,
+                                         options.refine_boundary);
+  // The tracer and the boundary refinement read the unflipped connectivity, lengths and angles only.
+  out.input = input_triangulation(out.tri);
+  out.stats = flip_to_delaunay(out.tri, options.delaunay_tolerance);
+  if (!options.refine_boundary) { // refine_obtuse_boundary counts the obtuse boundary edges itself
+    out.refine.obtuse_before = out.refine.obtuse_after = count_obtuse_boundary_edges(out.tri, options.delaunay_tolerance);
+  } else {
+    int boundary_edges = 0;
+    for (const auto& h : out.input.halfedge) boundary_edges += h.twin < 0;
+    const int cap = options.max_boundary_insertions >= 0 ? options.max_boundary_insertions : 4 * boundary_edges + 100;
+    out.refine = refine_obtuse_boundary(out.tri, out.input, options.delaunay_tolerance, cap);
   }
+  out.non_delaunay_after = out.refine.inserted > 0 ? count_non_delaunay(out.tri, options.delaunay_tolerance)
+                                                   : out.stats.non_delaunay_after;
+  out.flip_ms = ms_since(t0);
+  return out;
+}
 
+IntrinsicDelaunay trace_phase(const Eigen::MatrixXd& V, FlippedTriangulation&& flipped, const IntrinsicOptions& options) {
+  IntrinsicDelaunay result;
+  result.flip_ms = flipped.flip_ms;
+  SignpostTriangulation& tri = flipped.tri;
+  // The tracer needs little of the flipped triangulation: its flipped edges (a compact list), and the
+  // endpoints of the others. The input copy and its fans are released right after tracing, before the
+  // triangulation is exported, so that the three are never in memory with the export; the signpost
+  // triangulation goes before the segments are built.
   auto t0 = std::chrono::steady_clock::now();
-  result.segments = detail::build_segments(V, result.triangulation, traces, options.assemble_B);
+  CompactTraces traces;
+  {
+    const EdgesToTrace flipped_edges_list = flipped_edges(tri);
+    std::vector<double>().swap(tri.phi);
+    traces = trace_edges(flipped.input, flipped.fans, flipped_edges_list, tri.original_edge);
+  }
+  std::vector<int> inserted_ends;
+  for (int hb : tri.inserted_halfedge) {
+    inserted_ends.push_back(flipped.input.tail(hb));
+    inserted_ends.push_back(flipped.input.head(hb));
+  }
+  flipped.input = {};
+  flipped.fans = {};
+  result.trace_ms = ms_since(t0);
+
+  t0 = std::chrono::steady_clock::now();
+  result.triangulation = export_triangulation(tri, inserted_ends);
+  tri = {};
+  IntrinsicTriangulation& out = result.triangulation;
+  out.obtuse_boundary_before = flipped.refine.obtuse_before;
+  out.obtuse_boundary_after = flipped.refine.obtuse_after;
+  out.refine_rounds = flipped.refine.rounds;
+  out.flips = flipped.stats.flips + flipped.refine.flips;
+  out.non_delaunay_before = flipped.stats.non_delaunay_before;
+  out.non_delaunay_after = flipped.non_delaunay_after;
+  result.flip_ms += ms_since(t0);
+
+  t0 = std::chrono::steady_clock::now();
+  result.segments = build_segments(V, result.triangulation, traces, options.assemble_B);
   result.segment_ms = ms_since(t0);
   if (options.keep_traces) {
     t0 = std::chrono::steady_clock::now();
-    result.traces = detail::expand_traces(traces, result.triangulation.E);
+    result.traces = expand_traces(traces, result.triangulation.E);
     result.trace_ms += ms_since(t0);
   }
   return result;
+}
+
+} // namespace detail
+
+IntrinsicDelaunay intrinsic_delaunay(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
+                                     const IntrinsicOptions& options) {
+  return detail::trace_phase(V, detail::flip_phase(V, F, options), options);
 }
 
 } // namespace iarap

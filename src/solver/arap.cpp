@@ -7,6 +7,8 @@
 #include "iarap/solver/fit_rotations.h"
 #include "iarap/solver/system_pattern.h"
 
+#include "../intrinsic/intrinsic_phases.h"
+
 #include <omp.h>
 
 #include <algorithm>
@@ -236,9 +238,12 @@ ArapData arap_precompute(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, con
     solver.analyze(L_ff);
     analyze_ms = ms_since(t);
   };
-  // What is built beside the analysis: for iARAP the intrinsic triangulation (its elements follow on every
-  // thread once the analysis is done), for the others the elements.
-  std::optional<IntrinsicDelaunay> intrinsic;
+  // What is built beside the analysis: for iARAP the flips of the intrinsic triangulation (tracing, segments
+  // and elements follow on every thread once the analysis is done), for the others the elements.
+  IntrinsicOptions intrinsic_options = options.intrinsic;
+  intrinsic_options.assemble_B = false; // L is summed from the elements
+  intrinsic_options.keep_traces = false;
+  std::optional<detail::FlippedTriangulation> flipped;
   double build_ms = 0.0;
   auto build = [&] {
     const auto t = Clock::now();
@@ -249,13 +254,9 @@ ArapData arap_precompute(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, con
     case ArapMethod::SpokesRims:
       data.elements = spokes_rims_elements(V, F);
       break;
-    case ArapMethod::Iarap: {
-      IntrinsicOptions intrinsic_options = options.intrinsic;
-      intrinsic_options.assemble_B = false; // L is summed from the elements
-      intrinsic_options.keep_traces = false;
-      intrinsic = intrinsic_delaunay(V, F, intrinsic_options);
+    case ArapMethod::Iarap:
+      flipped = detail::flip_phase(V, F, intrinsic_options);
       break;
-    }
     }
     build_ms = ms_since(t);
   };
@@ -263,17 +264,21 @@ ArapData arap_precompute(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, con
   run_beside(analyze, build);
   // What the build did not hide of the analysis counts as factorization time.
   data.timings.factor_ms = std::max(0.0, ms_since(start) - build_ms);
-  if (intrinsic) data.timings.intrinsic_ms = build_ms;
-  else data.timings.assembly_ms = build_ms;
-  start = Clock::now();
-  if (intrinsic) {
-    data.elements = iarap_elements(V, *intrinsic);
-    const IntrinsicTriangulation& t = intrinsic->triangulation;
-    data.intrinsic = {t.flips,      t.non_delaunay_before,           t.non_delaunay_after,     t.mollify_delta,
-                      t.E.rows(),   intrinsic->segments.edge.size(), t.obtuse_boundary_before, t.obtuse_boundary_after,
+  if (!flipped) data.timings.assembly_ms = build_ms;
+  if (flipped) {
+    start = Clock::now();
+    const IntrinsicDelaunay intrinsic = detail::trace_phase(V, std::move(*flipped), intrinsic_options);
+    flipped.reset();
+    data.timings.intrinsic_ms = build_ms + ms_since(start);
+    start = Clock::now();
+    data.elements = iarap_elements(V, intrinsic);
+    data.timings.assembly_ms = ms_since(start);
+    const IntrinsicTriangulation& t = intrinsic.triangulation;
+    data.intrinsic = {t.flips,      t.non_delaunay_before,          t.non_delaunay_after,     t.mollify_delta,
+                      t.E.rows(),   intrinsic.segments.edge.size(), t.obtuse_boundary_before, t.obtuse_boundary_after,
                       t.inserted_t.size()};
-    intrinsic.reset();
   }
+  start = Clock::now();
   data.L = element_system_matrix(data.elements, F, pattern);
   data.timings.assembly_ms += ms_since(start);
   start = Clock::now();
