@@ -206,7 +206,8 @@ void run(const IntrinsicArgs& args) {
               total_ms, idt.flip_ms, idt.trace_ms, idt.segment_ms, rss_mib, j["input_faces_mib"].get<double>());
   std::printf("memory%s: the preprocess peaked %.1f MiB above its start; connectivity F %.1f MiB, segments %.1f MiB, "
               "2 x (F + segments) = %.1f MiB\n",
-              options.keep_traces ? " (traces kept)" : "", preprocess_peak_mib, faces_mib, j["segments_mib"].get<double>(), j["memory_budget_mib"].get<double>());
+              options.keep_traces ? " (traces kept)" : "", preprocess_peak_mib, faces_mib,
+              j["segments_mib"].get<double>(), j["memory_budget_mib"].get<double>());
   if (args.compare_factorization)
     std::printf("cotan Laplacian CHOLMOD factorization %.1f ms; intrinsic preprocess / factorization = %.3f\n",
                 j["cotan_factorization_ms"].get<double>(), j["intrinsic_over_factorization"].get<double>());

@@ -226,7 +226,7 @@ ArapData arap_precompute(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, con
   ConstraintLayout layout = constraint_layout(data, fixed); // bad constraints fail before any heavy work
 
   // The pattern of L (hence of L_ff) follows from F alone, so the pattern and CHOLMOD's symbolic analysis are
-  // built beside the elements (for iARAP: the intrinsic triangulation); with one thread, first.
+  // built beside the elements (for iARAP: beside the intrinsic flips); with one thread, first.
   SystemPattern pattern;
   Eigen::SparseMatrix<double> L_ff, L_fc;
   SparseCholesky solver;
@@ -264,8 +264,9 @@ ArapData arap_precompute(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, con
   run_beside(analyze, build);
   // What the build did not hide of the analysis counts as factorization time.
   data.timings.factor_ms = std::max(0.0, ms_since(start) - build_ms);
-  if (!flipped) data.timings.assembly_ms = build_ms;
-  if (flipped) {
+  if (!flipped) {
+    data.timings.assembly_ms = build_ms;
+  } else {
     start = Clock::now();
     const IntrinsicDelaunay intrinsic = detail::trace_phase(V, std::move(*flipped), intrinsic_options);
     flipped.reset();
