@@ -94,20 +94,18 @@ FlippedTriangulation flip_phase(const Eigen::MatrixXd& V, const Eigen::MatrixXi&
   return out;
 }
 
-IntrinsicDelaunay trace_phase(const Eigen::MatrixXd& V, FlippedTriangulation&& flipped, const IntrinsicOptions& options) {
-  IntrinsicDelaunay result;
+TracedTriangulation trace_phase(FlippedTriangulation&& flipped) {
+  TracedTriangulation result;
   result.flip_ms = flipped.flip_ms;
   SignpostTriangulation& tri = flipped.tri;
   // The tracer needs little of the flipped triangulation: its flipped edges (a compact list), and the
   // endpoints of the others. The input copy and its fans are released right after tracing, before the
-  // triangulation is exported, so that the three are never in memory with the export; the signpost
-  // triangulation goes before the segments are built.
+  // triangulation is exported, so that the three are never in memory with the export.
   auto t0 = std::chrono::steady_clock::now();
-  CompactTraces traces;
   {
     const EdgesToTrace flipped_edges_list = flipped_edges(tri);
     std::vector<double>().swap(tri.phi);
-    traces = trace_edges(flipped.input, flipped.fans, flipped_edges_list, tri.original_edge);
+    result.traces = trace_edges(flipped.input, flipped.fans, flipped_edges_list, tri.original_edge);
   }
   std::vector<int> inserted_ends;
   for (int hb : tri.inserted_halfedge) {
@@ -129,15 +127,6 @@ IntrinsicDelaunay trace_phase(const Eigen::MatrixXd& V, FlippedTriangulation&& f
   out.non_delaunay_before = flipped.stats.non_delaunay_before;
   out.non_delaunay_after = flipped.non_delaunay_after;
   result.flip_ms += ms_since(t0);
-
-  t0 = std::chrono::steady_clock::now();
-  result.segments = build_segments(V, result.triangulation, traces, options.assemble_B);
-  result.segment_ms = ms_since(t0);
-  if (options.keep_traces) {
-    t0 = std::chrono::steady_clock::now();
-    result.traces = expand_traces(traces, result.triangulation.E);
-    result.trace_ms += ms_since(t0);
-  }
   return result;
 }
 
@@ -145,7 +134,20 @@ IntrinsicDelaunay trace_phase(const Eigen::MatrixXd& V, FlippedTriangulation&& f
 
 IntrinsicDelaunay intrinsic_delaunay(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
                                      const IntrinsicOptions& options) {
-  return detail::trace_phase(V, detail::flip_phase(V, F, options), options);
+  detail::TracedTriangulation traced = detail::trace_phase(detail::flip_phase(V, F, options));
+  IntrinsicDelaunay result;
+  result.flip_ms = traced.flip_ms;
+  result.trace_ms = traced.trace_ms;
+  result.triangulation = std::move(traced.triangulation);
+  auto t0 = std::chrono::steady_clock::now();
+  result.segments = detail::build_segments(V, result.triangulation, traced.traces, options.assemble_B);
+  result.segment_ms = ms_since(t0);
+  if (options.keep_traces) {
+    t0 = std::chrono::steady_clock::now();
+    result.traces = detail::expand_traces(traced.traces, result.triangulation.E);
+    result.trace_ms += ms_since(t0);
+  }
+  return result;
 }
 
 } // namespace iarap

@@ -1,9 +1,11 @@
-// Internal: intrinsic_delaunay in two phases, for a caller that overlaps other work with the first.
-// arap_precompute runs the flips beside CHOLMOD's symbolic analysis (one thread each on a 2-core machine)
-// and the tracing, export and segments after it, on every thread.
+// Internal: intrinsic_delaunay in phases, for a caller that overlaps other work with the first or needs
+// something else than Segments from the traces. arap_precompute runs the flips beside CHOLMOD's symbolic
+// analysis (one thread each on a 2-core machine), then the tracing and export on every thread, and builds
+// its elements straight from the traces (traced_iarap_elements).
 #pragma once
 #include "iarap/intrinsic/intrinsic_delaunay.h"
 #include "signpost_triangulation.h"
+#include "trace_edges.h"
 
 namespace iarap::detail {
 
@@ -22,8 +24,16 @@ struct FlippedTriangulation {
 // Phase 1: builds the signpost triangulation of (V, F) and flips it to Delaunay (TopologyError on bad input).
 FlippedTriangulation flip_phase(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const IntrinsicOptions& options);
 
-// Phase 2: traces the flipped edges, exports the triangulation and builds the segments; consumes `flipped`
-// piece by piece so that its arrays are released as soon as they are no longer needed.
-IntrinsicDelaunay trace_phase(const Eigen::MatrixXd& V, FlippedTriangulation&& flipped, const IntrinsicOptions& options);
+// The exported intrinsic triangulation with its traced edges.
+struct TracedTriangulation {
+  IntrinsicTriangulation triangulation;
+  CompactTraces traces;
+  double flip_ms = 0.0, trace_ms = 0.0; // as in IntrinsicDelaunay (flip_ms includes the export)
+};
+
+// Phase 2: traces the flipped edges and exports the triangulation; consumes `flipped` piece by piece so
+// that its arrays are released as soon as they are no longer needed. Segments follow from the result
+// (build_segments, segments.h).
+TracedTriangulation trace_phase(FlippedTriangulation&& flipped);
 
 } // namespace iarap::detail

@@ -9,16 +9,54 @@
 
 namespace iarap::detail {
 
+Eigen::VectorXi segment_offsets(const CompactTraces& traces, int num_edges) {
+  Eigen::VectorXi start(num_edges + 1);
+  start(0) = 0;
+  for (int e = 0; e < num_edges; ++e) {
+    const int k = traces.job[static_cast<size_t>(e)];
+    start(e + 1) = start(e) + (k < 0 ? 1 : traces.start[static_cast<size_t>(k) + 1] - traces.start[static_cast<size_t>(k)] - 1);
+  }
+  return start;
+}
+
+bool segment_vector(const Eigen::MatrixXd& V, const TracePoint& p0, const TracePoint& p1, SegmentVector& out) {
+  int n = 0;
+  auto add = [&](int v, double coefficient) {
+    for (int q = 0; q < n; ++q)
+      if (out.index[q] == v) {
+        out.value[q] += coefficient;
+        return true;
+      }
+    if (n == 3) return false;
+    out.index[n] = v;
+    out.value[n++] = coefficient;
+    return true;
+  };
+  // b = b(end point) - b(start point); a point is (1 - t) e_a + t e_c, or e_a alone.
+  bool ok = p1.c < 0 ? add(p1.a, 1.0) : add(p1.a, 1.0 - p1.t) && add(p1.c, p1.t);
+  ok = ok && (p0.c < 0 ? add(p0.a, -1.0) : add(p0.a, -(1.0 - p0.t)) && add(p0.c, -p0.t));
+  if (!ok) return false;
+  for (int q = n; q < 3; ++q) {
+    out.index[q] = out.index[0];
+    out.value[q] = 0.0;
+  }
+  out.s_hat.setZero();
+  for (int q = 0; q < 3; ++q) out.s_hat += out.value[q] * V.row(out.index[q]).transpose();
+  out.length = out.s_hat.norm();
+  out.face = p0.face;
+  return true;
+}
+
+void throw_segment_error(int segment) {
+  throw SolverError("segment " + std::to_string(segment) +
+                    " has end points on no common input face (more than 3 vertices in b)");
+}
+
 Segments build_segments(const Eigen::MatrixXd& V, const IntrinsicTriangulation& tri, const CompactTraces& traces,
                         bool assemble_B) {
   const int ne = static_cast<int>(tri.E.rows());
   Segments seg;
-  seg.edge_start.resize(ne + 1);
-  seg.edge_start(0) = 0;
-  for (int e = 0; e < ne; ++e) {
-    const int k = traces.job[static_cast<size_t>(e)];
-    seg.edge_start(e + 1) = seg.edge_start(e) + (k < 0 ? 1 : traces.start[static_cast<size_t>(k) + 1] - traces.start[static_cast<size_t>(k)] - 1);
-  }
+  seg.edge_start = segment_offsets(traces, ne);
   const int ns = seg.edge_start(ne);
   seg.edge.resize(ns);
   seg.face.resize(ns);
@@ -27,67 +65,17 @@ Segments build_segments(const Eigen::MatrixXd& V, const IntrinsicTriangulation& 
   seg.s_hat.resize(ns, 3);
   seg.length.resize(ns);
   seg.weight.resize(ns);
-  bool bad = false;
-  int bad_segment = -1;
-
-#pragma omp parallel for num_threads(loop_thread_count()) schedule(static)
-  for (int e = 0; e < ne; ++e) {
-    const double w = tri.cot_weight(e), l = tri.length(e);
-    TracePoint ends[2];
-    int count = 0;
-    const TracePoint* points = traces.edge_points(e, tri.E, ends, count);
-    for (int m = 0; m + 1 < count; ++m) {
-      const int s = seg.edge_start(e) + m;
-      int idx[3];
-      double val[3] = {0, 0, 0};
-      int n = 0;
-      auto add = [&](int v, double coefficient) {
-        for (int q = 0; q < n; ++q)
-          if (idx[q] == v) {
-            val[q] += coefficient;
-            return true;
-          }
-        if (n == 3) return false;
-        idx[n] = v;
-        val[n++] = coefficient;
-        return true;
-      };
-      const TracePoint &p0 = points[m], &p1 = points[m + 1];
-      bool ok = true;
-      // b = b(end point) - b(start point); a point is (1 - t) e_a + t e_c, or e_a alone.
-      if (p1.c < 0) ok &= add(p1.a, 1.0);
-      else ok &= add(p1.a, 1.0 - p1.t) && add(p1.c, p1.t);
-      if (p0.c < 0) ok &= add(p0.a, -1.0);
-      else ok &= add(p0.a, -(1.0 - p0.t)) && add(p0.c, -p0.t);
-      if (!ok) {
-#pragma omp critical
-        {
-          bad = true;
-          bad_segment = s;
-        }
-        continue;
-      }
-      for (int q = n; q < 3; ++q) {
-        idx[q] = idx[0];
-        val[q] = 0.0;
-      }
-      Eigen::Vector3d s_hat = Eigen::Vector3d::Zero();
-      for (int q = 0; q < 3; ++q) {
-        seg.b_index(s, q) = idx[q];
-        seg.b_value(s, q) = val[q];
-        s_hat += val[q] * V.row(idx[q]).transpose();
-      }
-      const double len = s_hat.norm();
-      seg.edge(s) = e;
-      seg.face(s) = p0.face;
-      seg.s_hat.row(s) = s_hat.transpose();
-      seg.length(s) = len;
-      seg.weight(s) = len > 1e-12 * l ? w * l / len : 0.0; // Eq. 11: w_ij^t = sigma_ij^t w_ij, sigma = |e| / |s|
+  for_each_segment(V, tri, traces, seg.edge_start, [&](int s, int e, const SegmentVector& segment) {
+    for (int q = 0; q < 3; ++q) {
+      seg.b_index(s, q) = segment.index[q];
+      seg.b_value(s, q) = segment.value[q];
     }
-  }
-  if (bad)
-    throw SolverError("segment " + std::to_string(bad_segment) +
-                      " has end points on no common input face (more than 3 vertices in b)");
+    seg.edge(s) = e;
+    seg.face(s) = segment.face;
+    seg.s_hat.row(s) = segment.s_hat.transpose();
+    seg.length(s) = segment.length;
+    seg.weight(s) = segment.weight;
+  });
   if (!assemble_B) return seg;
 
   // B in compressed column form directly (a counting sort by vertex): segments are visited in order, so

@@ -33,6 +33,12 @@ struct CompactTraces {
   std::vector<int> start;           // #flipped + 1 offsets into points
   std::vector<TracePoint> points;
 
+  // Segments over all edges: one per unflipped edge, points - 1 per flipped one.
+  int segment_count() const {
+    const size_t flipped = start.size() - 1;
+    return static_cast<int>(job.size() - flipped + points.size() - flipped);
+  }
+
   // The points of edge e, from E(e,0) to E(e,1): `count` of them at the returned address; an unflipped
   // edge's two are written into `ends`.
   const TracePoint* edge_points(int e, const Eigen::MatrixXi& E, TracePoint (&ends)[2], int& count) const {

@@ -8,6 +8,7 @@
 #include "iarap/solver/system_pattern.h"
 
 #include "../intrinsic/intrinsic_phases.h"
+#include "traced_elements.h"
 
 #include <omp.h>
 
@@ -174,16 +175,21 @@ void commit_layout(ArapData& data, const Eigen::VectorXi& fixed, ConstraintLayou
   data.free_slot = std::move(layout.free_slot);
 }
 
-// Runs analyze() and build() at the same time when two threads are allowed, else one after the other; the
-// first exception of either is rethrown after both have ended.
+// Runs side() and main() at the same time when two threads are allowed, else one after the other; the
+// first exception of either is rethrown after both have ended. side() is a serial CHOLMOD call (the symbolic
+// analysis, the numeric factorization), main() what the precompute can do meanwhile.
 //
-// Both run inside one OpenMP region of two threads: analyze() on the pool's second thread, build() on the
-// caller's. A separate std::thread for the analysis competed on a 2-core machine with the pool's idle
+// Both run inside one OpenMP region of two threads, side() on the pool's second thread or (side_on_caller)
+// on the caller's. A separate std::thread for side() competed on a 2-core machine with the pool's idle
 // thread, which spins for milliseconds after every parallel loop (the previous solve's, say) before it
-// sleeps. Meanwhile build()'s own loops run on the cores the analysis leaves (CoreReservation; threads.h
-// says why): one on a 2-core machine; on more, as nested teams, which the region allows for its duration.
-void run_beside(const std::function<void()>& analyze, const std::function<void()>& build) {
-  std::exception_ptr analysis_error, build_error;
+// sleeps. The numeric factorization runs on the caller's thread: glibc gives the pool thread its own heap
+// arena, so a factor allocated there is faulted in afresh instead of reusing what the caller freed (beetle,
+// iARAP: 6600 against 5300 page faults per precompute). main()'s own loops run on the cores side() leaves
+// (CoreReservation; threads.h says why): one on a 2-core machine; on more, as nested teams, which the
+// region allows for its duration.
+void run_beside(const std::function<void()>& side, const std::function<void()>& main, bool side_on_caller = false) {
+  const int side_thread = side_on_caller ? 0 : 1;
+  std::exception_ptr side_error, main_error;
   bool beside = false;
   if (omp_get_max_threads() > 1 && !omp_in_parallel()) {
     const CoreReservation core;
@@ -194,22 +200,30 @@ void run_beside(const std::function<void()>& analyze, const std::function<void()
       if (omp_get_num_threads() == 2) {
         if (omp_get_thread_num() == 0) beside = true;
         try {
-          if (omp_get_thread_num() == 1) analyze();
-          else build();
+          if (omp_get_thread_num() == side_thread) {
+            // side() stays on its core: CHOLMOD opens OpenMP teams of its own (4 threads in Debian's build),
+            // which crowd the cores main() is using (beetle's factorization: 29 -> 128 ms). These settings
+            // are this thread's, for the region only.
+            omp_set_num_threads(1);
+            omp_set_max_active_levels(1);
+            side();
+          } else {
+            main();
+          }
         } catch (...) {
 #pragma omp critical(iarap_run_beside)
-          (omp_get_thread_num() == 1 ? analysis_error : build_error) = std::current_exception();
+          (omp_get_thread_num() == side_thread ? side_error : main_error) = std::current_exception();
         }
       }
     }
     omp_set_max_active_levels(active_levels);
   }
   if (!beside) {
-    analyze();
-    build();
+    side();
+    main();
   }
-  if (build_error) std::rethrow_exception(build_error);
-  if (analysis_error) std::rethrow_exception(analysis_error);
+  if (main_error) std::rethrow_exception(main_error);
+  if (side_error) std::rethrow_exception(side_error);
 }
 
 } // namespace
@@ -238,11 +252,9 @@ ArapData arap_precompute(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, con
     solver.analyze(L_ff);
     analyze_ms = ms_since(t);
   };
-  // What is built beside the analysis: for iARAP the flips of the intrinsic triangulation (tracing, segments
-  // and elements follow on every thread once the analysis is done), for the others the elements.
-  IntrinsicOptions intrinsic_options = options.intrinsic;
-  intrinsic_options.assemble_B = false; // L is summed from the elements
-  intrinsic_options.keep_traces = false;
+  // What is built beside the analysis: for iARAP the flips of the intrinsic triangulation (tracing and the
+  // elements follow on every thread once the analysis is done, straight from the traces: no Segments), for
+  // the others the elements.
   std::optional<detail::FlippedTriangulation> flipped;
   double build_ms = 0.0;
   auto build = [&] {
@@ -255,7 +267,7 @@ ArapData arap_precompute(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, con
       data.elements = spokes_rims_elements(V, F);
       break;
     case ArapMethod::Iarap:
-      flipped = detail::flip_phase(V, F, intrinsic_options);
+      flipped = detail::flip_phase(V, F, options.intrinsic);
       break;
     }
     build_ms = ms_since(t);
@@ -268,15 +280,15 @@ ArapData arap_precompute(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, con
     data.timings.assembly_ms = build_ms;
   } else {
     start = Clock::now();
-    const IntrinsicDelaunay intrinsic = detail::trace_phase(V, std::move(*flipped), intrinsic_options);
+    const detail::TracedTriangulation traced = detail::trace_phase(std::move(*flipped));
     flipped.reset();
     data.timings.intrinsic_ms = build_ms + ms_since(start);
     start = Clock::now();
-    data.elements = iarap_elements(V, intrinsic);
+    data.elements = detail::traced_iarap_elements(V, traced.triangulation, traced.traces);
     data.timings.assembly_ms = ms_since(start);
-    const IntrinsicTriangulation& t = intrinsic.triangulation;
-    data.intrinsic = {t.flips,      t.non_delaunay_before,          t.non_delaunay_after,     t.mollify_delta,
-                      t.E.rows(),   intrinsic.segments.edge.size(), t.obtuse_boundary_before, t.obtuse_boundary_after,
+    const IntrinsicTriangulation& t = traced.triangulation;
+    data.intrinsic = {t.flips,      t.non_delaunay_before,           t.non_delaunay_after,     t.mollify_delta,
+                      t.E.rows(),   traced.traces.segment_count(),   t.obtuse_boundary_before, t.obtuse_boundary_after,
                       t.inserted_t.size()};
   }
   start = Clock::now();
@@ -284,7 +296,13 @@ ArapData arap_precompute(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, con
   data.timings.assembly_ms += ms_since(start);
   start = Clock::now();
   split_system(data.L, layout, L_ff, &L_fc);
-  solver.factorize(L_ff); // throws SolverError
+  // Only the iterations read the elements' rest vectors and incidences: for iARAP they are filled beside
+  // the numeric factorization (the other builders filled them beside the analysis).
+  run_beside([&] { solver.factorize(L_ff); }, // throws SolverError
+             [&] {
+               if (options.method == ArapMethod::Iarap) detail::finish_elements(V, data.elements);
+             },
+             true);
   data.timings.analyze_ms = analyze_ms;
   data.timings.factor_ms += ms_since(start);
   data.R.assign(static_cast<size_t>(data.elements.num_cells), Eigen::Matrix3d::Identity());

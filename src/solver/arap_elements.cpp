@@ -5,6 +5,9 @@
 #include "iarap/mesh/cotan.h"
 #include "iarap/mesh/edge_topology.h"
 
+#include "../intrinsic/segments.h"
+#include "traced_elements.h"
+
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -13,50 +16,19 @@ namespace iarap {
 
 namespace {
 
-// Counting sort of (key, value) pairs into CSR form: start has num_keys + 1 entries.
-void build_csr(int num_keys, const std::vector<int>& keys, const std::vector<int>& values,
-               std::vector<int>& start, std::vector<int>& out) {
-  start.assign(static_cast<size_t>(num_keys) + 1, 0);
-  for (int k : keys)
-    ++start[static_cast<size_t>(k) + 1];
+// Counting sort of (key, value) pairs into CSR form (start: num_keys + 1 entries). for_each_pair(emit)
+// calls emit(key, value) for every pair in a fixed order; it runs twice (count, then place) so that no
+// list of pairs is stored: on a fresh heap the first touch of such temporaries cost more than the sort.
+template <class ForEachPair>
+void build_csr(int num_keys, const ForEachPair& for_each_pair, std::vector<int>& start, std::vector<int>& out) {
+  start.assign(static_cast<size_t>(num_keys) + 2, 0);
+  for_each_pair([&](int key, int) { ++start[static_cast<size_t>(key) + 2]; });
   for (int k = 0; k < num_keys; ++k)
-    start[k + 1] += start[k];
-  out.resize(keys.size());
-  std::vector<int> next(start.begin(), start.end() - 1);
-  for (size_t i = 0; i < keys.size(); ++i)
-    out[static_cast<size_t>(next[keys[i]]++)] = values[i];
-}
-
-// Rest vectors and the two transposed incidences, from b, w and the element -> cell CSR.
-void finish_elements(const Eigen::MatrixXd& V, ArapElements& el) {
-  const Eigen::Index m = el.size();
-  el.s_hat.resize(m, 3);
-#pragma omp parallel for num_threads(loop_thread_count()) schedule(static)
-  for (Eigen::Index e = 0; e < m; ++e)
-    for (int d = 0; d < 3; ++d) {
-      double s = 0.0;
-      for (int k = 0; k < 3; ++k)
-        s += el.b_value(e, k) * V(el.b_index(e, k), d);
-      el.s_hat(e, d) = s;
-    }
-  std::vector<int> keys, values;
-  keys.reserve(el.cell.size());
-  values.reserve(el.cell.size());
-  for (Eigen::Index e = 0; e < m; ++e)
-    for (int c = el.cell_start[e]; c < el.cell_start[e + 1]; ++c) {
-      keys.push_back(el.cell[c]);
-      values.push_back(static_cast<int>(e));
-    }
-  build_csr(el.num_cells, keys, values, el.cell_element_start, el.cell_element);
-  keys.clear();
-  values.clear();
-  for (Eigen::Index e = 0; e < m; ++e)
-    for (int k = 0; k < 3; ++k)
-      if (el.b_value(e, k) != 0.0) {
-        keys.push_back(el.b_index(e, k));
-        values.push_back(static_cast<int>(3 * e + k));
-      }
-  build_csr(el.num_vertices, keys, values, el.vertex_slot_start, el.vertex_slot);
+    start[static_cast<size_t>(k) + 2] += start[static_cast<size_t>(k) + 1];
+  out.resize(static_cast<size_t>(start[static_cast<size_t>(num_keys) + 1]));
+  // start[key + 1] is where the next pair of key goes; once all are placed it is the end of key's run.
+  for_each_pair([&](int key, int value) { out[static_cast<size_t>(start[static_cast<size_t>(key) + 1]++)] = value; });
+  start.pop_back();
 }
 
 // Sizes the per-element arrays for m elements of cells_per_element cells each.
@@ -80,6 +52,38 @@ void check_face_cotangents(const Eigen::MatrixXd& C) {
 void set_edge_vector(ArapElements& el, Eigen::Index e, int i, int j) {
   el.b_index.row(e) << i, j, i;
   el.b_value.row(e) << -1.0, 1.0, 0.0;
+}
+
+// Element x from a segment of the intrinsic edge (tail, head): b with its zero slots pointing at the first
+// non-zero's vertex (unused slots may hold any index), the weight and the carrying face. Eq. 16: a segment
+// belongs to the cells of both ends of its intrinsic edge.
+void set_segment_element(ArapElements& el, int x, const int* index, const double* value, double w, int face,
+                         int tail, int head) {
+  int first = -1;
+  for (int k = 0; k < 3 && first < 0; ++k)
+    if (value[k] != 0.0) first = index[k];
+  for (int k = 0; k < 3; ++k) {
+    el.b_index(x, k) = value[k] != 0.0 ? index[k] : first;
+    el.b_value(x, k) = value[k];
+  }
+  el.w(x) = w;
+  el.face[static_cast<size_t>(x)] = face;
+  el.cell_start[static_cast<size_t>(x)] = 2 * x;
+  el.cell[static_cast<size_t>(2 * x)] = tail;
+  el.cell[static_cast<size_t>(2 * x + 1)] = head;
+}
+
+// Rotation cells of an intrinsic triangulation: one per vertex of its edges, at least one per input vertex
+// (inserted boundary points get their own cells). InputError on a negative endpoint.
+int intrinsic_cell_count(const Eigen::MatrixXi& E, int num_vertices) {
+  int cells = num_vertices;
+  for (Eigen::Index e = 0; e < E.rows(); ++e)
+    for (int k = 0; k < 2; ++k) {
+      if (E(e, k) < 0)
+        throw InputError("iARAP: intrinsic edge " + std::to_string(e) + " has endpoint " + std::to_string(E(e, k)));
+      cells = std::max(cells, E(e, k) + 1);
+    }
+  return cells;
 }
 
 } // namespace
@@ -127,7 +131,7 @@ ArapElements arap_edge_elements(const Eigen::MatrixXd& V, const Eigen::MatrixXi&
     el.cell[2 * e + 1] = j;
   }
   el.cell_start[m] = static_cast<int>(2 * m);
-  finish_elements(V, el);
+  detail::finish_elements(V, el);
   return el;
 }
 
@@ -150,7 +154,7 @@ ArapElements spokes_rims_elements(const Eigen::MatrixXd& V, const Eigen::MatrixX
         el.cell[3 * e + c] = F(f, c);
     }
   el.cell_start[m] = static_cast<int>(3 * m);
-  finish_elements(V, el);
+  detail::finish_elements(V, el);
   return el;
 }
 
@@ -165,14 +169,8 @@ ArapElements iarap_elements(const Eigen::MatrixXd& V, const IntrinsicDelaunay& i
       static_cast<Eigen::Index>(seg.face.size()) != count)
     throw InputError("iARAP: segment arrays disagree in length (" + std::to_string(count) + " segments)");
   ArapElements el;
-  el.num_vertices = el.num_cells = n;
-  for (Eigen::Index e = 0; e < E.rows(); ++e)
-    for (int k = 0; k < 2; ++k) {
-      if (E(e, k) < 0)
-        throw InputError("iARAP: intrinsic edge " + std::to_string(e) + " has endpoint " +
-                         std::to_string(E(e, k)));
-      el.num_cells = std::max(el.num_cells, E(e, k) + 1); // inserted boundary points get their own cells
-    }
+  el.num_vertices = n;
+  el.num_cells = intrinsic_cell_count(E, n);
   // Checks as a parallel scan keeping the first bad segment (the error names it); a zero-length segment
   // (b = 0) adds nothing to E, L or the rotations and is left out, so kept[s] numbers the elements.
   const int ns = static_cast<int>(count);
@@ -209,25 +207,89 @@ ArapElements iarap_elements(const Eigen::MatrixXd& V, const IntrinsicDelaunay& i
 #pragma omp parallel for num_threads(loop_thread_count()) schedule(static)
   for (int s = 0; s < ns; ++s) {
     const int x = kept[static_cast<size_t>(s)];
-    if (kept[static_cast<size_t>(s) + 1] == x) continue;
-    int first = -1;
-    for (int k = 0; k < 3 && first < 0; ++k)
-      if (seg.b_value(s, k) != 0.0) first = seg.b_index(s, k);
-    for (int k = 0; k < 3; ++k) {
-      const double value = seg.b_value(s, k);
-      el.b_index(x, k) = value != 0.0 ? seg.b_index(s, k) : first; // unused slots may hold any index
-      el.b_value(x, k) = value;
-    }
-    el.w(x) = seg.weight(s);
-    el.face[static_cast<size_t>(x)] = seg.face(s);
-    el.cell_start[static_cast<size_t>(x)] = 2 * x;
-    el.cell[static_cast<size_t>(2 * x)] = E(seg.edge(s), 0); // Eq. 16: a segment belongs to the cells of both
-    el.cell[static_cast<size_t>(2 * x + 1)] = E(seg.edge(s), 1); // ends of its intrinsic edge
+    if (kept[static_cast<size_t>(s) + 1] > x)
+      set_segment_element(el, x, &seg.b_index(s, 0), &seg.b_value(s, 0), seg.weight(s), seg.face(s),
+                          E(seg.edge(s), 0), E(seg.edge(s), 1));
   }
   el.cell_start[static_cast<size_t>(m)] = 2 * m;
-  finish_elements(V, el);
+  detail::finish_elements(V, el);
   return el;
 }
+
+namespace detail {
+
+void finish_elements(const Eigen::MatrixXd& V, ArapElements& el) {
+  const Eigen::Index m = el.size();
+  el.s_hat.resize(m, 3);
+#pragma omp parallel for num_threads(loop_thread_count()) schedule(static)
+  for (Eigen::Index e = 0; e < m; ++e)
+    for (int d = 0; d < 3; ++d) {
+      double s = 0.0;
+      for (int k = 0; k < 3; ++k)
+        s += el.b_value(e, k) * V(el.b_index(e, k), d);
+      el.s_hat(e, d) = s;
+    }
+  build_csr(
+      el.num_cells,
+      [&](const auto& emit) {
+        for (Eigen::Index e = 0; e < m; ++e)
+          for (int c = el.cell_start[e]; c < el.cell_start[e + 1]; ++c)
+            emit(el.cell[c], static_cast<int>(e));
+      },
+      el.cell_element_start, el.cell_element);
+  build_csr(
+      el.num_vertices,
+      [&](const auto& emit) {
+        for (Eigen::Index e = 0; e < m; ++e)
+          for (int k = 0; k < 3; ++k)
+            if (el.b_value(e, k) != 0.0) emit(el.b_index(e, k), static_cast<int>(3 * e + k));
+      },
+      el.vertex_slot_start, el.vertex_slot);
+}
+
+ArapElements traced_iarap_elements(const Eigen::MatrixXd& V, const IntrinsicTriangulation& tri,
+                                   const CompactTraces& traces) {
+  const int n = static_cast<int>(V.rows());
+  const int ne = static_cast<int>(tri.E.rows());
+  ArapElements el;
+  el.num_vertices = n;
+  el.num_cells = intrinsic_cell_count(tri.E, n);
+  const Eigen::VectorXi start = segment_offsets(traces, ne);
+  const int ns = start(ne);
+  resize_elements(el, ns, 2);
+  // One element per segment; a segment with b = 0 is marked and squeezed out after, as iarap_elements
+  // leaves it out.
+  std::vector<char> empty(static_cast<size_t>(ns), 0);
+  for_each_segment(V, tri, traces, start, [&](int s, int e, const SegmentVector& segment) {
+    set_segment_element(el, s, segment.index, segment.value, segment.weight, segment.face, tri.E(e, 0), tri.E(e, 1));
+    empty[static_cast<size_t>(s)] = segment.value[0] == 0.0 && segment.value[1] == 0.0 && segment.value[2] == 0.0;
+  });
+  const auto empties = std::count(empty.begin(), empty.end(), 1);
+  if (empties > 0) {
+    int m = 0;
+    for (int s = 0; s < ns; ++s) {
+      if (empty[static_cast<size_t>(s)]) continue;
+      el.b_index.row(m) = el.b_index.row(s);
+      el.b_value.row(m) = el.b_value.row(s);
+      el.w(m) = el.w(s);
+      el.face[static_cast<size_t>(m)] = el.face[static_cast<size_t>(s)];
+      el.cell[static_cast<size_t>(2 * m)] = el.cell[static_cast<size_t>(2 * s)];
+      el.cell[static_cast<size_t>(2 * m + 1)] = el.cell[static_cast<size_t>(2 * s + 1)];
+      ++m;
+    }
+    el.b_index.conservativeResize(m, 3);
+    el.b_value.conservativeResize(m, 3);
+    el.w.conservativeResize(m);
+    el.face.resize(static_cast<size_t>(m));
+    el.cell_start.resize(static_cast<size_t>(m) + 1);
+    el.cell.resize(static_cast<size_t>(2 * m));
+  }
+  const int m = static_cast<int>(el.size());
+  el.cell_start[static_cast<size_t>(m)] = 2 * m;
+  return el;
+}
+
+} // namespace detail
 
 Eigen::SparseMatrix<double> element_system_matrix(const ArapElements& el) {
   std::vector<Eigen::Triplet<double>> triplets;

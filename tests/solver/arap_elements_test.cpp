@@ -2,9 +2,18 @@
 
 #include "iarap/core/errors.h"
 #include "iarap/mesh/cotan.h"
+#include "intrinsic/mesh_generators.h"
 #include "solver_fixtures.h"
 
+// Internal: arap_precompute's path from the traces to the elements, checked against the public one.
+#include "../../src/intrinsic/intrinsic_phases.h"
+#include "../../src/intrinsic/segments.h"
+#include "../../src/solver/traced_elements.h"
+
 #include <gtest/gtest.h>
+
+#include <string>
+#include <utility>
 
 namespace {
 
@@ -88,6 +97,66 @@ TEST(ArapElements, DegenerateFaceAndBadIndicesAreNamed) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("face 2 uses vertex 99"), std::string::npos) << e.what();
   }
+}
+
+void expect_same_elements(const ArapElements& a, const ArapElements& b, const std::string& name) {
+  EXPECT_EQ(a.num_vertices, b.num_vertices) << name;
+  EXPECT_EQ(a.num_cells, b.num_cells) << name;
+  EXPECT_EQ(a.b_index, b.b_index) << name;
+  EXPECT_EQ(a.b_value, b.b_value) << name;
+  EXPECT_EQ(a.s_hat, b.s_hat) << name;
+  EXPECT_EQ(a.w, b.w) << name;
+  EXPECT_EQ(a.face, b.face) << name;
+  EXPECT_EQ(a.cell_start, b.cell_start) << name;
+  EXPECT_EQ(a.cell, b.cell) << name;
+  EXPECT_EQ(a.cell_element_start, b.cell_element_start) << name;
+  EXPECT_EQ(a.cell_element, b.cell_element) << name;
+  EXPECT_EQ(a.vertex_slot_start, b.vertex_slot_start) << name;
+  EXPECT_EQ(a.vertex_slot, b.vertex_slot) << name;
+}
+
+// arap_precompute builds iARAP's elements from the traces without the Segments: they must equal, bit for
+// bit, what iarap_elements makes of intrinsic_delaunay's segments, on a non-Delaunay closed mesh, a curved
+// patch with boundary and a strip whose boundary refinement inserts points (extra cells).
+TEST(ArapElements, TracedElementsEqualSegmentElements) {
+  const auto bunny = test::bunny();
+  const auto patch = test::bumpy_patch(12);
+  const test::TestMesh strip = test::sheared_strip(16, 4, 2.0);
+  const std::pair<const char*, std::pair<Eigen::MatrixXd, Eigen::MatrixXi>> cases[] = {
+      {"bunny", {bunny.V, bunny.F}}, {"bumpy patch", {patch.V, patch.F}}, {"bent strip", {strip.V, strip.F}}};
+  for (const auto& [name, mesh] : cases) {
+    IntrinsicOptions options;
+    options.refine_boundary = name == std::string("bent strip");
+    const detail::TracedTriangulation traced = detail::trace_phase(detail::flip_phase(mesh.first, mesh.second, options));
+    ArapElements fused = detail::traced_iarap_elements(mesh.first, traced.triangulation, traced.traces);
+    detail::finish_elements(mesh.first, fused);
+    const ArapElements reference = iarap_elements(mesh.first, intrinsic_delaunay(mesh.first, mesh.second, options));
+    EXPECT_GT(traced.traces.points.size(), 0u) << name << ": some edges must be traced";
+    if (options.refine_boundary) {
+      EXPECT_GT(fused.num_cells, fused.num_vertices) << name;
+    }
+    EXPECT_EQ(fused.size(), traced.traces.segment_count()) << name;
+    expect_same_elements(fused, reference, name);
+  }
+}
+
+// A segment with b = 0 (two equal trace points) adds nothing and is left out by both builders alike.
+TEST(ArapElements, ZeroLengthSegmentsAreLeftOut) {
+  const auto m = test::bunny();
+  detail::TracedTriangulation traced = detail::trace_phase(detail::flip_phase(m.V, m.F, {}));
+  detail::CompactTraces& traces = traced.traces;
+  ASSERT_GT(traces.start.size(), 2u);
+  // Repeat the second point of the first flipped edge.
+  traces.points.insert(traces.points.begin() + 1, traces.points[1]);
+  for (size_t k = 1; k < traces.start.size(); ++k) ++traces.start[k];
+  ArapElements fused = detail::traced_iarap_elements(m.V, traced.triangulation, traces);
+  detail::finish_elements(m.V, fused);
+  IntrinsicDelaunay idt;
+  idt.triangulation = traced.triangulation;
+  idt.segments = detail::build_segments(m.V, traced.triangulation, traces, false);
+  EXPECT_EQ(idt.segments.b_value.rowwise().squaredNorm().minCoeff(), 0.0) << "the repeated point makes b = 0";
+  EXPECT_EQ(fused.size(), traces.segment_count() - 1);
+  expect_same_elements(fused, iarap_elements(m.V, idt), "bunny with a repeated trace point");
 }
 
 } // namespace
