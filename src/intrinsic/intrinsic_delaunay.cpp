@@ -8,6 +8,8 @@
 #include "iarap/core/threads.h"
 #include "iarap/mesh/cotan.h"
 
+#include "../core/parallel_chunks.h"
+
 #include <chrono>
 #include <vector>
 
@@ -28,33 +30,35 @@ IntrinsicTriangulation export_triangulation(const detail::SignpostTriangulation&
   out.FE.resize(nf, 3);
   out.corner_angle.resize(nf, 3);
   out.face_area.resize(nf);
-#pragma omp parallel for num_threads(loop_thread_count()) schedule(static)
-  for (int f = 0; f < nf; ++f) {
-    out.face_area(f) = triangle_area_from_lengths(tri.halfedge_length(3 * f), tri.halfedge_length(3 * f + 1),
-                                                  tri.halfedge_length(3 * f + 2));
-    for (int k = 0; k < 3; ++k) {
-      const int h = 3 * f + k;
-      out.F(f, k) = tri.tail(h);
-      out.FE(f, (k + 2) % 3) = tri.edge[static_cast<size_t>(h)]; // halfedge k is opposite corner k + 2
-      out.corner_angle(f, k) = tri.angle[static_cast<size_t>(h)];
+  detail::parallel_chunks(nf, 8192, [&](int begin, int end, int) {
+    for (int f = begin; f < end; ++f) {
+      out.face_area(f) = triangle_area_from_lengths(tri.halfedge_length(3 * f), tri.halfedge_length(3 * f + 1),
+                                                    tri.halfedge_length(3 * f + 2));
+      for (int k = 0; k < 3; ++k) {
+        const int h = 3 * f + k;
+        out.F(f, k) = tri.tail(h);
+        out.FE(f, (k + 2) % 3) = tri.edge[static_cast<size_t>(h)]; // halfedge k is opposite corner k + 2
+        out.corner_angle(f, k) = tri.angle[static_cast<size_t>(h)];
+      }
     }
-  }
+  });
   out.E.resize(ne, 2);
   out.length.resize(ne);
   out.cot_weight.resize(ne);
   out.is_boundary.resize(ne);
   out.original_edge.resize(ne);
-#pragma omp parallel for num_threads(loop_thread_count()) schedule(static)
-  for (int e = 0; e < ne; ++e) {
-    const int h = tri.edge_halfedge[static_cast<size_t>(e)];
-    out.E(e, 0) = tri.edge_vertex[static_cast<size_t>(2 * e)];
-    out.E(e, 1) = tri.edge_vertex[static_cast<size_t>(2 * e + 1)];
-    out.length(e) = tri.length[static_cast<size_t>(e)];
-    const int t = tri.twin[static_cast<size_t>(h)];
-    out.cot_weight(e) = 0.5 * (tri.cot[static_cast<size_t>(h)] + (t >= 0 ? tri.cot[static_cast<size_t>(t)] : 0.0));
-    out.is_boundary(e) = t < 0;
-    out.original_edge(e) = tri.original_edge[static_cast<size_t>(e)];
-  }
+  detail::parallel_chunks(ne, 8192, [&](int begin, int end, int) {
+    for (int e = begin; e < end; ++e) {
+      const int h = tri.edge_halfedge[static_cast<size_t>(e)];
+      out.E(e, 0) = tri.edge_vertex[static_cast<size_t>(2 * e)];
+      out.E(e, 1) = tri.edge_vertex[static_cast<size_t>(2 * e + 1)];
+      out.length(e) = tri.length[static_cast<size_t>(e)];
+      const int t = tri.twin[static_cast<size_t>(h)];
+      out.cot_weight(e) = 0.5 * (tri.cot[static_cast<size_t>(h)] + (t >= 0 ? tri.cot[static_cast<size_t>(t)] : 0.0));
+      out.is_boundary(e) = t < 0;
+      out.original_edge(e) = tri.original_edge[static_cast<size_t>(e)];
+    }
+  });
   out.mollify_delta = tri.mollify_delta;
   out.num_input_vertices = tri.num_input_vertices;
   const int np = tri.num_vertices - tri.num_input_vertices;

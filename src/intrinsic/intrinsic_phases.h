@@ -1,7 +1,7 @@
-// Internal: intrinsic_delaunay in phases, for a caller that overlaps other work with the first or needs
-// something else than Segments from the traces. arap_precompute runs the flips beside CHOLMOD's symbolic
-// analysis (one thread each on a 2-core machine), then the tracing and export on every thread, and builds
-// its elements straight from the traces (traced_iarap_elements).
+// Internal: intrinsic_delaunay in phases, for a caller that needs something else than Segments from the
+// traces. arap_precompute runs both phases beside CHOLMOD's symbolic analysis (the analysis' thread joins
+// the tracing once it is done, parallel_chunks) and builds its elements straight from the traces
+// (traced_iarap_elements).
 #pragma once
 #include "iarap/intrinsic/intrinsic_delaunay.h"
 #include "signpost_triangulation.h"

@@ -3,6 +3,8 @@
 #include "iarap/core/errors.h"
 #include "iarap/core/threads.h"
 
+#include "../core/parallel_chunks.h"
+
 #include <omp.h>
 
 #include <algorithm>
@@ -186,27 +188,24 @@ CompactTraces trace_edges(const InputTriangulation& input, const VertexFans& fan
   const int nk = static_cast<int>(flipped.edge.size());
   // The flipped edges are traced into per-thread buffers, then concatenated in edge order.
   std::vector<int> count(static_cast<size_t>(nk)), owner(static_cast<size_t>(nk)), offset(static_cast<size_t>(nk));
-  std::vector<std::vector<TracePoint>> buffers(static_cast<size_t>(omp_get_max_threads()));
+  std::vector<std::vector<TracePoint>> buffers(static_cast<size_t>(chunk_workers()));
   std::string error;
-#pragma omp parallel num_threads(loop_thread_count())
-  {
-    const int thread = omp_get_thread_num();
-    auto& buffer = buffers[static_cast<size_t>(thread)];
-#pragma omp for schedule(dynamic, 256)
-    for (int k = 0; k < nk; ++k) {
+  parallel_chunks(nk, 256, [&](int begin, int end, int worker) {
+    auto& buffer = buffers[static_cast<size_t>(worker)];
+    for (int k = begin; k < end; ++k) {
       const size_t before = buffer.size();
       try {
         trace_one(input, fans, flipped, k, buffer);
       } catch (const std::exception& ex) {
-#pragma omp critical
+#pragma omp critical(iarap_trace_error)
         if (error.empty()) error = ex.what();
         buffer.resize(before);
       }
       count[static_cast<size_t>(k)] = static_cast<int>(buffer.size() - before);
-      owner[static_cast<size_t>(k)] = thread;
+      owner[static_cast<size_t>(k)] = worker;
       offset[static_cast<size_t>(k)] = static_cast<int>(before);
     }
-  }
+  });
   if (!error.empty()) throw SolverError(error);
 
   CompactTraces compact;
@@ -214,20 +213,23 @@ CompactTraces trace_edges(const InputTriangulation& input, const VertexFans& fan
   compact.start[0] = 0;
   for (int k = 0; k < nk; ++k) compact.start[static_cast<size_t>(k) + 1] = compact.start[static_cast<size_t>(k)] + count[static_cast<size_t>(k)];
   compact.points.resize(static_cast<size_t>(compact.start.back()));
-  for (int k = 0; k < nk; ++k) {
-    const TracePoint* from = buffers[static_cast<size_t>(owner[static_cast<size_t>(k)])].data() + offset[static_cast<size_t>(k)];
-    std::copy(from, from + count[static_cast<size_t>(k)], compact.points.begin() + compact.start[static_cast<size_t>(k)]);
-  }
+  parallel_chunks(nk, 1024, [&](int begin, int end, int) {
+    for (int k = begin; k < end; ++k) {
+      const TracePoint* from = buffers[static_cast<size_t>(owner[static_cast<size_t>(k)])].data() + offset[static_cast<size_t>(k)];
+      std::copy(from, from + count[static_cast<size_t>(k)], compact.points.begin() + compact.start[static_cast<size_t>(k)]);
+    }
+  });
   compact.job.assign(static_cast<size_t>(ne), -1);
   compact.unflipped_face.resize(static_cast<size_t>(ne));
   for (int k = 0; k < nk; ++k) compact.job[static_cast<size_t>(flipped.edge[static_cast<size_t>(k)])] = k;
-#pragma omp parallel for num_threads(loop_thread_count()) schedule(static)
-  for (int e = 0; e < ne; ++e) {
-    // The input halfedge with the edge's tail carries the one segment (same orientation rule as E).
-    const int original = original_edge[static_cast<size_t>(e)];
-    compact.unflipped_face[static_cast<size_t>(e)] =
-        original >= 0 ? input.edge_halfedge[static_cast<size_t>(original)] / 3 : -1;
-  }
+  parallel_chunks(ne, 8192, [&](int begin, int end, int) {
+    for (int e = begin; e < end; ++e) {
+      // The input halfedge with the edge's tail carries the one segment (same orientation rule as E).
+      const int original = original_edge[static_cast<size_t>(e)];
+      compact.unflipped_face[static_cast<size_t>(e)] =
+          original >= 0 ? input.edge_halfedge[static_cast<size_t>(original)] / 3 : -1;
+    }
+  });
   return compact;
 }
 

@@ -252,10 +252,10 @@ ArapData arap_precompute(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, con
     solver.analyze(L_ff);
     analyze_ms = ms_since(t);
   };
-  // What is built beside the analysis: for iARAP the flips of the intrinsic triangulation (tracing and the
-  // elements follow on every thread once the analysis is done, straight from the traces: no Segments), for
-  // the others the elements.
-  std::optional<detail::FlippedTriangulation> flipped;
+  // What is built beside the analysis: for the others the elements; for iARAP the intrinsic triangulation,
+  // flipped and traced; the analysis' thread joins the tracing (as tasks, trace_edges) once it is done.
+  // iARAP's elements follow on every thread, straight from the traces (no Segments).
+  std::optional<detail::TracedTriangulation> traced;
   double build_ms = 0.0;
   auto build = [&] {
     const auto t = Clock::now();
@@ -267,7 +267,7 @@ ArapData arap_precompute(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, con
       data.elements = spokes_rims_elements(V, F);
       break;
     case ArapMethod::Iarap:
-      flipped = detail::flip_phase(V, F, options.intrinsic);
+      traced = detail::trace_phase(detail::flip_phase(V, F, options.intrinsic));
       break;
     }
     build_ms = ms_since(t);
@@ -276,20 +276,18 @@ ArapData arap_precompute(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, con
   run_beside(analyze, build);
   // What the build did not hide of the analysis counts as factorization time.
   data.timings.factor_ms = std::max(0.0, ms_since(start) - build_ms);
-  if (!flipped) {
+  if (!traced) {
     data.timings.assembly_ms = build_ms;
   } else {
+    data.timings.intrinsic_ms = build_ms;
     start = Clock::now();
-    const detail::TracedTriangulation traced = detail::trace_phase(std::move(*flipped));
-    flipped.reset();
-    data.timings.intrinsic_ms = build_ms + ms_since(start);
-    start = Clock::now();
-    data.elements = detail::traced_iarap_elements(V, traced.triangulation, traced.traces);
+    data.elements = detail::traced_iarap_elements(V, traced->triangulation, traced->traces);
     data.timings.assembly_ms = ms_since(start);
-    const IntrinsicTriangulation& t = traced.triangulation;
+    const IntrinsicTriangulation& t = traced->triangulation;
     data.intrinsic = {t.flips,      t.non_delaunay_before,           t.non_delaunay_after,     t.mollify_delta,
-                      t.E.rows(),   traced.traces.segment_count(),   t.obtuse_boundary_before, t.obtuse_boundary_after,
+                      t.E.rows(),   traced->traces.segment_count(),  t.obtuse_boundary_before, t.obtuse_boundary_after,
                       t.inserted_t.size()};
+    traced.reset();
   }
   start = Clock::now();
   data.L = element_system_matrix(data.elements, F, pattern);
