@@ -201,11 +201,10 @@ void run_beside(const std::function<void()>& side, const std::function<void()>& 
         if (omp_get_thread_num() == 0) beside = true;
         try {
           if (omp_get_thread_num() == side_thread) {
-            // side() stays on its core: CHOLMOD opens OpenMP teams of its own (4 threads in Debian's build),
-            // which crowd the cores main() is using (beetle's factorization: 29 -> 128 ms). These settings
-            // are this thread's, for the region only.
+            // side() stays on its core: with one thread allowed here (this thread's setting, for the region
+            // only) SparseCholesky keeps CHOLMOD's own teams from crowding the cores main() is using
+            // (beetle's factorization beside the element finish: 29 ms, 128 ms with CHOLMOD's teams).
             omp_set_num_threads(1);
-            omp_set_max_active_levels(1);
             side();
           } else {
             main();

@@ -1,6 +1,9 @@
 #include "iarap/solver/sparse_cholesky.h"
 
 #include "iarap/core/errors.h"
+#include "iarap/core/threads.h"
+
+#include <omp.h>
 
 #include <Eigen/CholmodSupport>
 #include <Eigen/SparseCholesky>
@@ -12,6 +15,24 @@ namespace iarap {
 namespace {
 // An LDL^T pivot this small relative to the largest means A is singular to working precision.
 constexpr double kPivotTolerance = 1e-14;
+
+// CHOLMOD as Debian builds it (SuiteSparse 5.12) opens OpenMP teams of a fixed 4 threads inside its
+// supernodal factorization, whatever thread count the caller set; on fewer cores they oversubscribe them
+// (beetle's factorization, --threads 1 on 2 cores: 25 ms serialized against 34 ms). While one of these
+// lives, CHOLMOD's teams run serialized unless 4 threads are allowed; nothing else changes (the setting is
+// the calling task's and restored after).
+class CholmodTeams {
+public:
+  CholmodTeams() : saved_(omp_get_max_active_levels()) {
+    if (thread_count() < 4) omp_set_max_active_levels(omp_get_active_level());
+  }
+  ~CholmodTeams() { omp_set_max_active_levels(saved_); }
+  CholmodTeams(const CholmodTeams&) = delete;
+  CholmodTeams& operator=(const CholmodTeams&) = delete;
+
+private:
+  int saved_;
+};
 } // namespace
 
 struct SparseCholesky::Impl {
@@ -75,6 +96,7 @@ void SparseCholesky::analyze(const Eigen::SparseMatrix<double>& pattern) {
   impl_->analyzed = pattern;
   impl_->llt = std::make_unique<Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>>>();
   impl_->llt->cholmod().print = 0;
+  const CholmodTeams teams;
   impl_->llt->analyzePattern(impl_->analyzed);
 }
 
@@ -103,6 +125,7 @@ void SparseCholesky::factorize(const Eigen::SparseMatrix<double>& A) {
     return;
   }
 
+  const CholmodTeams teams;
   if (analyzed) {
     next.llt = std::move(analyzed);
     next.llt->factorize(next.A);
