@@ -103,15 +103,22 @@ void run_serve(const ServeArguments& args, bool host_given) {
   server.set_keep_alive_max_count(1000); // one browser connection carries a whole drag
   server.set_keep_alive_timeout(2);
   // httplib's default also sets SO_REUSEPORT, which would let a second server share the port silently.
-  server.set_socket_options([](socket_t sock) {
+  socket_t listening = INVALID_SOCKET;
+  server.set_socket_options([&listening](socket_t sock) {
     const int yes = 1;
     setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof(yes));
+    listening = sock;
   });
   const int port = args.port == 0 ? server.bind_to_any_port(args.host)
                                   : (server.bind_to_port(args.host, args.port) ? args.port : -1);
   if (port < 0)
     throw Error("cannot listen on " + args.host + ":" + std::to_string(args.port) +
                 " (in use, or not an address of this machine)");
+  // Debian's httplib listens with a backlog of 5: a burst of more new connections (20 at once from a
+  // script) overflowed it, and clients got resets or waited out SYN retries. Listening again on the
+  // listening socket sets a new backlog (Linux).
+  if (listening != INVALID_SOCKET)
+    ::listen(listening, 128);
   if (!host_given || is_loopback(args.host)) {
     for (const char* name : {"127.0.0.1", "localhost", "[::1]"})
       config.allowed_hosts.push_back(std::string(name) + ":" + std::to_string(port));

@@ -3,6 +3,7 @@
 #include "binary_frame.h"
 #include "http_error.h"
 #include "json_input.h"
+#include "scenario_files.h"
 #include "static_files.h"
 
 #include "iarap/core/errors.h"
@@ -16,6 +17,8 @@
 #include <cctype>
 #include <fstream>
 #include <iostream>
+#include <limits>
+#include <map>
 #include <sstream>
 
 namespace iarap::serve {
@@ -23,9 +26,11 @@ namespace {
 
 using nlohmann::json;
 
+// Invalid UTF-8 (a client's bytes quoted in a parser's message) becomes U+FFFD: a strict dump would throw
+// inside the exception handler and end the process.
 void send_json(httplib::Response& res, const json& body, int status = 200) {
   res.status = status;
-  res.set_content(body.dump(), "application/json");
+  res.set_content(body.dump(-1, ' ', false, json::error_handler_t::replace), "application/json");
 }
 
 void send_binary(httplib::Response& res, const std::string& body) {
@@ -44,6 +49,14 @@ std::string safe_label(const std::string& name) {
     out.push_back(ok ? ch : '_');
   }
   return out.empty() ? std::string("mesh") : out;
+}
+
+// A mesh name without its extension, safe as a file name.
+std::string file_stem(const std::string& name) {
+  std::string stem = safe_label(name);
+  if (const std::size_t dot = stem.rfind('.'); dot != std::string::npos && dot > 0)
+    stem.resize(dot);
+  return stem;
 }
 
 std::string lower_extension(const std::string& name) {
@@ -69,6 +82,31 @@ std::string read_file_bytes(const std::filesystem::path& path) {
   return bytes.str();
 }
 
+bool is_form(const std::string& content_type) {
+  return content_type.rfind("application/x-www-form-urlencoded", 0) == 0 ||
+         content_type.rfind("multipart/form-data", 0) == 0;
+}
+
+// JSON routes take Content-Type application/json, which a form on another web page cannot send without
+// a CORS preflight; curl's -d default (a form) is told what to send instead.
+void require_json_content(const httplib::Request& req) {
+  const std::string type = req.get_header_value("Content-Type");
+  if (type.rfind("application/json", 0) != 0) {
+    throw HttpError(415, "this route takes a JSON body with Content-Type: application/json, got " +
+                             (type.empty() ? std::string("none") : "\"" + safe_label(type) + "\"") +
+                             " (curl: -H 'Content-Type: application/json')");
+  }
+}
+
+// File bodies (uploads, saved sessions) are the raw bytes with any Content-Type but a form's: a form
+// encodes the bytes, and curl's default -d / --data-binary type is one.
+void require_raw_file(const httplib::Request& req) {
+  if (is_form(req.get_header_value("Content-Type"))) {
+    throw HttpError(415, "send the file's bytes as the body with a Content-Type other than a form, e.g. "
+                         "curl --data-binary @mesh.off -H 'Content-Type: application/octet-stream'");
+  }
+}
+
 ArapMethod method_param(const httplib::Request& req) {
   return parse_arap_method(req.has_param("method") ? req.get_param_value("method") : "iarap");
 }
@@ -84,6 +122,7 @@ json state_json(const ServeConfig& config, const ServeState& state) {
   j["limits"] = {{"max_json_bytes", config.max_json_bytes},
                  {"max_upload_bytes", config.max_upload_bytes},
                  {"max_iterations", config.max_iterations}};
+  j["upload_formats"] = {"obj", "off", "ply", "stl"};
   j["mesh"] = nullptr;
   if (state.has_mesh()) {
     const MeshSummary summary = state.mesh_summary();
@@ -93,6 +132,7 @@ json state_json(const ServeConfig& config, const ServeState& state) {
     const Eigen::VectorXi fixed = state.fixed(), handle = state.handle();
     j["fixed"] = std::vector<int>(fixed.data(), fixed.data() + fixed.size());
     j["handle"] = std::vector<int>(handle.data(), handle.data() + handle.size());
+    j["revision"] = state.revision();
   }
   return j;
 }
@@ -140,7 +180,15 @@ std::string solve_frame(const SolveRequest& request, const SolveResult& result) 
                        {"local_ms", report.local_ms},
                        {"global_ms", report.global_ms},
                        {"pinned", result.pinned},
+                       {"cancelled", result.cancelled},
                        {"vertices", result.positions.size() / 3}});
+}
+
+// Messages may quote client data (a parser's last token, a file's line): at most 600 characters go back.
+void send_error(httplib::Response& res, std::string message, int status) {
+  if (message.size() > 600)
+    message = message.substr(0, 600) + "... (cut)";
+  send_json(res, {{"error", message}}, status);
 }
 
 // Maps what a handler threw to a status: HttpError its own, InputError 400, Topology/SolverError 422.
@@ -148,17 +196,17 @@ void answer_exception(httplib::Response& res, std::exception_ptr error) {
   try {
     std::rethrow_exception(error);
   } catch (const HttpError& e) {
-    send_json(res, {{"error", e.what()}}, e.status());
+    send_error(res, e.what(), e.status());
   } catch (const InputError& e) {
-    send_json(res, {{"error", e.what()}}, 400);
+    send_error(res, e.what(), 400);
   } catch (const TopologyError& e) {
-    send_json(res, {{"error", e.what()}}, 422);
+    send_error(res, e.what(), 422);
   } catch (const SolverError& e) {
-    send_json(res, {{"error", e.what()}}, 422);
+    send_error(res, e.what(), 422);
   } catch (const std::exception& e) {
-    send_json(res, {{"error", std::string("internal error: ") + e.what()}}, 500);
+    send_error(res, std::string("internal error: ") + e.what(), 500);
   } catch (...) {
-    send_json(res, {{"error", "internal error"}}, 500);
+    send_error(res, "internal error", 500);
   }
 }
 
@@ -184,6 +232,95 @@ void load_server_mesh(ServeState& state, const ServerMesh& mesh) {
   state.load_mesh(mesh.name, read_mesh(mesh.path));
 }
 
+namespace {
+
+// Registers handlers and remembers each path's methods, so that another method on a known path gets 405
+// with Allow instead of a 404.
+class RouteTable {
+public:
+  explicit RouteTable(httplib::Server& server) : server_(server) {}
+
+  void get(const std::string& path, httplib::Server::Handler handler) {
+    server_.Get(path, std::move(handler));
+    methods_[path].push_back("GET");
+  }
+  void post(const std::string& path, httplib::Server::Handler handler) {
+    server_.Post(path, std::move(handler));
+    methods_[path].push_back("POST");
+  }
+
+  void answer_other_methods_with_405() {
+    for (const auto& [path, methods] : methods_) {
+      std::string allow;
+      for (const std::string& method : methods)
+        allow += (allow.empty() ? "" : ", ") + method;
+      const auto refuse = [path = path, allow](const httplib::Request& req, httplib::Response& res) {
+        res.set_header("Allow", allow);
+        throw HttpError(405, req.method + " is not allowed on " + path + "; use " + allow);
+      };
+      const auto has = [&methods = methods](const char* m) {
+        return std::find(methods.begin(), methods.end(), m) != methods.end();
+      };
+      if (!has("GET"))
+        server_.Get(path, refuse);
+      if (!has("POST"))
+        server_.Post(path, refuse);
+      server_.Put(path, refuse);
+      server_.Delete(path, refuse);
+      server_.Patch(path, refuse);
+    }
+  }
+
+private:
+  httplib::Server& server_;
+  std::map<std::string, std::vector<std::string>> methods_;
+};
+
+// The message of an error status httplib answers itself (no handler ran): 404, 413 with the limit of the
+// route, and 415 for a form body httplib refused as too large for a form (8 KiB) when it is within the
+// route's limit (curl --data-binary sends a form's type unless told otherwise).
+httplib::Server::HandlerResponse answer_transport_error(const ServeConfig& config, const httplib::Request& req,
+                                                        httplib::Response& res) {
+  if (!res.body.empty())
+    return httplib::Server::HandlerResponse::Unhandled;
+  const bool upload = req.path == "/api/upload" || req.path == "/api/scenario/load";
+  const std::size_t limit = upload ? config.max_upload_bytes : config.max_json_bytes;
+  std::string message = "HTTP " + std::to_string(res.status);
+  if (res.status == 404) {
+    message = "not found: " + safe_label(req.path);
+  } else if (res.status == 413) {
+    const std::string length = req.get_header_value("Content-Length");
+    const bool within = !length.empty() && length.size() < 19 && std::stoull(length) <= limit;
+    if (is_form(req.get_header_value("Content-Type")) && within) {
+      res.status = 415;
+      message = upload ? "send the file's bytes as the body with a Content-Type other than a form, e.g. "
+                         "curl --data-binary @mesh.off -H 'Content-Type: application/octet-stream'"
+                       : "this route takes a JSON body with Content-Type: application/json "
+                         "(curl: -H 'Content-Type: application/json')";
+    } else {
+      message = std::string("request body too large; the limit for ") + (upload ? "file uploads" : "JSON bodies") +
+                " is " + byte_limit_text(limit);
+    }
+  }
+  send_error(res, message, res.status);
+  return httplib::Server::HandlerResponse::Handled;
+}
+
+// The JSON object of a request to a JSON route.
+json json_body(const httplib::Request& req, const ServeConfig& config) {
+  require_json_content(req);
+  return parse_json_object(req.body, config.max_json_bytes);
+}
+
+// The part of a solve request that says where the constrained vertices go: method and transform or
+// handle_targets.
+SolveRequest parse_target_request(const json& body, int max_iterations) {
+  require_known_fields(body, {"method", "transform", "handle_targets"});
+  return parse_solve_request(body, max_iterations);
+}
+
+} // namespace
+
 void register_routes(httplib::Server& server, const ServeConfig& config, ServeState& state,
                      PrivateTempDir& temp) {
   server.set_payload_max_length(std::max(config.max_json_bytes, config.max_upload_bytes));
@@ -196,15 +333,7 @@ void register_routes(httplib::Server& server, const ServeConfig& config, ServeSt
   // Named type: a lambda alone is ambiguous between the two set_error_handler overloads.
   const httplib::Server::HandlerWithResponse error_handler = [&config](const httplib::Request& req,
                                                                        httplib::Response& res) {
-    if (!res.body.empty())
-      return httplib::Server::HandlerResponse::Unhandled;
-    std::string message = "HTTP " + std::to_string(res.status);
-    if (res.status == 404)
-      message = "not found: " + safe_label(req.path);
-    else if (res.status == 413)
-      message = "request body too large; the limit is " + std::to_string(config.max_upload_bytes) + " bytes";
-    send_json(res, {{"error", message}}, res.status);
-    return httplib::Server::HandlerResponse::Handled;
+    return answer_transport_error(config, req, res);
   };
   server.set_error_handler(error_handler);
   if (config.verbose) {
@@ -212,13 +341,14 @@ void register_routes(httplib::Server& server, const ServeConfig& config, ServeSt
       std::cerr << "serve: " << req.method << " " << req.path << " -> " << res.status << "\n";
     });
   }
+  RouteTable routes(server);
 
-  server.Get("/api/state", [&](const httplib::Request&, httplib::Response& res) {
+  routes.get("/api/state", [&](const httplib::Request&, httplib::Response& res) {
     send_json(res, state_json(config, state));
   });
 
-  server.Post("/api/load", [&](const httplib::Request& req, httplib::Response& res) {
-    const json body = parse_json_object(req.body, config.max_json_bytes);
+  routes.post("/api/load", [&](const httplib::Request& req, httplib::Response& res) {
+    const json body = json_body(req, config);
     require_known_fields(body, {"mesh"});
     const std::string name = string_field(body, "mesh", "");
     const auto it = std::find_if(config.meshes.begin(), config.meshes.end(),
@@ -229,16 +359,17 @@ void register_routes(httplib::Server& server, const ServeConfig& config, ServeSt
     send_json(res, state_json(config, state));
   });
 
-  server.Post("/api/upload", [&](const httplib::Request& req, httplib::Response& res) {
+  routes.post("/api/upload", [&](const httplib::Request& req, httplib::Response& res) {
     const std::string name = safe_label(req.has_param("name") ? req.get_param_value("name") : "");
     const std::string ext = lower_extension(name);
-    if (ext != "obj" && ext != "off" && ext != "ply")
-      throw HttpError(400, "upload name \"" + name + "\" must end in .obj, .off or .ply");
+    if (ext != "obj" && ext != "off" && ext != "ply" && ext != "stl")
+      throw HttpError(400, "upload name \"" + name + "\" must end in .obj, .off, .ply or .stl");
+    require_raw_file(req);
     if (req.body.empty())
       throw HttpError(400, "upload body is empty; send the mesh file's bytes");
     if (req.body.size() > config.max_upload_bytes)
-      throw HttpError(413, "upload has " + std::to_string(req.body.size()) + " bytes; the limit is " +
-                               std::to_string(config.max_upload_bytes));
+      throw HttpError(413, "upload has " + std::to_string(req.body.size()) + " bytes; the limit for file uploads is " +
+                               byte_limit_text(config.max_upload_bytes));
     ScopedFile file(temp.unique_path("upload", ext));
     {
       std::ofstream out(file.path(), std::ios::binary);
@@ -256,38 +387,88 @@ void register_routes(httplib::Server& server, const ServeConfig& config, ServeSt
     send_json(res, state_json(config, state));
   });
 
-  server.Get("/api/faces", [&](const httplib::Request&, httplib::Response& res) {
+  routes.get("/api/faces", [&](const httplib::Request&, httplib::Response& res) {
     send_binary(res, raw_bytes(state.faces()));
   });
 
-  server.Get("/api/positions", [&](const httplib::Request& req, httplib::Response& res) {
+  routes.get("/api/positions", [&](const httplib::Request& req, httplib::Response& res) {
     const bool rest = req.get_param_value("method") == "rest";
     send_binary(
         res, raw_bytes(state.positions(rest ? std::nullopt : std::optional<ArapMethod>(method_param(req)))));
   });
 
-  server.Post("/api/constraints", [&](const httplib::Request& req, httplib::Response& res) {
-    const json body = parse_json_object(req.body, config.max_json_bytes);
-    require_known_fields(body, {"fixed", "handle"});
-    state.set_constraints(integer_array_field(body, "fixed"), integer_array_field(body, "handle"));
+  routes.post("/api/constraints", [&](const httplib::Request& req, httplib::Response& res) {
+    const json body = json_body(req, config);
+    if (body.contains("revision")) { // undo / redo: an earlier set with its anchors
+      require_known_fields(body, {"revision"});
+      state.restore_constraints(integer_field(body, "revision", 0, 1, std::numeric_limits<int>::max()));
+    } else {
+      require_known_fields(body, {"fixed", "handle"});
+      state.set_constraints(integer_array_field(body, "fixed"), integer_array_field(body, "handle"));
+    }
     send_json(res, state_json(config, state));
   });
 
-  server.Post("/api/solve", [&](const httplib::Request& req, httplib::Response& res) {
-    const SolveRequest request =
-        parse_solve_request(parse_json_object(req.body, config.max_json_bytes), config.max_iterations);
+  routes.post("/api/solve", [&](const httplib::Request& req, httplib::Response& res) {
+    const SolveRequest request = parse_solve_request(json_body(req, config), config.max_iterations);
     const SolveResult result = state.solve(request);
     send_binary(res, solve_frame(request, result));
   });
 
-  server.Post("/api/reset", [&](const httplib::Request& req, httplib::Response& res) {
+  // Read while a solve runs (no session mutex): how far it is, and a way to stop it.
+  routes.get("/api/progress", [&](const httplib::Request&, httplib::Response& res) {
+    SolveProgress& p = state.progress();
+    send_json(res, {{"running", p.running.load()},
+                    {"method", arap_method_name(static_cast<ArapMethod>(p.method.load()))},
+                    {"iteration", p.iteration.load()},
+                    {"iterations", p.iterations.load()},
+                    {"energy", p.energy.load()}});
+  });
+
+  routes.post("/api/cancel", [&](const httplib::Request&, httplib::Response& res) {
+    SolveProgress& p = state.progress();
+    const bool running = p.running.load();
+    if (running)
+      p.cancel_requested = true;
+    send_json(res, {{"cancelling", running}});
+  });
+
+  routes.post("/api/reset", [&](const httplib::Request& req, httplib::Response& res) {
     if (!req.body.empty())
-      require_known_fields(parse_json_object(req.body, config.max_json_bytes), {});
+      require_known_fields(json_body(req, config), {});
     state.reset();
     send_json(res, state_json(config, state));
   });
 
-  server.Get("/api/intrinsic_edges", [&](const httplib::Request&, httplib::Response& res) {
+  // The session as a file `iarap deform` replays (see scenario_files.h); the body is a solve request's
+  // method and transform / handle_targets.
+  routes.post("/api/scenario", [&](const httplib::Request& req, httplib::Response& res) {
+    const SolveRequest request = parse_target_request(json_body(req, config), config.max_iterations);
+    const ConstraintTargets targets = state.constraint_targets(request.method, request);
+    const std::string mesh = state.mesh_summary().name;
+    const SavedSession saved = save_session(
+        targets, request.transform, "saved by iarap serve from " + mesh + ", method " + arap_method_name(request.method));
+    const std::string file = file_stem(mesh) + (saved.is_scenario ? "_scenario.json" : "_constraints.txt");
+    res.set_header("Content-Disposition", "attachment; filename=\"" + file + "\"");
+    res.set_content(saved.text, saved.is_scenario ? "application/json" : "text/plain");
+  });
+
+  // A scenario or constraints file (body) for the current mesh; name only labels messages.
+  routes.post("/api/scenario/load", [&](const httplib::Request& req, httplib::Response& res) {
+    require_raw_file(req);
+    if (req.body.size() > config.max_json_bytes)
+      throw HttpError(413, "scenario file has " + std::to_string(req.body.size()) + " bytes; the limit is " +
+                               byte_limit_text(config.max_json_bytes));
+    const std::string name = safe_label(req.has_param("name") ? req.get_param_value("name") : "scenario");
+    const MeshSnapshot rest = state.snapshot(std::nullopt);
+    const LoadedSession loaded = load_session(req.body, name, rest.V);
+    state.load_constraints(loaded.fixed, loaded.handle, loaded.targets);
+    json answer = state_json(config, state);
+    answer["warnings"] = loaded.warnings;
+    send_json(res, answer);
+  });
+
+  routes.get("/api/intrinsic_edges", [&](const httplib::Request&, httplib::Response& res) {
     const std::shared_ptr<const IntrinsicOverlay> overlay = state.intrinsic_overlay();
     BinaryFrame frame;
     frame.add("start", overlay->start);
@@ -298,7 +479,7 @@ void register_routes(httplib::Server& server, const ServeConfig& config, ServeSt
     send_binary(res, frame.encode({{"edges", overlay->original.size()}, {"points", overlay->a.size()}}));
   });
 
-  server.Get("/api/download", [&](const httplib::Request& req, httplib::Response& res) {
+  routes.get("/api/download", [&](const httplib::Request& req, httplib::Response& res) {
     const ArapMethod method = method_param(req);
     const std::string format = req.has_param("format") ? req.get_param_value("format") : "obj";
     if (format != "obj" && format != "off" && format != "ply")
@@ -306,15 +487,13 @@ void register_routes(httplib::Server& server, const ServeConfig& config, ServeSt
     const MeshSnapshot snapshot = state.snapshot(method);
     ScopedFile file(temp.unique_path("download", format));
     write_mesh(file.path().string(), snapshot.V, snapshot.F);
-    std::string stem = safe_label(snapshot.name);
-    const std::size_t dot = stem.rfind('.');
-    if (dot != std::string::npos && dot > 0)
-      stem.resize(dot);
-    res.set_header("Content-Disposition",
-                   "attachment; filename=\"" + stem + "_" + arap_method_name(method) + "." + format + "\"");
+    res.set_header("Content-Disposition", "attachment; filename=\"" + file_stem(snapshot.name) + "_" +
+                                              arap_method_name(method) + "." + format + "\"");
     res.set_content(read_file_bytes(file.path()),
                     format == "ply" ? "application/octet-stream" : "text/plain");
   });
+
+  routes.answer_other_methods_with_405();
 
   server.Get("/api/.*", [](const httplib::Request& req, httplib::Response&) {
     throw HttpError(404, "no API route " + safe_label(req.path));

@@ -1,17 +1,26 @@
 // The HTTP routes of `iarap serve`: the JSON / binary API over a ServeState and the static web app.
 //
-//   GET  /api/state            JSON: mesh summary, server mesh names, fixed / handle indices, limits
+//   GET  /api/state            JSON: mesh summary, server mesh names, fixed / handle indices, constraint
+//                              revision, limits, upload formats
 //   POST /api/load             {"mesh": NAME}: one of the meshes named on the command line (never a path)
-//   POST /api/upload?name=N    body: an OBJ / OFF / PLY file (N only gives the format and a label)
+//   POST /api/upload?name=N    body: an OBJ / OFF / PLY / STL file (N only gives the format and a label)
 //   GET  /api/faces            uint32 #F x 3;  GET /api/positions?method=M|rest  float32 #V x 3
-//   POST /api/constraints      {"fixed": [...], "handle": [...]}
+//   POST /api/constraints      {"fixed": [...], "handle": [...]} (a new revision), or {"revision": R} (undo:
+//                              an earlier revision's sets and anchors back)
 //   POST /api/solve            {"method", "iterations", "tolerance", "transform" | "handle_targets",
 //                               "cell_energy"} -> binary frame: energies + positions (+ cell energies)
+//   GET  /api/progress         JSON: the running solve's method, iteration, iterations (no session lock)
+//   POST /api/cancel           stops the running solve after its current chunk of iterations
 //   POST /api/reset            every method back to the rest shape
+//   POST /api/scenario         {"method", "transform" | "handle_targets"} -> a scenario (JSON) or
+//                              constraints file (text) `iarap deform` replays (scenario_files.h)
+//   POST /api/scenario/load?name=N   body: such a file; constraints and anchors from it, shapes at rest
 //   GET  /api/intrinsic_edges  binary frame: traced intrinsic Delaunay edges (start, a, c, t, original)
 //   GET  /api/download?method=M&format=obj|off|ply   the deformed mesh as a file
-// Errors answer {"error": message} with 400 (bad request), 403 (foreign Origin / Host), 404, 409 (no mesh
-// or no constraints yet), 413 (body too large) or 422 (mesh or solve the library refuses).
+// JSON bodies need Content-Type application/json; file bodies any type but a form's. Errors answer
+// {"error": message} with 400 (bad request), 403 (foreign Origin / Host), 404, 405 (with Allow), 409 (no
+// mesh or no constraints yet, a revision no longer kept), 413 (body over the route's limit), 415 (content
+// type) or 422 (mesh or solve the library refuses).
 #pragma once
 #include "private_temp_dir.h"
 #include "serve_state.h"

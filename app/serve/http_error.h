@@ -2,6 +2,8 @@
 #pragma once
 #include "iarap/core/errors.h"
 
+#include <cstddef>
+#include <sstream>
 #include <string>
 
 namespace iarap::serve {
@@ -14,5 +16,12 @@ public:
 private:
   int status_;
 };
+
+// A size limit for messages: "16 MiB (16777216 bytes)".
+inline std::string byte_limit_text(std::size_t bytes) {
+  std::ostringstream text;
+  text << static_cast<double>(bytes) / (1 << 20) << " MiB (" << bytes << " bytes)";
+  return text.str();
+}
 
 } // namespace iarap::serve

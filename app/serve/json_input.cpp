@@ -6,21 +6,58 @@
 #include <limits>
 
 namespace iarap::serve {
-namespace {
 
-// A value as JSON text, cut to a length that keeps error messages readable.
-std::string short_dump(const nlohmann::json& value) {
-  std::string text = value.dump();
-  return text.size() <= 40 ? text : text.substr(0, 37) + "...";
+std::string short_description(const nlohmann::json& value) {
+  if (value.is_array())
+    return "an array of " + std::to_string(value.size()) + " elements";
+  if (value.is_object())
+    return "an object of " + std::to_string(value.size()) + " members";
+  if (value.is_string()) {
+    const std::string& text = value.get_ref<const std::string&>();
+    return text.size() <= 32 ? nlohmann::json(text).dump()
+                             : nlohmann::json(text.substr(0, 29)).dump() + "... (" +
+                                   std::to_string(text.size()) + " characters)";
+  }
+  return value.dump(); // a number, boolean or null: short
 }
 
-} // namespace
+void check_json_limits(const std::string& text, const JsonLimits& limits) {
+  int depth = 0;
+  std::size_t values = 1; // the top-level value, plus one per ',' and per '[' / '{' (an upper bound)
+  bool in_string = false;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char ch = text[i];
+    if (in_string) {
+      if (ch == '\\')
+        ++i; // the escaped character cannot end the string
+      else if (ch == '"')
+        in_string = false;
+      continue;
+    }
+    if (ch == '"') {
+      in_string = true;
+    } else if (ch == '[' || ch == '{') {
+      if (++depth > limits.max_depth)
+        throw HttpError(400, "JSON nests deeper than " + std::to_string(limits.max_depth) +
+                                 " arrays / objects (at byte " + std::to_string(i) + ")");
+      ++values;
+    } else if (ch == ']' || ch == '}') {
+      --depth;
+    } else if (ch == ',') {
+      ++values;
+    }
+    if (values > limits.max_values)
+      throw HttpError(400, "JSON holds more than " + std::to_string(limits.max_values) +
+                               " values (at byte " + std::to_string(i) + ")");
+  }
+}
 
 nlohmann::json parse_json_object(const std::string& body, std::size_t max_bytes) {
   if (body.size() > max_bytes) {
-    throw HttpError(413, "request body has " + std::to_string(body.size()) +
-                             " bytes; the limit for JSON is " + std::to_string(max_bytes));
+    throw HttpError(413, "request body has " + std::to_string(body.size()) + " bytes; the limit for JSON bodies is " +
+                             byte_limit_text(max_bytes));
   }
+  check_json_limits(body);
   nlohmann::json object;
   try {
     object = nlohmann::json::parse(body);
@@ -43,7 +80,7 @@ void require_known_fields(const nlohmann::json& object, std::initializer_list<co
       std::string names;
       for (const char* name : allowed)
         names += (names.empty() ? "" : ", ") + std::string(name);
-      throw HttpError(400, "unknown field \"" + item.key() + "\"; expected " + names);
+      throw HttpError(400, "unknown field " + short_description(item.key()) + "; expected " + names);
     }
   }
 }
@@ -71,13 +108,13 @@ Eigen::VectorXi integer_array_field(const nlohmann::json& object, const char* fi
     const std::string where = std::string(field) + "[" + std::to_string(i) + "]";
     if (value.is_number_unsigned()) {
       if (value.get<std::uint64_t>() > static_cast<std::uint64_t>(std::numeric_limits<int>::max()))
-        throw HttpError(400, where + " = " + short_dump(value) + " is too large");
+        throw HttpError(400, where + " = " + short_description(value) + " is too large");
     } else if (value.is_number_integer()) {
       const std::int64_t v = value.get<std::int64_t>();
       if (v < std::numeric_limits<int>::min() || v > std::numeric_limits<int>::max())
-        throw HttpError(400, where + " = " + short_dump(value) + " is out of the integer range");
+        throw HttpError(400, where + " = " + short_description(value) + " is out of the integer range");
     } else {
-      throw HttpError(400, where + " must be an integer vertex index, got " + short_dump(value));
+      throw HttpError(400, where + " must be an integer vertex index, got " + short_description(value));
     }
     values[static_cast<Eigen::Index>(i)] = static_cast<int>(value.get<std::int64_t>());
   }
@@ -93,7 +130,7 @@ std::vector<double> number_array_field(const nlohmann::json& object, const char*
     const nlohmann::json& value = (*array)[i];
     if (!value.is_number())
       throw HttpError(400, std::string(field) + "[" + std::to_string(i) + "] must be a number, got " +
-                               short_dump(value));
+                               short_description(value));
     values[i] = value.get<double>();
     if (!std::isfinite(values[i])) // "1e999" parses to inf
       throw HttpError(400, std::string(field) + "[" + std::to_string(i) + "] is not finite");
@@ -109,7 +146,7 @@ int integer_field(const nlohmann::json& object, const char* field, int fallback,
   const double value = it->is_number() ? it->get<double>() : 0.0;
   if (!integer || value < min || value > max) {
     throw HttpError(400, std::string(field) + " must be an integer in " + std::to_string(min) + ".." +
-                             std::to_string(max) + ", got " + short_dump(*it));
+                             std::to_string(max) + ", got " + short_description(*it));
   }
   return it->get<int>();
 }
@@ -119,7 +156,7 @@ double number_field(const nlohmann::json& object, const char* field, double fall
   if (it == object.end())
     return fallback;
   if (!it->is_number() || !std::isfinite(it->get<double>()))
-    throw HttpError(400, std::string(field) + " must be a finite number, got " + short_dump(*it));
+    throw HttpError(400, std::string(field) + " must be a finite number, got " + short_description(*it));
   return it->get<double>();
 }
 
@@ -128,7 +165,7 @@ std::string string_field(const nlohmann::json& object, const char* field, const 
   if (it == object.end())
     return fallback;
   if (!it->is_string())
-    throw HttpError(400, std::string(field) + " must be a string, got " + short_dump(*it));
+    throw HttpError(400, std::string(field) + " must be a string, got " + short_description(*it));
   return it->get<std::string>();
 }
 
@@ -137,7 +174,7 @@ bool bool_field(const nlohmann::json& object, const char* field, bool fallback) 
   if (it == object.end())
     return fallback;
   if (!it->is_boolean())
-    throw HttpError(400, std::string(field) + " must be true or false, got " + short_dump(*it));
+    throw HttpError(400, std::string(field) + " must be true or false, got " + short_description(*it));
   return it->get<bool>();
 }
 

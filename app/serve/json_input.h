@@ -11,9 +11,25 @@
 
 namespace iarap::serve {
 
-// Parses body as one JSON object. Throws HttpError 413 when body exceeds max_bytes, 400 when it is not
-// JSON (with the parser's byte position) or not an object.
+// Bounds on a JSON text checked before it is parsed: nlohmann's parser recurses once per nesting level
+// (100,000 nested arrays overflowed the stack) and builds a 16-byte node per value.
+struct JsonLimits {
+  int max_depth = 32;                        // the API's bodies nest 2 levels, scenario files 5
+  std::size_t max_values = std::size_t{1} << 22; // 4M values: a selection of every vertex of a 4M-vertex mesh
+};
+
+// One pass over text without recursion: throws HttpError 400 naming the limit (and the byte where it is
+// passed) when arrays / objects nest deeper than limits.max_depth or the text holds more values than
+// limits.max_values. Strings are skipped, escapes included; malformed text is left to the parser.
+void check_json_limits(const std::string& text, const JsonLimits& limits = {});
+
+// Parses body as one JSON object. Throws HttpError 413 when body exceeds max_bytes, 400 when it passes
+// check_json_limits' bounds, is not JSON (with the parser's byte position) or not an object.
 nlohmann::json parse_json_object(const std::string& body, std::size_t max_bytes);
+
+// A value for an error message, never longer than about 40 characters and never dumped whole: scalars
+// as JSON text (long strings cut before they are quoted), arrays and objects by kind and size.
+std::string short_description(const nlohmann::json& value);
 
 // Throws HttpError 400 naming the first member of object that is not in allowed (catches typos).
 void require_known_fields(const nlohmann::json& object, std::initializer_list<const char*> allowed);

@@ -5,6 +5,7 @@
 #include "iarap/core/errors.h"
 #include "iarap/mesh/validate.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <unordered_map>
@@ -46,6 +47,44 @@ void check_index_set(const Eigen::VectorXi& set, const char* name, int vertex_co
   }
 }
 
+// arap_solve in chunks of ServeState::solve_chunk iterations, publishing the progress after each and
+// stopping early when a cancel is requested. The chunks' reports are joined into one: a chunk starts where
+// the previous one ended, so its initial energy repeats the previous last energy and is dropped.
+ArapReport solve_in_chunks(ArapData& data, const Eigen::MatrixXd& targets, Eigen::MatrixXd& U,
+                           const SolveRequest& request, SolveProgress& progress) {
+  progress.cancel_requested = false;
+  progress.method = static_cast<int>(request.method);
+  progress.iteration = 0;
+  progress.iterations = request.iterations;
+  progress.running = true;
+  struct Done { // clears `running` on every exit, a throw included
+    SolveProgress& progress;
+    ~Done() { progress.running = false; }
+  } done{progress};
+  ArapReport total;
+  for (bool first = true; first || (total.iterations < request.iterations && !total.converged);
+       first = false) {
+    if (progress.cancel_requested)
+      break;
+    ArapSolveOptions options;
+    options.max_iterations = std::min(ServeState::solve_chunk, request.iterations - total.iterations);
+    options.tolerance = request.tolerance;
+    ArapReport chunk = arap_solve(data, targets, U, options);
+    if (first)
+      total.initial_energy = chunk.initial_energy;
+    total.iterations += chunk.iterations;
+    total.converged = chunk.converged;
+    total.local_ms += chunk.local_ms;
+    total.global_ms += chunk.global_ms;
+    total.energies.insert(total.energies.end(), chunk.energies.begin(), chunk.energies.end());
+    progress.iteration = total.iterations;
+    progress.energy = total.energies.empty() ? total.initial_energy : total.energies.back();
+    if (chunk.iterations < options.max_iterations) // the tolerance rule (or E == 0) stopped it
+      break;
+  }
+  return total;
+}
+
 } // namespace
 
 void ServeState::load_mesh(const std::string& name, MeshData mesh) {
@@ -72,6 +111,7 @@ void ServeState::load_mesh(const std::string& name, MeshData mesh) {
   handle_.resize(0);
   constrained_.resize(0);
   overlay_.reset();
+  history_.clear(); // revisions index the previous mesh's vertices
   mesh_ = std::move(mesh);
 }
 
@@ -112,19 +152,98 @@ const ServeState::MethodState& ServeState::state_of(ArapMethod method) const {
   return methods_[static_cast<std::size_t>(method)];
 }
 
-void ServeState::set_constraints(const Eigen::VectorXi& fixed, const Eigen::VectorXi& handle) {
-  std::lock_guard<std::mutex> lock(mutex_);
-  require_mesh();
+void ServeState::check_sets(const Eigen::VectorXi& fixed, const Eigen::VectorXi& handle) const {
   const int vertex_count = static_cast<int>(mesh_->V.rows());
   std::unordered_map<int, std::string> seen;
   check_index_set(fixed, "fixed", vertex_count, seen);
   check_index_set(handle, "handle", vertex_count, seen);
+}
+
+void ServeState::use_sets(const Eigen::VectorXi& fixed, const Eigen::VectorXi& handle) {
   fixed_ = fixed;
   handle_ = handle;
   constrained_.resize(fixed.size() + handle.size());
   constrained_ << fixed, handle;
+}
+
+int ServeState::record_revision() {
+  Revision revision{next_revision_++, fixed_, handle_, {}};
+  for (std::size_t m = 0; m < methods_.size(); ++m)
+    revision.anchors[m] = methods_[m].anchor;
+  history_.push_back(std::move(revision));
+  if (history_.size() > history_limit)
+    history_.pop_front();
+  return history_.back().id;
+}
+
+int ServeState::set_constraints(const Eigen::VectorXi& fixed, const Eigen::VectorXi& handle) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  require_mesh();
+  check_sets(fixed, handle);
+  use_sets(fixed, handle);
   for (MethodState& state : methods_)
     state.anchor = gather_rows(state.U, constrained_);
+  return record_revision();
+}
+
+void ServeState::restore_constraints(int revision) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  require_mesh();
+  const auto it = std::find_if(history_.begin(), history_.end(),
+                               [revision](const Revision& r) { return r.id == revision; });
+  if (it == history_.end()) {
+    throw HttpError(409, "constraint revision " + std::to_string(revision) + " is not kept (the last " +
+                             std::to_string(history_limit) + " of this mesh are)");
+  }
+  use_sets(it->fixed, it->handle);
+  for (std::size_t m = 0; m < methods_.size(); ++m)
+    methods_[m].anchor = it->anchors[m];
+  // The restored state becomes the newest, so that it outlives the revisions undone past it.
+  Revision restored = *it;
+  history_.erase(it);
+  history_.push_back(std::move(restored));
+}
+
+int ServeState::revision() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return history_.empty() ? 0 : history_.back().id;
+}
+
+int ServeState::load_constraints(const Eigen::VectorXi& fixed, const Eigen::VectorXi& handle,
+                                 const Eigen::MatrixXd& targets) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  require_mesh();
+  check_sets(fixed, handle);
+  if (targets.rows() != fixed.size() + handle.size() || targets.cols() != 3)
+    throw InputError("constraint targets do not match the constrained vertices");
+  for (Eigen::Index i = 0; i < targets.rows(); ++i) {
+    if (!targets.row(i).allFinite())
+      throw InputError("constraint target " + std::to_string(i) + " is not finite");
+  }
+  use_sets(fixed, handle);
+  for (MethodState& state : methods_) {
+    state.U = mesh_->V;
+    state.anchor = targets;
+  }
+  return record_revision();
+}
+
+ConstraintTargets ServeState::constraint_targets(ArapMethod method, const SolveRequest& request) const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  require_mesh();
+  if (constrained_.size() == 0)
+    throw HttpError(409, "no fixed or handle vertices; select some first");
+  const MethodState& state = state_of(method);
+  ConstraintTargets out;
+  out.fixed = fixed_;
+  out.handle = handle_;
+  out.targets = targets_for(state, request);
+  // Anchors re-taken after a solve that kept the shape (e.g. a handle selected, the identity solved) differ
+  // from the rest rows by the solve's rounding (1e-16 relative, times the conditioning of L); 1e-9 of the
+  // bounding-box diagonal lies far above that and far below anything a user's drag moves.
+  const Eigen::MatrixXd rest = gather_rows(mesh_->V, constrained_);
+  out.anchored_at_rest = (state.anchor - rest).cwiseAbs().maxCoeff() <= 1e-9 * summary_.bbox_diagonal;
+  return out;
 }
 
 Eigen::MatrixXd ServeState::targets_for(const MethodState& state, const SolveRequest& request) const {
@@ -185,18 +304,17 @@ SolveResult ServeState::solve(const SolveRequest& request) {
     result.precompute_ms = elapsed_ms(precompute_start);
   }
 
-  ArapSolveOptions options;
-  options.max_iterations = request.iterations;
-  options.tolerance = request.tolerance;
   Eigen::MatrixXd U = state.U; // commit only a successful solve
   const auto solve_start = std::chrono::steady_clock::now();
-  result.report = arap_solve(*state.data, targets, U, options);
+  result.report = solve_in_chunks(*state.data, targets, U, request, progress_);
+  result.cancelled = !result.report.converged && result.report.iterations < request.iterations;
   result.solve_ms = elapsed_ms(solve_start);
   result.pinned = static_cast<int>(state.data->pinned.size());
   result.positions = to_float_rows(U);
   if (request.cell_energy) {
     const Eigen::VectorXd energy = arap_cell_energy(*state.data, U);
-    result.cell_energy.assign(energy.data(), energy.data() + energy.size());
+    // iARAP with refine_boundary adds cells for inserted boundary points after the #V vertex cells.
+    result.cell_energy.assign(energy.data(), energy.data() + std::min<Eigen::Index>(energy.size(), U.rows()));
   }
   state.U = std::move(U);
   return result;
@@ -209,6 +327,8 @@ void ServeState::reset() {
     state.U = mesh_->V;
     state.anchor = gather_rows(state.U, constrained_);
   }
+  if (constrained_.size() > 0)
+    record_revision();
 }
 
 std::vector<float> ServeState::positions(std::optional<ArapMethod> method) const {
@@ -228,10 +348,10 @@ std::vector<std::uint32_t> ServeState::faces() const {
   return out;
 }
 
-MeshSnapshot ServeState::snapshot(ArapMethod method) const {
+MeshSnapshot ServeState::snapshot(std::optional<ArapMethod> method) const {
   std::lock_guard<std::mutex> lock(mutex_);
   require_mesh();
-  return {state_of(method).U, mesh_->F, summary_.name};
+  return {method ? state_of(*method).U : mesh_->V, mesh_->F, summary_.name};
 }
 
 std::shared_ptr<const IntrinsicOverlay> ServeState::intrinsic_overlay() {

@@ -7,6 +7,8 @@
 // deformed positions U, the warm start of its next solve, and its factorization, refactorized only when
 // the constrained set changes (libigl habit: new targets reuse it).
 #pragma once
+#include "solve_progress.h"
+
 #include "iarap/intrinsic/intrinsic_delaunay.h"
 #include "iarap/io/read_mesh.h"
 #include "iarap/solver/arap.h"
@@ -14,6 +16,7 @@
 #include <Eigen/Core>
 #include <array>
 #include <cstdint>
+#include <deque>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -32,6 +35,8 @@ struct MeshSummary {
   std::vector<std::string> notes, warnings; // reader notes and check_mesh warnings
 };
 
+// What a solve is asked to do. A new solver option (e.g. an accelerator) is one more member here, parsed
+// in api_routes.cpp's parse_solve_request and passed to ArapSolveOptions in ServeState::solve.
 struct SolveRequest {
   ArapMethod method = ArapMethod::Iarap;
   int iterations = 5;
@@ -49,6 +54,16 @@ struct SolveResult {
   int pinned = 0;                 // vertices pinned because their component had no constrained vertex
   std::vector<float> positions;   // #V x 3 row-major
   std::vector<float> cell_energy; // #V when requested
+  bool cancelled = false;         // POST /api/cancel stopped it early; positions are the last chunk's
+};
+
+// The constrained vertices of a method with their targets for a request, for saving them as a file.
+struct ConstraintTargets {
+  Eigen::VectorXi fixed, handle;
+  Eigen::MatrixXd targets; // #fixed + #handle x 3, fixed rows first
+  // Every anchor is the vertex's rest position (to 1e-9 of the bounding-box diagonal): the targets are
+  // then the rest mesh moved by the request.
+  bool anchored_at_rest = false;
 };
 
 // Intrinsic Delaunay edges traced over the input (TracedEdges, CSR): point p of edge e, for p in
@@ -78,13 +93,31 @@ public:
   Eigen::VectorXi handle() const;
 
   // Throws InputError naming the position for an index out of range, a repeat within a set, or a vertex
-  // in both sets; nothing changes then. Empty sets are allowed (solve then answers 409).
-  void set_constraints(const Eigen::VectorXi& fixed, const Eigen::VectorXi& handle);
+  // in both sets; nothing changes then. Empty sets are allowed (solve then answers 409). Returns the new
+  // revision: the sets with every method's anchors, which restore_constraints brings back (undo).
+  int set_constraints(const Eigen::VectorXi& fixed, const Eigen::VectorXi& handle);
+  // Back to the sets and anchors of an earlier revision (one of the last history_limit); HttpError 409
+  // when it is no longer kept. U stays: the next solve moves the shape back.
+  void restore_constraints(int revision);
+  // The revision of the current sets and anchors (0 before any).
+  int revision() const;
+  // Loads a saved constraint set: every method back to the rest shape, anchors = targets (#fixed +
+  // #handle x 3), so a solve with no transform reaches them. Same checks as set_constraints, plus finite
+  // targets. Returns the new revision.
+  int load_constraints(const Eigen::VectorXi& fixed, const Eigen::VectorXi& handle,
+                       const Eigen::MatrixXd& targets);
+  // Where the method's constrained vertices go under request (its transform or handle_targets).
+  ConstraintTargets constraint_targets(ArapMethod method, const SolveRequest& request) const;
 
   // Precomputes the method on first use, refactorizes after a constraint change, then runs arap_solve from
-  // the method's current U. Throws HttpError 409 without constrained vertices, InputError for a target
-  // shape or value at fault, TopologyError / SolverError from the solver; the state is unchanged then.
+  // the method's current U, in chunks of solve_chunk iterations that report to progress() and stop early
+  // on a cancel. Throws HttpError 409 without constrained vertices, InputError for a target shape or
+  // value at fault, TopologyError / SolverError from the solver; the state is unchanged then.
   SolveResult solve(const SolveRequest& request);
+  static constexpr int solve_chunk = 10; // interactive updates (5 iterations) run as one arap_solve call
+
+  // Read without the session mutex (see SolveProgress).
+  SolveProgress& progress() { return progress_; }
 
   // Every method back to the rest positions; anchors re-taken there; constraints and factorizations kept.
   void reset();
@@ -93,8 +126,8 @@ public:
   std::vector<float> positions(std::optional<ArapMethod> method) const;
   // #F x 3 row-major face indices.
   std::vector<std::uint32_t> faces() const;
-  // The method's current positions with the faces, for writing a file.
-  MeshSnapshot snapshot(ArapMethod method) const;
+  // The method's current positions (the rest positions without one) with the faces, for writing a file.
+  MeshSnapshot snapshot(std::optional<ArapMethod> method) const;
   // Built on first call for the rest mesh (intrinsic_delaunay), then cached until the next load.
   std::shared_ptr<const IntrinsicOverlay> intrinsic_overlay();
 
@@ -105,7 +138,17 @@ private:
     Eigen::MatrixXd anchor;       // #constrained x 3 positions of the constrained vertices when set
   };
 
+  struct Revision {
+    int id = 0;
+    Eigen::VectorXi fixed, handle;
+    std::array<Eigen::MatrixXd, 3> anchors;
+  };
+  static constexpr std::size_t history_limit = 200;
+
   void require_mesh() const;
+  void check_sets(const Eigen::VectorXi& fixed, const Eigen::VectorXi& handle) const;
+  void use_sets(const Eigen::VectorXi& fixed, const Eigen::VectorXi& handle);
+  int record_revision();
   MethodState& state_of(ArapMethod method);
   const MethodState& state_of(ArapMethod method) const;
   Eigen::MatrixXd targets_for(const MethodState& state, const SolveRequest& request) const;
@@ -116,6 +159,9 @@ private:
   Eigen::VectorXi fixed_, handle_, constrained_;
   std::array<MethodState, 3> methods_;
   std::shared_ptr<const IntrinsicOverlay> overlay_;
+  std::deque<Revision> history_; // oldest first, at most history_limit
+  int next_revision_ = 1;
+  SolveProgress progress_;
 };
 
 } // namespace iarap::serve

@@ -1,14 +1,18 @@
-// Browser test of the viewer: Debian's chromium, headless, driven by playwright-core. Opens the page on the
-// bunny, box-selects a handle (top) and a fixed region (bottom), drags the gizmo, and checks that the
-// displayed positions changed, that fixed vertices did not move, that the page logged no error, and that
-// the screenshot (a test artefact) is not blank. Exit 77 (CTest: skipped) without chromium or playwright-core.
-// Usage: node tests/web/browser_test.mjs [--screenshot PATH] [--side-by-side]
+// Browser test of the viewer: Debian's chromium, headless, driven by playwright-core, on the bunny. Box-selects
+// a handle (top) and a fixed region (bottom), drags the gizmo (handle moved, fixed vertices kept), saves the
+// scenario, undoes and redoes the drag, loads the scenario back and compares the page's solve with the
+// CLI's replay of the file, then side by side selects and drags on the right copy and checks the shared
+// colour scale, takes a screenshot (a test artefact, not blank), uploads an STL (nothing of the bunny's
+// session left) and finally stops the server (the banner says so). Exit 77 (CTest: skipped) without
+// chromium or playwright-core.
+// Usage: node tests/web/browser_test.mjs [--screenshot PATH]
 import assert from 'node:assert/strict';
+import { execFileSync } from 'node:child_process';
 import fs from 'node:fs';
 import { createRequire } from 'node:module';
 import os from 'node:os';
 import path from 'node:path';
-import { repoRoot, startServer, stopServer, webDir } from './server.mjs';
+import { cliPath, repoRoot, startServer, stopServer, webDir } from './server.mjs';
 
 const chromiumPath = process.env.IARAP_CHROMIUM ?? '/usr/bin/chromium';
 const args = process.argv.slice(2);
@@ -56,10 +60,15 @@ try {
   await page.waitForFunction(() => window.iarapViewer?.ready === true, null, { timeout: 60000 });
 
   const idle = () => page.evaluate(() => window.iarapViewer.idle());
-  const boxSelect = async (paint, fromFraction, toFraction) => {
+  const viewer = (name, ...rest) => page.evaluate(([n, r]) => window.iarapViewer[n](...r), [name, rest]);
+  const settle = async () => {
+    await page.waitForTimeout(100);
+    await idle();
+  };
+  const boxSelect = async (paint, fromFraction, toFraction, view = 0) => {
     await page.check('input[name=tool][value=box]');
     await page.check(`input[name=paint][value=${paint}]`);
-    const b = await page.evaluate(() => window.iarapViewer.meshScreenBox());
+    const b = await viewer('meshScreenBox', view);
     const y0 = b.y0 + fromFraction * (b.y1 - b.y0);
     const y1 = b.y0 + toFraction * (b.y1 - b.y0);
     await page.mouse.move(b.x0 - 5, y0);
@@ -67,57 +76,120 @@ try {
     await page.mouse.move((b.x0 + b.x1) / 2, (y0 + y1) / 2, { steps: 4 });
     await page.mouse.move(b.x1 + 5, y1, { steps: 4 });
     await page.mouse.up();
-    await page.waitForTimeout(100);
-    await idle();
+    await settle();
   };
+  const dragGizmo = async (view, dx) => {
+    await page.check('input[name=tool][value=orbit]');
+    const g = await viewer('gizmoXArrowScreenPoint', view);
+    await page.mouse.move(g.x, g.y);
+    await page.mouse.down();
+    for (let k = 1; k <= 12; ++k) {
+      await page.mouse.move(g.x + (dx * k) / 12, g.y);
+      await page.waitForTimeout(30);
+    }
+    await page.mouse.up();
+    await settle();
+  };
+  const rowsOf = (X, rows) => rows.map((i) => [X[3 * i], X[3 * i + 1], X[3 * i + 2]]);
+  const maxDistance = (A, B) => Math.max(...A.map((a, r) => Math.hypot(a[0] - B[r][0], a[1] - B[r][1], a[2] - B[r][2])));
+
   await boxSelect('handle', -0.02, 0.22); // screen y grows downwards: the top (ears)
   await boxSelect('fixed', 0.85, 1.02);
-  if (args.includes('--side-by-side')) {
-    await page.check('#side-by-side');
-    await page.waitForTimeout(300);
-    await idle();
-  }
-  const labels = await page.evaluate(() => window.iarapViewer.labels());
+  const labels = await viewer('labels');
   const fixed = labels.flatMap((l, i) => (l === 1 ? [i] : []));
   const handle = labels.flatMap((l, i) => (l === 2 ? [i] : []));
   assert.ok(fixed.length > 10 && handle.length > 10, `selection: ${fixed.length} fixed, ${handle.length} handle`);
 
-  await page.check('input[name=tool][value=orbit]');
-  const before = await page.evaluate(() => window.iarapViewer.displayedPositions());
-  const solvesBefore = await page.evaluate(() => window.iarapViewer.solves());
-  const g = await page.evaluate(() => window.iarapViewer.gizmoXArrowScreenPoint());
-  await page.mouse.move(g.x, g.y);
-  await page.mouse.down();
-  for (let k = 1; k <= 12; ++k) {
-    await page.mouse.move(g.x + 8 * k, g.y);
-    await page.waitForTimeout(30);
-  }
-  await page.mouse.up();
-  await page.waitForTimeout(100);
-  await idle();
+  // 1. Drag the gizmo: the handle follows, the fixed vertices stay.
+  const rest = await viewer('displayedPositions');
+  const solvesBefore = await viewer('solves');
+  await dragGizmo(0, 96);
   await page.check('#show-intrinsic');
   await page.check('#show-energy');
-  await page.waitForTimeout(300);
-  await idle();
-  await page.waitForTimeout(300);
-  const after = await page.evaluate(() => window.iarapViewer.displayedPositions());
-  const solvesAfter = await page.evaluate(() => window.iarapViewer.solves());
-
+  await settle();
+  const dragged = await viewer('displayedPositions');
   let lo = Infinity, hi = -Infinity;
-  for (let i = 1; i < before.length; i += 3) { lo = Math.min(lo, before[i]); hi = Math.max(hi, before[i]); }
+  for (let i = 1; i < rest.length; i += 3) { lo = Math.min(lo, rest[i]); hi = Math.max(hi, rest[i]); }
   const height = hi - lo;
-  const moved = (i) => Math.hypot(after[3 * i] - before[3 * i], after[3 * i + 1] - before[3 * i + 1], after[3 * i + 2] - before[3 * i + 2]);
-  const handleMove = Math.max(...handle.map(moved));
-  const fixedMove = Math.max(...fixed.map(moved));
-  const centroid = (X) => [0, 1, 2].map((k) => handle.reduce((s, i) => s + X[3 * i + k], 0) / handle.length);
-  console.log(`handle centroid ${centroid(before).map((v) => v.toFixed(3))} -> ${centroid(after).map((v) => v.toFixed(3))}, mesh height ${height.toFixed(3)}`);
-  console.log(`solves during the drag: ${solvesAfter - solvesBefore}; largest handle move ${(handleMove / height).toFixed(3)} x height; largest fixed move ${fixedMove}`);
-  assert.ok(solvesAfter > solvesBefore, 'dragging the gizmo ran no solve');
+  const handleMove = maxDistance(rowsOf(dragged, handle), rowsOf(rest, handle));
+  const fixedMove = maxDistance(rowsOf(dragged, fixed), rowsOf(rest, fixed));
+  console.log(`solves during the drag: ${(await viewer('solves')) - solvesBefore}; largest handle move ${(handleMove / height).toFixed(3)} x height; largest fixed move ${fixedMove}`);
   assert.ok(handleMove > 0.05 * height, `handle moved only ${handleMove} (mesh height ${height})`);
   // Fixed rows are set to their targets exactly; float32 display rounds at ~6e-8 relative.
-  assert.ok(fixedMove <= 1e-6 * height, `fixed vertices moved by ${fixedMove}`);
-  assert.equal(await page.evaluate(() => window.iarapViewer.errors()), 0, await page.textContent('#status'));
+  const displayTolerance = 1e-6 * height;
+  assert.ok(fixedMove <= displayTolerance, `fixed vertices moved by ${fixedMove}`);
+  assert.ok(await page.isVisible('#colorbar'), 'the colour bar is not shown with the energy overlay');
 
+  // 2. Save the scenario (a file download).
+  const [download] = await Promise.all([page.waitForEvent('download'), page.click('#save-scenario')]);
+  assert.match(download.suggestedFilename(), /^bunny_scenario\.json$/);
+  const scenarioPath = path.join(userDataDir, download.suggestedFilename());
+  await download.saveAs(scenarioPath);
+  const scenario = JSON.parse(fs.readFileSync(scenarioPath, 'utf8'));
+  assert.deepEqual(scenario.fixed.indices, fixed);
+  assert.deepEqual(scenario.handles[0].vertices.indices, handle);
+
+  // 3. Undo takes the handle back to rest, redo to where it was dragged (constrained rows: exact targets).
+  await page.keyboard.press('Control+z');
+  await settle();
+  assert.ok(maxDistance(rowsOf(await viewer('displayedPositions'), handle), rowsOf(rest, handle)) <= displayTolerance, 'undo left the handle moved');
+  assert.deepEqual(await viewer('handleTransform'), [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1]);
+  await page.keyboard.press('Control+Shift+z');
+  await settle();
+  assert.ok(maxDistance(rowsOf(await viewer('displayedPositions'), handle), rowsOf(dragged, handle)) <= displayTolerance, 'redo did not restore the move');
+
+  // 4. Load the saved scenario and replay it with the CLI: the page solves 50 iterations from the rest
+  // shape to the file's targets, as `iarap deform` does; both run the same iterations from the same start
+  // (the server in chunks of 10), so they agree to the float32 rounding of the display.
+  await page.fill('#iterations', '50');
+  await page.setInputFiles('#load-scenario', scenarioPath);
+  await page.waitForFunction(() => document.getElementById('status').textContent.startsWith('loaded'), null, { timeout: 30000 });
+  await settle();
+  const replayed = await viewer('displayedPositions');
+  const outPath = path.join(userDataDir, 'replay.obj');
+  execFileSync(cliPath, ['deform', path.join(repoRoot, 'data', 'bunny.off'), '--scenario', scenarioPath, '--method', 'iarap', '--iterations', '50', '--out', outPath, '--quiet']);
+  const cli = fs.readFileSync(outPath, 'utf8').split('\n').filter((l) => l.startsWith('v ')).map((l) => l.split(/\s+/).slice(1, 4).map(Number));
+  const replayGap = maxDistance(cli, rowsOf(replayed, cli.map((_, i) => i)));
+  console.log(`page vs CLI replay of the saved scenario (50 iterations): largest gap ${(replayGap / height).toExponential(2)} x height`);
+  assert.ok(replayGap <= 1e-5 * height, `page and CLI differ by ${replayGap}`);
+  // The saved targets are where the page had dragged the handle.
+  assert.ok(maxDistance(rowsOf(replayed, handle), rowsOf(dragged, handle)) <= displayTolerance);
+  await page.fill('#iterations', '5');
+
+  // 5. Side by side: all copies fit, selection and the gizmo work on the right copy, one colour scale.
+  await page.check('#side-by-side');
+  await settle();
+  assert.equal(await viewer('viewCount'), 3);
+  const viewport = await page.locator('#viewport').boundingBox();
+  for (const view of [0, 2]) {
+    const b = await viewer('meshScreenBox', view);
+    assert.ok(b.x0 >= viewport.x && b.x1 <= viewport.x + viewport.width, `copy ${view} is cut off: ${JSON.stringify(b)}`);
+  }
+  await boxSelect('fixed', 0.45, 0.55, 2);
+  const sideLabels = await viewer('labels');
+  const added = sideLabels.flatMap((l, i) => (l === 1 && labels[i] !== 1 ? [i] : []));
+  assert.ok(added.length > 10, `box selection on the right copy fixed ${added.length} vertices`);
+  const right = await viewer('displayedPositions', 'iarap');
+  assert.ok(added.every((i) => right[3 * i + 1] > lo + 0.2 * height && right[3 * i + 1] < lo + 0.8 * height), 'selected outside the band');
+  const arapBefore = await viewer('displayedPositions', 'arap');
+  await dragGizmo(2, -60);
+  const arapAfter = await viewer('displayedPositions', 'arap');
+  assert.ok(maxDistance(rowsOf(arapAfter, handle), rowsOf(arapBefore, handle)) > 0.02 * height, 'the right gizmo did not move the left copy');
+  const shared = await page.evaluate(async () => {
+    const { energyScale } = await import('/src/colormap.js');
+    const v = window.iarapViewer;
+    const labelsNow = v.labels();
+    const energies = ['arap', 'spokes-rims', 'iarap'].map((m) => Float32Array.from(v.cellEnergy(m)));
+    return { scale: v.colorScale(), union: energyScale(energies, labelsNow), own: energies.map((e) => energyScale([e], labelsNow)) };
+  });
+  console.log(`colour scale ${JSON.stringify(shared.scale)}; per-method ranges would be ${JSON.stringify(shared.own.map((s) => [s.lo, s.hi]))}`);
+  assert.deepEqual(shared.scale, shared.union, 'the colour scale is not the one of all copies together');
+  assert.ok(shared.own.some((s) => s.lo !== shared.scale.lo || s.hi !== shared.scale.hi), 'copies would have had the same range anyway');
+  assert.ok(await page.isVisible('#colorbar'));
+  assert.equal(await viewer('errors'), 0, await page.textContent('#banner-text'));
+
+  await page.uncheck('#show-intrinsic'); // the energy colours read better without the overlay
+  await page.waitForTimeout(200);
   fs.mkdirSync(artefactDir, { recursive: true });
   const shotPath = path.join(artefactDir, 'viewer.png');
   const png = await page.screenshot({ path: shotPath });
@@ -141,12 +213,31 @@ try {
   }, `data:image/png;base64,${png.toString('base64')}`);
   console.log(`screenshot ${shotPath}: ${stats.colours} colours, ${(100 * stats.share).toFixed(1)}% non-background`);
   assert.ok(stats.colours > 50 && stats.share > 0.1, `screenshot looks blank: ${JSON.stringify(stats)}`);
-  // Reset brings the displayed shape back to the rest positions (which the fixed vertices never left).
-  const rest = await page.evaluate(async () => Array.from(new Float32Array(await (await fetch('/api/positions?method=rest')).arrayBuffer())));
-  await page.click('#reset');
-  await page.waitForFunction(([X, tol]) => window.iarapViewer.displayedPositions().every((v, i) => Math.abs(v - X[i]) <= tol),
-    [rest, 1e-6 * height], { timeout: 20000, polling: 200 });
+
+  // 6. Switching meshes (an STL upload) leaves nothing of the bunny's session on the page.
+  const V = [[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]];
+  const F = [[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]];
+  const stl = ['solid tet', ...F.flatMap((f) => ['facet normal 0 0 0', 'outer loop', ...f.map((v) => `vertex ${V[v].join(' ')}`), 'endloop', 'endfacet']), 'endsolid tet'].join('\n');
+  await page.setInputFiles('#upload', { name: 'tet.stl', mimeType: 'model/stl', buffer: Buffer.from(stl) });
+  await page.waitForFunction(() => document.getElementById('status').textContent === 'loaded tet.stl', null, { timeout: 30000 });
+  const after = await page.evaluate(() => ({
+    choice: document.getElementById('mesh-select').selectedOptions[0]?.textContent,
+    info: document.getElementById('solve-info').textContent,
+    labels: window.iarapViewer.labels(),
+    undo: document.getElementById('undo').disabled,
+    colorbar: document.getElementById('colorbar').hidden,
+    plotInk: Array.from(document.getElementById('energy-plot').getContext('2d').getImageData(0, 0, 260, 120).data).some((v) => v !== 0),
+  }));
+  assert.deepEqual(after, { choice: 'tet.stl (uploaded)', info: '', labels: [0, 0, 0, 0], undo: true, colorbar: true, plotInk: false });
+  await page.selectOption('#mesh-select', 'bunny.off');
+  await page.waitForFunction(() => window.iarapViewer.labels().length === 3485, null, { timeout: 30000 });
   assert.deepEqual(problems, []);
+
+  // 7. A server that went away is named as such, in the banner.
+  await stopServer(server);
+  await page.click('#reset');
+  await page.waitForFunction(() => !document.getElementById('banner').hidden, null, { timeout: 10000 });
+  assert.match(await page.textContent('#banner-text'), /iarap server does not answer/);
   console.log('browser test: 1 passed, 0 failed');
 } catch (error) {
   failed = true;

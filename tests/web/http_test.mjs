@@ -1,12 +1,15 @@
 // HTTP tests of `iarap serve` over loopback: the API's happy path, every class of bad request (status,
-// message, server still answering with its state intact), static-file confinement and a concurrent burst.
+// message, server still answering with its state intact), static-file confinement, a concurrent burst,
+// undo revisions, scenario files replayed by the CLI, progress and cancel, and a malformed-body campaign.
 // Run: IARAP_CLI=build/iarap node --test tests/web/http_test.mjs
 import assert from 'node:assert/strict';
+import { execFileSync } from 'node:child_process';
 import fs from 'node:fs';
 import http from 'node:http';
+import os from 'node:os';
 import path from 'node:path';
 import { after, before, describe, test } from 'node:test';
-import { decodeFrame, repoRoot, startServer, stopServer } from './server.mjs';
+import { cliPath, decodeFrame, repoRoot, startServer, stopServer } from './server.mjs';
 
 const bunnyPath = path.join(repoRoot, 'data', 'bunny.off');
 let server;
@@ -20,7 +23,7 @@ function rawRequest(method, requestPath, headers = {}, body = null) {
     const req = http.request(options, (res) => {
       const chunks = [];
       res.on('data', (c) => chunks.push(c));
-      res.on('end', () => resolve({ status: res.statusCode, body: Buffer.concat(chunks).toString('utf8') }));
+      res.on('end', () => resolve({ status: res.statusCode, headers: res.headers, body: Buffer.concat(chunks).toString('utf8') }));
     });
     req.on('error', reject);
     req.end(body);
@@ -208,13 +211,13 @@ describe('bad requests leave the server running with its state intact', () => {
     assert.deepEqual(positionsAfter, positionsBefore);
   });
 
-  test('request bodies are capped', async () => {
-    const big = 'x'.repeat(17 << 20); // over the 16 MiB JSON limit
+  test('request bodies are capped, naming the limit of the route', async () => {
+    const big = 'x'.repeat(17 << 20); // over the 16 MiB JSON limit, under the 64 MiB upload limit
     const response = await postJson('/api/constraints', big).catch((error) => error);
     // The server may answer 413 before reading the body, or close the connection on it.
     if (response instanceof Response) {
       assert.equal(response.status, 413);
-      await response.text();
+      assert.match((await response.json()).error, /limit for JSON bodies is 16 MiB/);
     }
     assert.equal((await fetch(base + '/api/state')).status, 200);
   });
@@ -222,7 +225,7 @@ describe('bad requests leave the server running with its state intact', () => {
   test('uploads: formats, parse errors, bad meshes, server meshes only by name', async () => {
     const before = await state();
     const upload = (name, body) => fetch(`${base}/api/upload?name=${encodeURIComponent(name)}`, { method: 'POST', body });
-    await expectError(upload('evil.sh', 'OFF\n'), 400, /must end in \.obj, \.off or \.ply/);
+    await expectError(upload('evil.sh', 'OFF\n'), 400, /must end in \.obj, \.off, \.ply or \.stl/);
     await expectError(upload('empty.off', ''), 400, /empty/);
     const message = await expectError(upload('bad.off', 'OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 x\n3 0 1 2\n'), 400, /bad\.off/);
     assert.doesNotMatch(message, /iarap-serve-|\/tmp/, 'the message must not show the server temporary path');
@@ -249,6 +252,33 @@ describe('bad requests leave the server running with its state intact', () => {
     assert.equal(rebound.status, 403);
     const own = await rawRequest('GET', '/api/state', { Origin: `http://127.0.0.1:${server.port}` });
     assert.equal(own.status, 200);
+  });
+
+  test('wrong methods on existing routes are 405 with Allow', async () => {
+    for (const [method, route, allow] of [['GET', '/api/solve', 'POST'], ['POST', '/api/state', 'GET'], ['DELETE', '/api/constraints', 'POST'],
+      ['PUT', '/api/upload', 'POST'], ['GET', '/api/cancel', 'POST']]) {
+      const response = await rawRequest(method, route);
+      assert.equal(response.status, 405, `${method} ${route}: ${response.body}`);
+      assert.equal(response.headers.allow, allow);
+      assert.match(JSON.parse(response.body).error, new RegExp(`${method} is not allowed on ${route}; use ${allow}`));
+    }
+  });
+
+  test('unsupported content types are 415 with what to send', async () => {
+    // curl -d / --data-binary send a form's type; a mesh that size is over httplib's 8 KiB form limit.
+    const bunny = fs.readFileSync(bunnyPath);
+    const form = { 'Content-Type': 'application/x-www-form-urlencoded' };
+    const upload = await rawRequest('POST', '/api/upload?name=bunny.off', form, bunny);
+    assert.equal(upload.status, 415, upload.body);
+    assert.match(JSON.parse(upload.body).error, /--data-binary @mesh\.off -H 'Content-Type: application\/octet-stream'/);
+    const small = await rawRequest('POST', '/api/upload?name=tet.off', form, 'OFF\n');
+    assert.equal(small.status, 415, small.body);
+    const json = await rawRequest('POST', '/api/constraints', form, '{"fixed": [1]}');
+    assert.equal(json.status, 415, json.body);
+    assert.match(JSON.parse(json.body).error, /Content-Type: application\/json/);
+    const none = await rawRequest('POST', '/api/solve', {}, '{}');
+    assert.equal(none.status, 415, none.body);
+    assert.match(JSON.parse(none.body).error, /got none/);
   });
 
   test('unknown routes are JSON 404s', async () => {
@@ -278,5 +308,198 @@ describe('concurrency', () => {
     const s = await state();
     assert.equal(s.fixed.length, fixed.length);
     assert.equal(s.handle.length, handle.length);
+  });
+});
+
+describe('bodies built to exhaust the parser', () => {
+  test('deep nesting is refused before parsing (100,000 levels used to overflow the stack)', async () => {
+    const deep = (n) => '['.repeat(n) + ']'.repeat(n);
+    await expectError(postJson('/api/constraints', `{"fixed": ${deep(100000)}}`), 400, /JSON nests deeper than 32 arrays \/ objects \(at byte 41\)/);
+    await expectError(postJson('/api/solve', `{"method": ${deep(100000)}}`), 400, /nests deeper than 32/);
+    await expectError(postJson('/api/load', '{"a":'.repeat(50000) + '1' + '}'.repeat(50000)), 400, /nests deeper than 32/);
+    // Inside a string brackets are text, not nesting: this is an ordinary (unknown) method name.
+    await expectError(postJson('/api/solve', { method: `${deep(1000)}"\\` }), 400, /method/);
+    assert.equal((await fetch(base + '/api/state')).status, 200);
+  });
+
+  test('too many values, and no message quotes a whole value', async () => {
+    const wide = `{"fixed": [${'0,'.repeat(5000000)}0]}`; // 10 MB, within the byte limit
+    await expectError(postJson('/api/constraints', wide), 400, /JSON holds more than 4194304 values/);
+    const long = await expectError(postJson('/api/solve', { method: 'x'.repeat(1000000) }), 400, /method/);
+    assert.ok(long.length < 700, `message of ${long.length} characters`);
+    const array = await expectError(postJson('/api/solve', { method: Array(100000).fill([1, 2]) }), 400, /method must be a string, got an array of 100000 elements/);
+    assert.ok(array.length < 200);
+    const key = await expectError(postJson('/api/reset', { ['k'.repeat(100000)]: 1 }), 400, /unknown field "k+"\.\.\. \(100000 characters\)/);
+    assert.ok(key.length < 200);
+    const unterminated = await expectError(postJson('/api/load', `{"mesh": "${'y'.repeat(1000000)}`), 400, /malformed JSON/);
+    assert.ok(unterminated.length < 700);
+  });
+});
+
+describe('uploads', () => {
+  test('a binary STL is read (its corners welded into vertices)', async () => {
+    // A tetrahedron as binary STL: 80-byte header, uint32 count, per facet a normal, 3 corners, uint16.
+    const V = [[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]];
+    const F = [[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]];
+    const stl = Buffer.alloc(84 + 50 * F.length);
+    stl.writeUInt32LE(F.length, 80);
+    F.forEach((f, i) => f.forEach((v, k) => V[v].forEach((x, c) => stl.writeFloatLE(x, 84 + 50 * i + 12 + 12 * k + 4 * c))));
+    const response = await fetch(`${base}/api/upload?name=tet.stl`, { method: 'POST', headers: { 'Content-Type': 'application/octet-stream' }, body: stl });
+    assert.equal(response.status, 200, await response.clone().text());
+    const loaded = await response.json();
+    assert.equal(loaded.mesh.name, 'tet.stl');
+    assert.equal(loaded.mesh.vertices, 4);
+    assert.equal(loaded.mesh.faces, 4);
+    assert.equal((await postJson('/api/load', { mesh: 'bunny.off' })).status, 200);
+  });
+});
+
+// The rows of an OBJ the CLI wrote (full precision).
+function objVertices(file) {
+  return fs.readFileSync(file, 'utf8').split('\n').filter((l) => l.startsWith('v ')).map((l) => l.split(/\s+/).slice(1, 4).map(Number));
+}
+
+describe('undo revisions, scenario files, progress', () => {
+  test('an earlier constraint revision comes back with its anchors', async () => {
+    const { X, fixed, handle, height } = await bottomAndTop();
+    const first = await (await postJson('/api/constraints', { fixed, handle })).json();
+    const shift = 0.2 * height;
+    const moved = [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, shift, 0, 0, 1];
+    assert.equal((await postJson('/api/solve', { method: 'iarap', iterations: 2, transform: moved })).status, 200);
+    // Re-anchored on the deformed shape: the identity now keeps the handle where it was moved to.
+    const second = await (await postJson('/api/constraints', { fixed, handle: handle.slice(1) })).json();
+    assert.ok(second.revision > first.revision);
+    const restored = await (await postJson('/api/constraints', { revision: first.revision })).json();
+    assert.deepEqual([restored.fixed, restored.handle], [fixed, handle]);
+    // Revision `first` anchored the handle at rest, so the identity takes it back there (float32 output).
+    const identity = [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1];
+    const { arrays } = decodeFrame(await (await postJson('/api/solve', { method: 'iarap', iterations: 1, transform: identity })).arrayBuffer());
+    for (const i of handle) assert.ok(Math.abs(arrays.positions[3 * i] - X[3 * i]) <= 1e-6 * height);
+    await expectError(postJson('/api/constraints', { revision: 999999 }), 409, /revision 999999 is not kept/);
+    await expectError(postJson('/api/constraints', { revision: 1, fixed: [] }), 400, /unknown field "fixed"/);
+  });
+
+  test('saved scenario replays with the CLI; loading it back gives the same targets', async () => {
+    const { X, fixed, handle, height } = await bottomAndTop();
+    await postJson('/api/reset', {});
+    await postJson('/api/constraints', { fixed, handle });
+    // A rotation by 30 degrees about z, then a translation: rigid, from the rest shape.
+    const c = Math.cos(Math.PI / 6), s = Math.sin(Math.PI / 6);
+    const transform = [c, s, 0, 0, -s, c, 0, 0, 0, 0, 1, 0, 0.1 * height, 0.05 * height, 0, 1];
+    const apply = (i) => [c * X[3 * i] - s * X[3 * i + 1] + 0.1 * height, s * X[3 * i] + c * X[3 * i + 1] + 0.05 * height, X[3 * i + 2]];
+    const saved = await fetch(base + '/api/scenario', { method: 'POST', headers: { 'Content-Type': 'application/json' }, body: JSON.stringify({ method: 'iarap', transform }) });
+    assert.equal(saved.status, 200, await saved.clone().text());
+    assert.match(saved.headers.get('content-disposition'), /bunny_scenario\.json/);
+    const text = await saved.text();
+    const scenario = JSON.parse(text);
+    assert.deepEqual(scenario.fixed.indices, fixed);
+    assert.ok(Math.abs(scenario.handles[0].rotate.degrees - 30) < 1e-9, JSON.stringify(scenario.handles[0].rotate));
+
+    const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'iarap-scenario-'));
+    try {
+      fs.writeFileSync(path.join(dir, 'scene.json'), text);
+      execFileSync(cliPath, ['deform', bunnyPath, '--scenario', path.join(dir, 'scene.json'), '--iterations', '1', '--out', path.join(dir, 'out.obj'), '--quiet']);
+      const U = objVertices(path.join(dir, 'out.obj'));
+      // The CLI rebuilds R from axis and angle: the targets agree to rounding (1e-12 of the mesh size),
+      // while the input positions are float32 (the server's rest positions read back), 1e-7 relative.
+      for (const i of handle) apply(i).forEach((x, k) => assert.ok(Math.abs(U[i][k] - x) <= 1e-6 * height, `${i}: ${U[i]} vs ${apply(i)}`));
+      for (const i of fixed) for (let k = 0; k < 3; ++k) assert.ok(Math.abs(U[i][k] - X[3 * i + k]) <= 1e-6 * height);
+
+      // Loaded back: the same sets, the shape at rest, and the identity reaches the saved targets.
+      const loaded = await (await fetch(`${base}/api/scenario/load?name=scene.json`, { method: 'POST', headers: { 'Content-Type': 'application/json' }, body: text })).json();
+      assert.deepEqual([loaded.fixed, loaded.handle], [fixed, handle]);
+      const identity = [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1];
+      const { arrays } = decodeFrame(await (await postJson('/api/solve', { method: 'iarap', iterations: 1, transform: identity })).arrayBuffer());
+      for (const i of handle) apply(i).forEach((x, k) => assert.ok(Math.abs(arrays.positions[3 * i + k] - x) <= 1e-6 * height));
+
+      // Anchors re-taken on the deformed shape are no longer "rest moved rigidly": a constraints file,
+      // which the CLI reads and which loads back with the same fixed / handle split.
+      await postJson('/api/constraints', { fixed, handle });
+      const constraints = await fetch(base + '/api/scenario', { method: 'POST', headers: { 'Content-Type': 'application/json' }, body: JSON.stringify({ method: 'iarap', transform }) });
+      assert.match(constraints.headers.get('content-disposition'), /bunny_constraints\.txt/);
+      const lines = await constraints.text();
+      assert.equal(lines.split('\n').filter((l) => /^\d/.test(l)).length, fixed.length + handle.length);
+      fs.writeFileSync(path.join(dir, 'c.txt'), lines);
+      execFileSync(cliPath, ['deform', bunnyPath, '--constraints', path.join(dir, 'c.txt'), '--iterations', '1', '--out', path.join(dir, 'c.obj'), '--quiet']);
+      const back = await (await fetch(`${base}/api/scenario/load?name=c.txt`, { method: 'POST', headers: { 'Content-Type': 'text/plain' }, body: lines })).json();
+      assert.deepEqual([back.fixed, back.handle], [fixed, handle]);
+      await expectError(fetch(`${base}/api/scenario/load?name=bad.txt`, { method: 'POST', body: '12 0 0\n' }), 400, /bad\.txt:1/);
+      await expectError(fetch(`${base}/api/scenario/load?name=deep.json`, { method: 'POST', body: `{"fixed": ${'['.repeat(100000)}` }), 400, /nests deeper/);
+    } finally {
+      fs.rmSync(dir, { recursive: true, force: true });
+    }
+  });
+
+  test('a long solve reports progress and stops on cancel', async () => {
+    const { fixed, handle, height } = await bottomAndTop();
+    await postJson('/api/constraints', { fixed, handle });
+    const transform = [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0.3 * height, 0, 0, 1];
+    const solving = postJson('/api/solve', { method: 'arap', iterations: 1000, tolerance: -1, transform });
+    let progress;
+    for (let k = 0; k < 400; ++k) { // at most 4 s for the first chunk of 10 iterations
+      progress = await (await fetch(base + '/api/progress')).json();
+      if (progress.running && progress.iteration > 0) break;
+      await new Promise((resolve) => setTimeout(resolve, 10));
+    }
+    assert.ok(progress.running && progress.iteration > 0, JSON.stringify(progress));
+    assert.equal(progress.iterations, 1000);
+    assert.equal(progress.method, 'arap');
+    assert.deepEqual(await (await postJson('/api/cancel', {})).json(), { cancelling: true });
+    const { header } = decodeFrame(await (await solving).arrayBuffer());
+    assert.equal(header.cancelled, true);
+    assert.ok(header.iterations >= progress.iteration && header.iterations < 1000, `${header.iterations}`);
+    assert.equal(header.energies.length, header.iterations);
+    assert.equal((await (await fetch(base + '/api/progress')).json()).running, false);
+    assert.deepEqual(await (await postJson('/api/cancel', {})).json(), { cancelling: false });
+  });
+});
+
+describe('malformed-body campaign', () => {
+  test('1,000 deep, wide and malformed bodies on every route; the server still answers', async () => {
+    // A fixed seed: the same campaign each run.
+    let seed = 12345;
+    const random = () => ((seed = (seed * 1103515245 + 12345) % 2147483648) / 2147483648);
+    const pick = (list) => list[Math.floor(random() * list.length)];
+    const valid = ['{"fixed": [1, 2, 3], "handle": [4]}', '{"method": "iarap", "iterations": 3, "transform": [1,0,0,0,0,1,0,0,0,0,1,0,0,0,0,1]}',
+      '{"mesh": "bunny.off"}', '{"revision": 1}', '{}', '{"method": "arap", "handle_targets": [0, 0, 0]}'];
+    const generators = [
+      () => '['.repeat(1 + Math.floor(random() * 60000)),
+      () => `{"fixed": ${'['.repeat(20 + Math.floor(random() * 40000))}1${']'.repeat(Math.floor(random() * 40000))}}`,
+      () => `{"${pick(['fixed', 'handle', 'method', 'transform', 'mesh'])}": ${'{"a":'.repeat(Math.floor(random() * 5000))}0}`,
+      () => `{"fixed": [${Array.from({ length: Math.floor(random() * 20000) }, () => Math.floor(random() * 1e10) - 5e9).join(',')}]}`,
+      () => `{"transform": [${Array.from({ length: 16 }, () => pick(['1e999', '-0', 'null', 'true', '"x"', '1e-400', '0.5'])).join(',')}]}`,
+      () => { const body = pick(valid); const at = Math.floor(random() * body.length); return body.slice(0, at); },
+      () => { const body = [...pick(valid)]; for (let k = 0; k < 3; ++k) body[Math.floor(random() * body.length)] = String.fromCharCode(Math.floor(random() * 128)); return body.join(''); },
+      () => Buffer.from(Array.from({ length: Math.floor(random() * 2000) }, () => Math.floor(random() * 256))),
+      () => `"${'\\'.repeat(Math.floor(random() * 10000))}`,
+      () => `{"method": "${'\u00e9\u4e2d'.repeat(Math.floor(random() * 2000))}"}`,
+    ];
+    const routes = ['/api/constraints', '/api/solve', '/api/load', '/api/reset', '/api/scenario', '/api/cancel',
+      '/api/upload?name=f.off', '/api/upload?name=f.stl', '/api/upload?name=f.ply', '/api/scenario/load?name=s.json'];
+    const allowed = new Set([200, 400, 404, 405, 409, 413, 415, 422]);
+    const counts = {};
+    const started = performance.now();
+    for (let batch = 0; batch < 1000 / 20; ++batch) {
+      const requests = Array.from({ length: 20 }, () => {
+        const route = pick(routes);
+        const generator = Math.floor(random() * generators.length);
+        const body = generators[generator]();
+        // JSON to the JSON routes (to reach the parser), raw types to the file routes, now and then a form.
+        const type = random() < 0.1 ? 'application/x-www-form-urlencoded' : route.includes('load?') || route.includes('upload') ? 'application/octet-stream' : 'application/json';
+        return rawRequest('POST', route, { 'Content-Type': type }, body)
+          .then((response) => ({ route, response }), (error) => ({ route: `${route} (generator ${generator}, ${body.length} bytes)`, error }));
+      });
+      for (const { route, response, error } of await Promise.all(requests)) {
+        assert.ok(!error, `${route}: ${error}`);
+        assert.ok(allowed.has(response.status), `${route} answered ${response.status}: ${response.body.slice(0, 300)}`);
+        assert.ok(response.body.length < 2000 || response.status === 200, `${route}: a ${response.body.length}-byte error`);
+        counts[response.status] = (counts[response.status] ?? 0) + 1;
+      }
+    }
+    console.log(`campaign: 1000 requests in ${(performance.now() - started).toFixed(0)} ms, statuses ${JSON.stringify(counts)}`);
+    assert.ok(counts[400] > 500, JSON.stringify(counts));
+    assert.equal(server.child.exitCode, null, 'the server exited');
+    const s = await state();
+    assert.equal(s.mesh.vertices, 3485);
   });
 });

@@ -1,5 +1,6 @@
-// Calls to the iarap serve API. JSON errors become ApiError with the server's message; binary frames
-// (uint32 JSON length, JSON header, padding, typed arrays) become {header, arrays: {name: TypedArray}}.
+// Calls to the iarap serve API. JSON errors become ApiError with the server's message, a server that does
+// not answer an ApiError saying so (fetch itself only says "Failed to fetch"); binary frames (uint32 JSON
+// length, JSON header, padding, typed arrays) become {header, arrays: {name: TypedArray}}.
 
 export class ApiError extends Error {
   constructor(status, message) {
@@ -8,7 +9,13 @@ export class ApiError extends Error {
   }
 }
 
-async function check(response) {
+async function request(path, options) {
+  let response;
+  try {
+    response = await fetch(path, options);
+  } catch {
+    throw new ApiError(0, 'The iarap server does not answer: it was stopped or crashed. Start `iarap serve` again, then reload this page.');
+  }
   if (response.ok) return response;
   let message = `HTTP ${response.status}`;
   try {
@@ -19,18 +26,13 @@ async function check(response) {
   throw new ApiError(response.status, message);
 }
 
-async function getJson(path) {
-  return (await check(await fetch(path))).json();
-}
-
-async function postJson(path, body) {
-  const response = await fetch(path, {
-    method: 'POST',
-    headers: { 'Content-Type': 'application/json' },
-    body: JSON.stringify(body),
-  });
-  return check(response);
-}
+const getJson = async (path) => (await request(path)).json();
+const getBuffer = async (path) => (await request(path)).arrayBuffer();
+const postJson = (path, body) =>
+  request(path, { method: 'POST', headers: { 'Content-Type': 'application/json' }, body: JSON.stringify(body) });
+// A file's bytes as they are; the type is never a form's (the server refuses those, see api_routes.cpp).
+const postFile = (path, file) =>
+  request(path, { method: 'POST', headers: { 'Content-Type': 'application/octet-stream' }, body: file });
 
 const arrayTypes = { float32: Float32Array, int32: Int32Array, uint32: Uint32Array };
 
@@ -47,19 +49,27 @@ export function decodeFrame(buffer) {
   return { header, arrays };
 }
 
+// The file name of a Content-Disposition attachment.
+const attachmentName = (response, fallback) => response.headers.get('Content-Disposition')?.match(/filename="([^"]+)"/)?.[1] ?? fallback;
+
 export const api = {
   state: () => getJson('/api/state'),
   load: async (mesh) => (await postJson('/api/load', { mesh })).json(),
-  upload: async (file) => {
-    const response = await fetch(`/api/upload?name=${encodeURIComponent(file.name)}`, { method: 'POST', body: file });
-    return (await check(response)).json();
-  },
-  faces: async () => new Uint32Array(await (await check(await fetch('/api/faces'))).arrayBuffer()),
-  positions: async (method) =>
-    new Float32Array(await (await check(await fetch(`/api/positions?method=${method}`))).arrayBuffer()),
+  upload: async (file) => (await postFile(`/api/upload?name=${encodeURIComponent(file.name)}`, file)).json(),
+  faces: async () => new Uint32Array(await getBuffer('/api/faces')),
+  positions: async (method) => new Float32Array(await getBuffer(`/api/positions?method=${method}`)),
   setConstraints: async (fixed, handle) => (await postJson('/api/constraints', { fixed, handle })).json(),
-  solve: async (request) => decodeFrame(await (await postJson('/api/solve', request)).arrayBuffer()),
+  restoreConstraints: async (revision) => (await postJson('/api/constraints', { revision })).json(),
+  solve: async (body) => decodeFrame(await (await postJson('/api/solve', body)).arrayBuffer()),
+  progress: () => getJson('/api/progress'),
+  cancel: async () => (await postJson('/api/cancel', {})).json(),
   reset: async () => (await postJson('/api/reset', {})).json(),
-  intrinsicEdges: async () => decodeFrame(await (await check(await fetch('/api/intrinsic_edges'))).arrayBuffer()),
+  intrinsicEdges: async () => decodeFrame(await getBuffer('/api/intrinsic_edges')),
   downloadUrl: (method, format) => `/api/download?method=${method}&format=${format}`,
+  // {name, blob}: the scenario (or constraints) file of the method's session.
+  saveScenario: async (method, transform) => {
+    const response = await postJson('/api/scenario', { method, transform });
+    return { name: attachmentName(response, 'scenario.json'), blob: await response.blob() };
+  },
+  loadScenario: async (file) => (await postFile(`/api/scenario/load?name=${encodeURIComponent(file.name)}`, file)).json(),
 };

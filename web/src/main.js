@@ -1,7 +1,9 @@
-// The viewer page: wires the panel, the selection tools and the gizmo to the iarap serve API.
+// The viewer page: wires the panel, the selection tools, the gizmos, undo / redo and the scenario files to
+// the iarap serve API.
 import { api } from './api.js';
-import { energyColors } from './colormap.js';
+import { drawColorBar, energyColors, energyScale } from './colormap.js';
 import { drawEnergyPlot, methodColors } from './energy_plot.js';
+import { UndoHistory } from './history.js';
 import { LatestOnly } from './latest_only.js';
 import { FIXED, HANDLE, box, brush, indicesWith, paintLabel } from './selection.js';
 import { Viewer } from './viewer.js';
@@ -9,12 +11,21 @@ import { Viewer } from './viewer.js';
 const allMethods = ['arap', 'spokes-rims', 'iarap'];
 const $ = (id) => document.getElementById(id);
 const viewer = new Viewer($('viewport'), $('labels'));
-const app = { labels: new Uint8Array(0), mesh: null, energy: {}, curves: {}, solves: 0, errors: 0 };
+const app = {
+  labels: new Uint8Array(0), mesh: null, revision: 0, limits: { max_iterations: 1000 },
+  cellEnergy: {}, energyColors: {}, scale: null, curves: {},
+  history: new UndoHistory(), cancelling: false, solves: 0, errors: 0,
+};
 
-function setStatus(text, isError = false) {
+function setStatus(text) {
   $('status').textContent = text;
-  $('status').classList.toggle('error', isError);
-  if (isError) app.errors += 1;
+}
+
+// Errors go to a banner over the view (visible at any window size) until closed or the next success.
+function showError(message) {
+  $('banner-text').textContent = message;
+  $('banner').hidden = false;
+  app.errors += 1;
 }
 
 // Runs an async UI action, showing the server's message on failure instead of throwing.
@@ -22,77 +33,187 @@ async function guarded(action) {
   try {
     return await action();
   } catch (error) {
-    setStatus(error.message, true);
+    showError(error.message);
     return undefined;
   }
 }
 
 const radio = (name) => document.querySelector(`input[name=${name}]:checked`).value;
 const shownMethods = () => ($('side-by-side').checked ? allMethods : [$('method').value]);
-const iterations = () => Math.min(Math.max(parseInt($('iterations').value, 10) || 5, 1), 200);
+
+// The iteration count of the field; an error naming the limit when it is not a whole number in range
+// (never clamped behind the user's back).
+function iterations() {
+  const text = $('iterations').value.trim();
+  const value = Number(text);
+  if (!/^\d+$/.test(text) || value < 1 || value > app.limits.max_iterations) {
+    throw new Error(`Iterations per update must be a whole number from 1 to ${app.limits.max_iterations} (the server's limit); got "${text}".`);
+  }
+  return value;
+}
+
+// Energy colours on one scale over every shown method, and the colour bar showing it.
+function updateEnergyColors() {
+  const methods = shownMethods().filter((m) => app.cellEnergy[m]);
+  app.scale = methods.length > 0 ? energyScale(methods.map((m) => app.cellEnergy[m]), app.labels) : null;
+  app.energyColors = {};
+  if (app.scale) {
+    for (const method of methods) {
+      app.energyColors[method] = new Float32Array(3 * app.labels.length);
+      energyColors(app.cellEnergy[method], app.scale, app.energyColors[method]);
+    }
+  }
+  drawColorBar($('colorbar-canvas'), app.scale);
+}
 
 function repaint() {
-  viewer.paint(app.labels, $('show-energy').checked ? app.energy : null);
+  const showEnergy = $('show-energy').checked;
+  viewer.paint(app.labels, showEnergy ? app.energyColors : null);
+  $('colorbar').hidden = !(showEnergy && app.scale);
   const fixed = indicesWith(app.labels, FIXED).length;
   const handle = indicesWith(app.labels, HANDLE).length;
   $('selection-info').textContent = `${fixed} fixed, ${handle} handle vertices`;
+  $('undo').disabled = !app.history.canUndo();
+  $('redo').disabled = !app.history.canRedo();
+}
+
+// Polls /api/progress while a solve takes longer than a moment; shows the bar and the Cancel button.
+function watchProgress() {
+  let timer = null;
+  let stopped = false;
+  const poll = async () => {
+    const progress = await api.progress().catch(() => null);
+    if (stopped) return;
+    if (progress?.running) {
+      $('progress').hidden = false;
+      $('progress-bar').value = progress.iteration / Math.max(progress.iterations, 1);
+      $('progress-text').textContent = `${progress.method}: ${progress.iteration} / ${progress.iterations} iterations`;
+      if (app.cancelling) await api.cancel().catch(() => null); // side by side: the next method's solve too
+    }
+    timer = setTimeout(poll, 250);
+  };
+  timer = setTimeout(poll, 400);
+  return () => {
+    stopped = true;
+    clearTimeout(timer);
+    $('progress').hidden = true;
+    app.cancelling = false;
+  };
+}
+
+async function cancelSolve() {
+  if ($('progress').hidden) return;
+  app.cancelling = true;
+  await api.cancel().catch(() => null);
 }
 
 async function solveShown() {
   const fixed = indicesWith(app.labels, FIXED);
   const handle = indicesWith(app.labels, HANDLE);
   if (fixed.length + handle.length === 0) return;
+  let count;
+  try {
+    count = iterations();
+  } catch (error) {
+    showError(error.message);
+    return;
+  }
   const transform = viewer.handleTransform();
   const methods = shownMethods();
   const cellEnergy = $('show-energy').checked;
+  const stopWatching = watchProgress();
   const results = await guarded(() =>
-    Promise.all(methods.map((method) => api.solve({ method, iterations: iterations(), transform, cell_energy: cellEnergy }))),
-  );
+    Promise.all(methods.map((method) => api.solve({ method, iterations: count, transform, cell_energy: cellEnergy }))),
+  ).finally(stopWatching);
   if (!results) return;
   const lines = [];
   app.curves = {};
+  let cancelled = false;
   results.forEach(({ header, arrays }, i) => {
     const method = methods[i];
     viewer.setPositions(method, arrays.positions);
-    if (arrays.cell_energy) {
-      app.energy[method] ??= new Float32Array(arrays.positions.length);
-      energyColors(arrays.cell_energy, app.labels, app.energy[method]);
-    }
+    if (arrays.cell_energy) app.cellEnergy[method] = Float32Array.from(arrays.cell_energy);
     app.curves[method] = [header.initial_energy, ...header.energies];
+    cancelled ||= header.cancelled;
     const last = header.energies.at(-1) ?? header.initial_energy;
     const precompute = header.precompute_ms > 0 ? ` + setup ${header.precompute_ms.toFixed(0)} ms` : '';
-    lines.push(`${method}: E = ${last.toExponential(3)}, ${header.iterations} it, ${header.solve_ms.toFixed(1)} ms${precompute}`);
+    const stop = header.cancelled ? ' (cancelled)' : header.converged ? ' (converged)' : '';
+    lines.push(`${method}: E = ${last.toExponential(3)}, ${header.iterations} it${stop}, ${header.solve_ms.toFixed(1)} ms${precompute}`);
   });
+  updateEnergyColors();
   repaint();
   drawEnergyPlot($('energy-plot'), app.curves);
   $('solve-info').textContent = lines.join('\n');
   app.solves += 1;
-  setStatus('');
+  if (cancelled) setStatus('Solve cancelled; the shape is the last finished iteration.');
 }
 
 const solver = new LatestOnly(solveShown);
 
-async function showPositions(methods) {
+async function fetchPositions(methods) {
   const positions = {};
   await Promise.all(methods.map(async (method) => { positions[method] = await api.positions(method); }));
   return positions;
 }
 
+async function showPositions(methods) {
+  for (const [method, p] of Object.entries(await fetchPositions(methods))) viewer.setPositions(method, p);
+}
+
+// Undo snapshots: the selection, the server's constraint revision (sets and anchors) and the gizmos.
+const snapshot = () => ({ labels: app.labels.slice(), revision: app.revision, gizmo: viewer.gizmoState() });
+
+function record() {
+  app.history.push(snapshot());
+  repaint();
+}
+
+function setLabels(state) {
+  app.labels = new Uint8Array(state.mesh.vertices);
+  for (const i of state.fixed) app.labels[i] = FIXED;
+  for (const i of state.handle) app.labels[i] = HANDLE;
+  app.revision = state.revision ?? 0;
+}
+
+// Everything shown for the previous mesh goes: energies, curves, solve figures, history, error banner.
+function clearResults() {
+  app.cellEnergy = {};
+  app.energyColors = {};
+  app.scale = null;
+  app.curves = {};
+  drawEnergyPlot($('energy-plot'), app.curves);
+  drawColorBar($('colorbar-canvas'), null);
+  $('solve-info').textContent = '';
+  $('banner').hidden = true;
+}
+
+function showMeshChoice(state) {
+  const select = $('mesh-select');
+  select.querySelector('option[data-upload]')?.remove();
+  if (state.mesh && !state.meshes.includes(state.mesh.name)) {
+    const option = Object.assign(document.createElement('option'), { value: '', textContent: `${state.mesh.name} (uploaded)`, disabled: true });
+    option.dataset.upload = 'true';
+    select.append(option);
+    option.selected = true;
+  } else if (state.mesh) {
+    select.value = state.mesh.name;
+  }
+}
+
 async function loadMesh(state) {
   app.mesh = state.mesh;
+  clearResults();
+  showMeshChoice(state);
   $('mesh-info').textContent = state.mesh
     ? [`${state.mesh.name}: ${state.mesh.vertices} vertices, ${state.mesh.faces} faces`, ...state.mesh.notes, ...state.mesh.warnings].join('\n')
     : 'no mesh: upload one';
   if (!state.mesh) return;
   const [faces, rest] = await Promise.all([api.faces(), api.positions('rest')]);
   viewer.setMesh(faces, rest, shownMethods());
-  const positions = await showPositions(shownMethods());
-  for (const [method, p] of Object.entries(positions)) viewer.setPositions(method, p);
-  app.labels = new Uint8Array(state.mesh.vertices);
-  for (const i of state.fixed) app.labels[i] = FIXED;
-  for (const i of state.handle) app.labels[i] = HANDLE;
-  app.energy = {};
+  await showPositions(shownMethods());
+  setLabels(state);
   viewer.placeGizmo(state.handle);
+  app.history.reset(snapshot());
   repaint();
   await refreshIntrinsic();
 }
@@ -104,8 +225,21 @@ async function refreshIntrinsic() {
 async function commitSelection() {
   await solver.idle();
   const handle = indicesWith(app.labels, HANDLE);
-  await api.setConstraints(indicesWith(app.labels, FIXED), handle);
+  app.revision = (await api.setConstraints(indicesWith(app.labels, FIXED), handle)).revision;
   viewer.placeGizmo(handle);
+  record();
+  solver.request();
+}
+
+// Back or forward to a snapshot: the server gets its constraint revision back, the page its selection
+// and gizmos, and a solve moves the shape there.
+async function travel(state) {
+  if (!state) return;
+  await solver.idle();
+  if (state.revision === 0) app.revision = (await api.setConstraints([], [])).revision;
+  else if (state.revision !== app.revision) app.revision = (await api.restoreConstraints(state.revision)).revision;
+  app.labels.set(state.labels);
+  viewer.setGizmoState(state.gizmo);
   repaint();
   solver.request();
 }
@@ -113,13 +247,22 @@ async function commitSelection() {
 async function changeLayout() {
   await solver.idle();
   const methods = shownMethods();
-  viewer.setLayout(methods, await showPositions(methods));
+  viewer.setLayout(methods, await fetchPositions(methods));
+  viewer.placeGizmo(indicesWith(app.labels, HANDLE), false);
   viewer.fitCamera();
+  updateEnergyColors();
   repaint();
   solver.request();
 }
 
-// Brush and box strokes with the left button; orbiting moves to the right button meanwhile.
+function download(href, name) {
+  const link = Object.assign(document.createElement('a'), { href, download: name ?? '' });
+  document.body.append(link);
+  link.click();
+  link.remove();
+}
+
+// Brush and box strokes with the left button, on any copy; orbiting moves to the right button meanwhile.
 function setupSelectionTools() {
   const canvas = viewer.renderer.domElement;
   const rectElement = $('box-rect');
@@ -132,12 +275,15 @@ function setupSelectionTools() {
   document.querySelectorAll('input[name=tool]').forEach((input) => input.addEventListener('change', applyTool));
   const brushAt = (event) => {
     const hit = viewer.pick(event.clientX, event.clientY);
-    if (hit && brush(app.labels, hit.view.positions(), hit.point, Number($('brush-radius').value) * viewer.diagonal, paintLabel(radio('paint')))) repaint();
+    if (hit && brush(app.labels, hit.view.positions(), hit.point, Number($('brush-radius').value) * viewer.diagonal, paintLabel(radio('paint')))) {
+      stroke.changed = true;
+      repaint();
+    }
   };
   canvas.addEventListener('pointerdown', (event) => {
     const tool = radio('tool');
-    if (tool === 'orbit' || event.button !== 0 || !app.mesh || viewer.gizmo.dragging || viewer.gizmo.axis !== null) return;
-    stroke = { tool, x0: event.clientX, y0: event.clientY, changed: false };
+    if (tool === 'orbit' || event.button !== 0 || !app.mesh || viewer.gizmoActive()) return;
+    stroke = { tool, x0: event.clientX, y0: event.clientY, changed: false, view: viewer.viewAt(event.clientX, event.clientY) };
     canvas.setPointerCapture(event.pointerId);
     if (tool === 'brush') brushAt(event);
   });
@@ -161,55 +307,105 @@ function setupSelectionTools() {
     rectElement.hidden = true;
     if (done.tool === 'box') {
       const rect = { x0: Math.min(done.x0, event.clientX), x1: Math.max(done.x0, event.clientX), y0: Math.min(done.y0, event.clientY), y1: Math.max(done.y0, event.clientY) };
-      box(app.labels, viewer, 0, rect, paintLabel(radio('paint')));
-      repaint();
+      done.changed = box(app.labels, viewer, done.view, rect, paintLabel(radio('paint')));
     }
-    await guarded(commitSelection);
+    if (done.changed) await guarded(commitSelection);
   });
   applyTool();
 }
 
 function setupPanel(state) {
+  app.limits = state.limits;
+  $('iterations').max = String(state.limits.max_iterations);
+  $('iterations-limit').textContent = `(1 to ${state.limits.max_iterations})`;
+  $('iterations').addEventListener('change', () => guarded(async () => iterations()));
   const select = $('mesh-select');
   select.replaceChildren(...state.meshes.map((name) => Object.assign(document.createElement('option'), { value: name, textContent: name })));
-  if (state.mesh) select.value = state.mesh.name;
-  select.addEventListener('change', () => guarded(async () => { await solver.idle(); await loadMesh(await api.load(select.value)); }));
+  select.addEventListener('change', () => guarded(async () => {
+    await solver.idle();
+    await loadMesh(await api.load(select.value));
+  }));
   $('upload').addEventListener('change', () => guarded(async () => {
     const file = $('upload').files[0];
     if (!file) return;
+    $('upload').value = '';
     await solver.idle();
     setStatus(`uploading ${file.name}...`);
     await loadMesh(await api.upload(file));
     setStatus(`loaded ${file.name}`);
   }));
   $('clear-selection').addEventListener('click', () => guarded(async () => { app.labels.fill(0); await commitSelection(); }));
+  $('undo').addEventListener('click', () => guarded(() => travel(app.history.undo())));
+  $('redo').addEventListener('click', () => guarded(() => travel(app.history.redo())));
   $('method').addEventListener('change', () => guarded(changeLayout));
   $('side-by-side').addEventListener('change', () => guarded(changeLayout));
   $('step').addEventListener('click', () => solver.request());
+  $('cancel').addEventListener('click', cancelSolve);
   $('reset').addEventListener('click', () => guarded(async () => {
     await solver.idle();
-    await api.reset();
-    const positions = await showPositions(shownMethods());
-    for (const [method, p] of Object.entries(positions)) viewer.setPositions(method, p);
+    app.revision = (await api.reset()).revision ?? app.revision;
+    await showPositions(shownMethods());
     viewer.placeGizmo(indicesWith(app.labels, HANDLE));
-    app.curves = {};
-    drawEnergyPlot($('energy-plot'), app.curves);
+    clearResults();
+    record();
   }));
+  // One OBJ per shown method.
   $('download').addEventListener('click', () => {
-    const link = Object.assign(document.createElement('a'), { href: api.downloadUrl(shownMethods()[0], 'obj') });
-    link.click();
+    shownMethods().forEach((method, i) => setTimeout(() => download(api.downloadUrl(method, 'obj')), 300 * i));
   });
+  $('save-scenario').addEventListener('click', () => guarded(async () => {
+    await solver.idle();
+    const { name, blob } = await api.saveScenario($('method').value, viewer.handleTransform());
+    const url = URL.createObjectURL(blob);
+    download(url, name);
+    setTimeout(() => URL.revokeObjectURL(url), 10000);
+    const option = name.endsWith('.json') ? '--scenario' : '--constraints';
+    setStatus(`Saved ${name}; replay: iarap deform ${app.mesh.name} ${option} ${name} --method ${$('method').value} --out out.obj`);
+  }));
+  $('load-scenario').addEventListener('change', () => guarded(async () => {
+    const file = $('load-scenario').files[0];
+    if (!file) return;
+    $('load-scenario').value = '';
+    await solver.idle();
+    const loaded = await api.loadScenario(file);
+    setLabels(loaded);
+    clearResults();
+    await showPositions(shownMethods()); // the server went back to the rest shape
+    viewer.placeGizmo(loaded.handle);
+    solver.request(); // the anchors are the file's targets: a solve with M = identity reaches them
+    await solver.idle();
+    viewer.placeGizmo(loaded.handle);
+    record();
+    setStatus(`loaded ${file.name}${loaded.warnings.length ? `\n${loaded.warnings.join('\n')}` : ''}`);
+  }));
   const gizmoMode = (mode) => {
-    viewer.gizmo.setMode(mode);
+    viewer.setGizmoMode(mode);
     $('gizmo-translate').classList.toggle('active', mode === 'translate');
     $('gizmo-rotate').classList.toggle('active', mode === 'rotate');
   };
   $('gizmo-translate').addEventListener('click', () => gizmoMode('translate'));
   $('gizmo-rotate').addEventListener('click', () => gizmoMode('rotate'));
+  const toggleHelp = (show = $('help').hidden) => { $('help').hidden = !show; };
+  $('help-button').addEventListener('click', () => toggleHelp());
+  $('banner-close').addEventListener('click', () => { $('banner').hidden = true; });
   window.addEventListener('keydown', (event) => {
-    if (event.target instanceof HTMLInputElement && event.target.type !== 'radio' && event.target.type !== 'checkbox') return;
-    if (event.key === 'w') gizmoMode('translate');
-    if (event.key === 'e') gizmoMode('rotate');
+    const typing = event.target instanceof HTMLInputElement && !['radio', 'checkbox', 'file'].includes(event.target.type);
+    if (typing) return;
+    const key = event.key.toLowerCase();
+    if ((event.ctrlKey || event.metaKey) && (key === 'z' || key === 'y')) {
+      event.preventDefault();
+      const redo = key === 'y' || event.shiftKey;
+      guarded(() => travel(redo ? app.history.redo() : app.history.undo()));
+    } else if (event.key === 'Escape') {
+      toggleHelp(false);
+      cancelSolve();
+    } else if (event.key === '?') {
+      toggleHelp();
+    } else if (key === 'w' && !event.ctrlKey) {
+      gizmoMode('translate');
+    } else if (key === 'e' && !event.ctrlKey) {
+      gizmoMode('rotate');
+    }
   });
   $('show-intrinsic').addEventListener('change', () => guarded(refreshIntrinsic));
   $('show-energy').addEventListener('change', () => {
@@ -217,7 +413,8 @@ function setupPanel(state) {
     if ($('show-energy').checked) solver.request();
   });
   $('show-wireframe').addEventListener('change', () => viewer.setWireframe($('show-wireframe').checked));
-  viewer.gizmo.addEventListener('objectChange', () => solver.request());
+  viewer.onGizmoChange(() => solver.request());
+  viewer.onGizmoDragEnd(record);
   for (const method of allMethods) $('method').querySelector(`[value=${method}]`).style.color = methodColors[method];
 }
 
@@ -229,20 +426,18 @@ window.iarapViewer = {
   idle: () => solver.idle(),
   displayedPositions: (method) => Array.from(viewer.view(method ?? shownMethods()[0]).positions()),
   labels: () => Array.from(app.labels),
-  meshScreenBox: () => {
-    const view = viewer.views[0];
-    view.mesh.geometry.computeBoundingBox();
-    const { min, max } = view.mesh.geometry.boundingBox;
-    const corners = [];
-    for (const x of [min.x, max.x]) for (const y of [min.y, max.y]) for (const z of [min.z, max.z]) corners.push(viewer.toScreen(min.clone().set(x, y, z)));
-    return { x0: Math.min(...corners.map((c) => c.x)), x1: Math.max(...corners.map((c) => c.x)), y0: Math.min(...corners.map((c) => c.y)), y1: Math.max(...corners.map((c) => c.y)) };
-  },
-  // A point on the gizmo's x arrow (TransformControls scales its handles by this factor; the x picker
-  // spans 0..0.6 of it along +x).
-  gizmoXArrowScreenPoint: () => {
-    const origin = viewer.gizmoTarget.position.clone();
+  viewCount: () => viewer.views.length,
+  meshScreenBox: (index = 0) => viewer.screenBox(index),
+  handleTransform: () => viewer.handleTransform(),
+  colorScale: () => app.scale,
+  cellEnergy: (method) => Array.from(app.cellEnergy[method] ?? []),
+  // A point on copy `index`'s gizmo x arrow (TransformControls scales its handles by this factor; the x
+  // picker spans 0..0.6 of it along +x).
+  gizmoXArrowScreenPoint: (index = 0) => {
+    const view = viewer.views[index];
+    const origin = view.gizmoTarget.position.clone();
     const { fov, zoom } = viewer.camera;
-    const factor = (origin.distanceTo(viewer.camera.position) * Math.min((1.9 * Math.tan((Math.PI * fov) / 360)) / zoom, 7) * viewer.gizmo.size) / 4;
+    const factor = (origin.distanceTo(viewer.camera.position) * Math.min((1.9 * Math.tan((Math.PI * fov) / 360)) / zoom, 7) * view.gizmo.size) / 4;
     const p = origin.add(new origin.constructor(0.4 * factor, 0, 0)).project(viewer.camera);
     const rect = viewer.renderer.domElement.getBoundingClientRect();
     return { x: rect.left + (0.5 + 0.5 * p.x) * rect.width, y: rect.top + (0.5 - 0.5 * p.y) * rect.height };
@@ -252,8 +447,8 @@ window.iarapViewer = {
 guarded(async () => {
   const state = await api.state();
   setupPanel(state);
-  setupSelectionTools();
   await loadMesh(state);
+  setupSelectionTools();
   window.iarapViewer.ready = true;
-  setStatus(state.mesh ? 'Pick Brush or Box, paint Fixed and Handle vertices, then drag the gizmo.' : 'Upload a mesh to start.');
+  setStatus(state.mesh ? 'Pick Brush or Box, paint Fixed and Handle vertices, then drag the gizmo. Press ? for help.' : 'Upload a mesh to start.');
 });

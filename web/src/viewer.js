@@ -1,6 +1,12 @@
 // The three.js view: one mesh per shown method (side by side along x), vertex colours for the selection or
-// the energy map, optional input-edge wireframe and intrinsic-edge overlay, an orbit camera and a gizmo
-// (TransformControls) on the handle. Positions live in each view's BufferGeometry: what is displayed.
+// the energy map, optional input-edge wireframe and intrinsic-edge overlay, an orbit camera and one gizmo
+// (TransformControls) per copy on its handle. Positions live in each view's BufferGeometry: what is
+// displayed.
+//
+// The handle's motion is one affine map M in mesh coordinates, shared by the copies (the server applies it
+// to every method's anchors). Copy k shows its gizmo at T(o_k) M P_k, with o_k the copy's offset and P_k
+// the pivot (mesh coordinates) placed on its handle; dragging copy j's gizmo to G gives M = T(-o_j) G
+// P_j^-1, and the other gizmos follow.
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { TransformControls } from 'three/addons/controls/TransformControls.js';
@@ -26,6 +32,7 @@ class MethodView {
       }),
     );
     this.mesh.position.copy(offset);
+    this.pivot = new THREE.Matrix4(); // where the gizmo sits while M is the identity (mesh coordinates)
     this.wire = new THREE.Mesh(geometry, new THREE.MeshBasicMaterial({ color: 0x111111, wireframe: true, transparent: true, opacity: 0.35 }));
     this.wire.position.copy(offset);
     this.wire.visible = false;
@@ -46,6 +53,11 @@ class MethodView {
   }
 
   dispose(scene) {
+    if (this.gizmo) {
+      this.gizmo.detach();
+      scene.remove(this.gizmo.getHelper(), this.gizmoTarget);
+      this.gizmo.dispose();
+    }
     scene.remove(this.mesh, this.wire);
     if (this.intrinsic) scene.remove(this.intrinsic);
     this.mesh.geometry.dispose();
@@ -69,24 +81,32 @@ export class Viewer {
     this.camera.add(light);
     this.scene.add(this.camera);
 
-    // The gizmo listens first, so selection tools can see that a pointer press went to it.
-    this.gizmoTarget = new THREE.Object3D();
-    this.scene.add(this.gizmoTarget);
-    this.gizmo = new TransformControls(this.camera, this.renderer.domElement);
-    this.gizmo.setSize(0.9);
-    this.scene.add(this.gizmo.getHelper());
-    this.orbit = new OrbitControls(this.camera, this.renderer.domElement);
-    this.orbit.enableDamping = false;
-    this.gizmo.addEventListener('dragging-changed', (event) => { this.orbit.enabled = !event.value; });
+    // Gizmos are made per copy (setLayout) before the orbit controls listen, so that selection tools can
+    // see that a pointer press went to a gizmo.
+    this.orbit = null;
+    this.gizmoMode = 'translate';
+    this.handleMatrix = new THREE.Matrix4(); // M
+    this.handleIndices = [];
+    this.gizmoListeners = { change: [], dragEnd: [] };
 
     this.views = [];
     this.faces = null;
     this.rest = null;
-    this.anchorMatrix = new THREE.Matrix4();
     this.overlay = null;
+    this.#buildGizmos();
     new ResizeObserver(() => this.resize()).observe(container);
     this.resize();
-    this.renderer.setAnimationLoop(() => this.render());
+  }
+
+  // Frames are drawn on demand (a change of the camera, a gizmo, positions or colours), not in a loop: a
+  // still view then costs nothing, which matters with software WebGL and beside the solver.
+  requestRender() {
+    if (this.renderQueued) return;
+    this.renderQueued = true;
+    requestAnimationFrame(() => {
+      this.renderQueued = false;
+      this.render();
+    });
   }
 
   resize() {
@@ -95,10 +115,10 @@ export class Viewer {
     this.renderer.setSize(w, h);
     this.camera.aspect = w / h;
     this.camera.updateProjectionMatrix();
+    this.requestRender();
   }
 
   render() {
-    this.orbit.update();
     this.renderer.render(this.scene, this.camera);
     this.#placeLabels();
   }
@@ -108,6 +128,8 @@ export class Viewer {
     this.faces = faces;
     this.rest = rest;
     this.overlay = null;
+    this.handleIndices = [];
+    this.handleMatrix.identity();
     const box = new THREE.Box3().setFromArray(rest);
     this.center = box.getCenter(new THREE.Vector3());
     this.size = box.getSize(new THREE.Vector3());
@@ -119,7 +141,6 @@ export class Viewer {
   // One view per method, spaced along x; positions: {method: Float32Array} or null for the rest shape.
   setLayout(methods, positions) {
     const wireVisible = this.views[0]?.wire.visible ?? false;
-    const oldOffset = this.views[0]?.offset.clone() ?? new THREE.Vector3();
     for (const view of this.views) view.dispose(this.scene);
     const spacing = this.size.x + 0.25 * this.diagonal;
     this.views = methods.map((method, i) => {
@@ -128,23 +149,91 @@ export class Viewer {
       this.scene.add(view.mesh, view.wire);
       return view;
     });
-    // The gizmo and its anchor live in view 0's frame; follow that view to its new place.
-    const shift = this.views[0].offset.clone().sub(oldOffset);
-    this.gizmoTarget.position.add(shift);
-    this.anchorMatrix.premultiply(new THREE.Matrix4().makeTranslation(shift.x, shift.y, shift.z));
+    this.#buildGizmos();
     this.#buildLabels();
     if (this.overlay) this.setIntrinsicOverlay(this.overlay);
+    this.requestRender();
   }
 
+  // A gizmo per copy, then the orbit controls (pointer listeners run in the order they were added).
+  #buildGizmos() {
+    const orbitState = this.orbit ? { target: this.orbit.target.clone(), buttons: { ...this.orbit.mouseButtons } } : null;
+    this.orbit?.dispose();
+    for (const view of this.views) {
+      view.gizmoTarget = new THREE.Object3D();
+      view.gizmo = new TransformControls(this.camera, this.renderer.domElement);
+      view.gizmo.setSize(0.9);
+      view.gizmo.setMode(this.gizmoMode);
+      view.gizmo.addEventListener('change', () => this.requestRender());
+      view.gizmo.addEventListener('dragging-changed', (event) => {
+        this.orbit.enabled = !event.value;
+        if (!event.value) for (const listener of this.gizmoListeners.dragEnd) listener();
+      });
+      view.gizmo.addEventListener('objectChange', () => {
+        if (!view.gizmo.dragging) return; // moves made by #showGizmos, not by the user
+        view.gizmoTarget.updateMatrix();
+        const o = view.offset;
+        this.handleMatrix.makeTranslation(-o.x, -o.y, -o.z).multiply(view.gizmoTarget.matrix).multiply(view.pivot.clone().invert());
+        this.#showGizmos(view);
+        for (const listener of this.gizmoListeners.change) listener();
+      });
+      this.scene.add(view.gizmoTarget, view.gizmo.getHelper());
+    }
+    this.orbit = new OrbitControls(this.camera, this.renderer.domElement);
+    this.orbit.enableDamping = false;
+    this.orbit.addEventListener('change', () => this.requestRender());
+    if (orbitState) {
+      this.orbit.target.copy(orbitState.target);
+      Object.assign(this.orbit.mouseButtons, orbitState.buttons);
+    }
+    this.placeGizmo(this.handleIndices, false);
+  }
+
+  // Every gizmo but `except` moved to show M.
+  #showGizmos(except = null) {
+    for (const view of this.views) {
+      if (view === except || !view.gizmoTarget) continue;
+      const o = view.offset;
+      const m = new THREE.Matrix4().makeTranslation(o.x, o.y, o.z).multiply(this.handleMatrix).multiply(view.pivot);
+      m.decompose(view.gizmoTarget.position, view.gizmoTarget.quaternion, view.gizmoTarget.scale);
+      view.gizmoTarget.updateMatrix();
+    }
+    this.requestRender();
+  }
+
+  onGizmoChange(listener) {
+    this.gizmoListeners.change.push(listener);
+  }
+
+  onGizmoDragEnd(listener) {
+    this.gizmoListeners.dragEnd.push(listener);
+  }
+
+  setGizmoMode(mode) {
+    this.gizmoMode = mode;
+    for (const view of this.views) view.gizmo?.setMode(mode);
+  }
+
+  // Whether a gizmo is hovered or dragged (a press then belongs to it, not to a selection tool).
+  gizmoActive() {
+    return this.views.some((v) => v.gizmo && (v.gizmo.dragging || v.gizmo.axis !== null));
+  }
+
+  // Fits every copy in the window: the camera backs off until both the height and the width of the row
+  // of copies fit the field of view.
   fitCamera() {
     const spread = (this.views.length - 1) * (this.size.x + 0.25 * this.diagonal);
-    const radius = 0.5 * Math.max(this.diagonal, spread + this.size.x);
+    const halfWidth = 0.5 * (spread + this.size.x) + 0.15 * this.diagonal;
+    const halfHeight = 0.5 * this.size.y + 0.15 * this.diagonal;
+    const tanHalf = Math.tan((Math.PI * this.camera.fov) / 360);
+    const distance = Math.max(halfHeight / tanHalf, halfWidth / (tanHalf * this.camera.aspect)) + 0.5 * this.size.z;
     this.orbit.target.copy(this.center);
-    this.camera.near = radius * 1e-3;
-    this.camera.far = radius * 100;
-    this.camera.position.copy(this.center).add(new THREE.Vector3(0, 0.15 * radius, 2.6 * radius));
+    this.camera.near = distance * 1e-3;
+    this.camera.far = distance * 100;
+    this.camera.position.copy(this.center).add(new THREE.Vector3(0, 0.06 * distance, distance));
     this.camera.updateProjectionMatrix();
     this.orbit.update();
+    this.requestRender();
   }
 
   view(method) {
@@ -162,15 +251,18 @@ export class Viewer {
       }
       view.mesh.geometry.attributes.color.needsUpdate = true;
     }
+    this.requestRender();
   }
 
   setWireframe(visible) {
     for (const view of this.views) view.wire.visible = visible;
+    this.requestRender();
   }
 
   // overlay: decoded /api/intrinsic_edges frame; null hides it.
   setIntrinsicOverlay(overlay) {
     this.overlay = overlay;
+    this.requestRender();
     for (const view of this.views) {
       if (view.intrinsic) {
         this.scene.remove(view.intrinsic);
@@ -220,6 +312,7 @@ export class Viewer {
     }
     out.needsUpdate = true;
     view.intrinsic.geometry.computeBoundingSphere();
+    this.requestRender();
   }
 
   setPositions(method, positions) {
@@ -227,35 +320,46 @@ export class Viewer {
     if (!view) return;
     view.setPositions(positions);
     this.#updateIntrinsic(view);
+    this.requestRender();
   }
 
-  // Puts the gizmo, with identity rotation, at the centroid of the handle in view 0 and records that
-  // placement: handle transforms are measured from it (the server's anchors).
-  placeGizmo(handle) {
-    if (handle.length === 0 || this.views.length === 0) {
-      this.gizmo.detach();
-      return;
+  // Puts each copy's gizmo, with identity rotation, at the centroid of the handle in that copy and, when
+  // resetMatrix, makes M the identity (the server's anchors were just re-taken). Otherwise (a copy shown
+  // anew) the pivot is the handle's centroid taken back through M, so that the gizmo shows on the handle.
+  placeGizmo(handle, resetMatrix = true) {
+    this.handleIndices = handle;
+    if (resetMatrix) this.handleMatrix.identity();
+    const back = this.handleMatrix.clone().invert();
+    for (const view of this.views) {
+      if (!view.gizmo) continue;
+      if (handle.length === 0) {
+        view.gizmo.detach();
+        continue;
+      }
+      const X = view.positions();
+      const centroid = new THREE.Vector3();
+      for (const i of handle) centroid.add(new THREE.Vector3(X[3 * i], X[3 * i + 1], X[3 * i + 2]));
+      centroid.divideScalar(handle.length).applyMatrix4(back);
+      view.pivot.makeTranslation(centroid.x, centroid.y, centroid.z);
+      view.gizmo.attach(view.gizmoTarget);
     }
-    const X = this.views[0].positions();
-    const centroid = new THREE.Vector3();
-    for (const i of handle) centroid.add(new THREE.Vector3(X[3 * i], X[3 * i + 1], X[3 * i + 2]));
-    centroid.divideScalar(handle.length).add(this.views[0].offset);
-    this.gizmoTarget.position.copy(centroid);
-    this.gizmoTarget.quaternion.identity();
-    this.gizmoTarget.scale.set(1, 1, 1);
-    this.gizmoTarget.updateMatrix();
-    this.anchorMatrix.copy(this.gizmoTarget.matrix);
-    this.gizmo.attach(this.gizmoTarget);
+    this.#showGizmos();
   }
 
-  // The handle's affine map since placeGizmo, in mesh coordinates, as 16 column-major numbers.
+  // The handle's affine map M in mesh coordinates, as 16 column-major numbers.
   handleTransform() {
-    this.gizmoTarget.updateMatrix();
-    const offset = this.views[0]?.offset ?? new THREE.Vector3();
-    const toMesh = new THREE.Matrix4().makeTranslation(offset.x, offset.y, offset.z);
-    const relative = new THREE.Matrix4().copy(this.gizmoTarget.matrix).multiply(this.anchorMatrix.clone().invert());
-    const m = new THREE.Matrix4().copy(toMesh).invert().multiply(relative).multiply(toMesh);
-    return Array.from(m.elements);
+    return Array.from(this.handleMatrix.elements);
+  }
+
+  // Gizmo state for undo: M and each copy's pivot.
+  gizmoState() {
+    return { matrix: this.handleTransform(), pivots: Object.fromEntries(this.views.map((v) => [v.method, Array.from(v.pivot.elements)])) };
+  }
+
+  setGizmoState(state) {
+    this.handleMatrix.fromArray(state.matrix);
+    for (const view of this.views) if (state.pivots[view.method]) view.pivot.fromArray(state.pivots[view.method]);
+    this.#showGizmos();
   }
 
   // Client-pixel position of a point of view `index` given in mesh coordinates.
@@ -275,6 +379,31 @@ export class Viewer {
     if (hits.length === 0) return null;
     const view = this.views.find((v) => v.mesh === hits[0].object);
     return { view, point: hits[0].point.clone().sub(view.offset) };
+  }
+
+  // The index of the copy whose screen box holds the client point, else the nearest copy's.
+  viewAt(clientX, clientY) {
+    let best = 0, bestDistance = Infinity;
+    this.views.forEach((view, index) => {
+      const box = this.screenBox(index);
+      const dx = Math.max(box.x0 - clientX, 0, clientX - box.x1);
+      const dy = Math.max(box.y0 - clientY, 0, clientY - box.y1);
+      if (Math.hypot(dx, dy) < bestDistance) {
+        best = index;
+        bestDistance = Math.hypot(dx, dy);
+      }
+    });
+    return best;
+  }
+
+  // Client-pixel bounding box of the corners of copy `index`'s bounding box.
+  screenBox(index) {
+    const geometry = this.views[index].mesh.geometry;
+    geometry.computeBoundingBox();
+    const { min, max } = geometry.boundingBox;
+    const corners = [];
+    for (const x of [min.x, max.x]) for (const y of [min.y, max.y]) for (const z of [min.z, max.z]) corners.push(this.toScreen(new THREE.Vector3(x, y, z), index));
+    return { x0: Math.min(...corners.map((c) => c.x)), x1: Math.max(...corners.map((c) => c.x)), y0: Math.min(...corners.map((c) => c.y)), y1: Math.max(...corners.map((c) => c.y)) };
   }
 
   #buildLabels() {
