@@ -3,6 +3,7 @@
 #include "binary_frame.h"
 #include "http_error.h"
 #include "json_input.h"
+#include "route_table.h"
 #include "scenario_files.h"
 #include "static_files.h"
 
@@ -18,7 +19,6 @@
 #include <fstream>
 #include <iostream>
 #include <limits>
-#include <map>
 #include <sstream>
 
 namespace iarap::serve {
@@ -82,6 +82,11 @@ std::string read_file_bytes(const std::filesystem::path& path) {
   return bytes.str();
 }
 
+const char* const json_type_hint = "this route takes a JSON body with Content-Type: application/json "
+                                   "(curl: -H 'Content-Type: application/json')";
+const char* const raw_file_hint = "send the file's bytes as the body with a Content-Type other than a form's, "
+                                  "e.g. curl --data-binary @mesh.off -H 'Content-Type: application/octet-stream'";
+
 bool is_form(const std::string& content_type) {
   return content_type.rfind("application/x-www-form-urlencoded", 0) == 0 ||
          content_type.rfind("multipart/form-data", 0) == 0;
@@ -92,19 +97,16 @@ bool is_form(const std::string& content_type) {
 void require_json_content(const httplib::Request& req) {
   const std::string type = req.get_header_value("Content-Type");
   if (type.rfind("application/json", 0) != 0) {
-    throw HttpError(415, "this route takes a JSON body with Content-Type: application/json, got " +
-                             (type.empty() ? std::string("none") : "\"" + safe_label(type) + "\"") +
-                             " (curl: -H 'Content-Type: application/json')");
+    throw HttpError(415, std::string(json_type_hint) + "; got " +
+                             (type.empty() ? std::string("none") : "\"" + safe_label(type) + "\""));
   }
 }
 
 // File bodies (uploads, saved sessions) are the raw bytes with any Content-Type but a form's: a form
 // encodes the bytes, and curl's default -d / --data-binary type is one.
 void require_raw_file(const httplib::Request& req) {
-  if (is_form(req.get_header_value("Content-Type"))) {
-    throw HttpError(415, "send the file's bytes as the body with a Content-Type other than a form, e.g. "
-                         "curl --data-binary @mesh.off -H 'Content-Type: application/octet-stream'");
-  }
+  if (is_form(req.get_header_value("Content-Type")))
+    throw HttpError(415, raw_file_hint);
 }
 
 ArapMethod method_param(const httplib::Request& req) {
@@ -234,48 +236,6 @@ void load_server_mesh(ServeState& state, const ServerMesh& mesh) {
 
 namespace {
 
-// Registers handlers and remembers each path's methods, so that another method on a known path gets 405
-// with Allow instead of a 404.
-class RouteTable {
-public:
-  explicit RouteTable(httplib::Server& server) : server_(server) {}
-
-  void get(const std::string& path, httplib::Server::Handler handler) {
-    server_.Get(path, std::move(handler));
-    methods_[path].push_back("GET");
-  }
-  void post(const std::string& path, httplib::Server::Handler handler) {
-    server_.Post(path, std::move(handler));
-    methods_[path].push_back("POST");
-  }
-
-  void answer_other_methods_with_405() {
-    for (const auto& [path, methods] : methods_) {
-      std::string allow;
-      for (const std::string& method : methods)
-        allow += (allow.empty() ? "" : ", ") + method;
-      const auto refuse = [path = path, allow](const httplib::Request& req, httplib::Response& res) {
-        res.set_header("Allow", allow);
-        throw HttpError(405, req.method + " is not allowed on " + path + "; use " + allow);
-      };
-      const auto has = [&methods = methods](const char* m) {
-        return std::find(methods.begin(), methods.end(), m) != methods.end();
-      };
-      if (!has("GET"))
-        server_.Get(path, refuse);
-      if (!has("POST"))
-        server_.Post(path, refuse);
-      server_.Put(path, refuse);
-      server_.Delete(path, refuse);
-      server_.Patch(path, refuse);
-    }
-  }
-
-private:
-  httplib::Server& server_;
-  std::map<std::string, std::vector<std::string>> methods_;
-};
-
 // The message of an error status httplib answers itself (no handler ran): 404, 413 with the limit of the
 // route, and 415 for a form body httplib refused as too large for a form (8 KiB) when it is within the
 // route's limit (curl --data-binary sends a form's type unless told otherwise).
@@ -283,23 +243,21 @@ httplib::Server::HandlerResponse answer_transport_error(const ServeConfig& confi
                                                         httplib::Response& res) {
   if (!res.body.empty())
     return httplib::Server::HandlerResponse::Unhandled;
-  const bool upload = req.path == "/api/upload" || req.path == "/api/scenario/load";
+  const bool upload = req.path == "/api/upload";
   const std::size_t limit = upload ? config.max_upload_bytes : config.max_json_bytes;
   std::string message = "HTTP " + std::to_string(res.status);
   if (res.status == 404) {
     message = "not found: " + safe_label(req.path);
   } else if (res.status == 413) {
     const std::string length = req.get_header_value("Content-Length");
-    const bool within = !length.empty() && length.size() < 19 && std::stoull(length) <= limit;
+    const bool within = !length.empty() && length.size() < 19 &&
+                        length.find_first_not_of("0123456789") == std::string::npos && std::stoull(length) <= limit;
     if (is_form(req.get_header_value("Content-Type")) && within) {
       res.status = 415;
-      message = upload ? "send the file's bytes as the body with a Content-Type other than a form, e.g. "
-                         "curl --data-binary @mesh.off -H 'Content-Type: application/octet-stream'"
-                       : "this route takes a JSON body with Content-Type: application/json "
-                         "(curl: -H 'Content-Type: application/json')";
+      message = upload || req.path == "/api/scenario/load" ? raw_file_hint : json_type_hint;
     } else {
-      message = std::string("request body too large; the limit for ") + (upload ? "file uploads" : "JSON bodies") +
-                " is " + byte_limit_text(limit);
+      message = std::string("request body too large; the limit for ") +
+                (upload ? "mesh uploads" : "JSON bodies and scenario files") + " is " + byte_limit_text(limit);
     }
   }
   send_error(res, message, res.status);
