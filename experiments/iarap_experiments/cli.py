@@ -34,8 +34,10 @@ class Cli:
         return self.run_json(["info", mesh, "--json"], ok_codes=(0, 1))
 
     def intrinsic(self, mesh: str, out_edges: str | None = None, refine_boundary: bool = False,
-                  threads: int = 0) -> dict:
+                  threads: int = 0, subdivide: int = 0) -> dict:
         args = ["intrinsic", mesh, "--json", "--threads", str(threads)]
+        if subdivide:
+            args += ["--subdivide", str(subdivide)]
         if out_edges:
             args += ["--out-edges", out_edges]
         if refine_boundary:

@@ -14,6 +14,10 @@
   The legs splay (x is scaled by a factor growing towards the floor), which keeps every face planar and
   the mesh mirror-symmetric but turns the side faces' rectangles into non-cyclic trapezoids, so one
   diagonal in two is (slightly) non-Delaunay.
+- balloon: paper Fig. 12, a balloon-like surface of revolution (a teardrop, wider at the top, with a small
+  knot at the bottom) as latitude-longitude rings, every quad split along the diagonal of the same index
+  order. Quads between two rings are isosceles trapezoids, hence cyclic: both diagonals have cotan weight 0,
+  the mesh is Delaunay (up to round-off) and mirror-symmetric in x and z while its triangulation is not.
 - diagonal_grid: paper Fig. 1, a flat square grid with every square split along the same diagonal
   (Delaunay: squares are cyclic, the diagonals get weight 0), symmetric geometry, asymmetric triangulation.
 """
@@ -130,3 +134,26 @@ def stool(cells: int = 2, splay: float = 0.35) -> tuple[np.ndarray, np.ndarray, 
     V /= float(W)  # unit seat width
     sets = {"feet": np.where(V[:, 1] <= 0.0)[0], "seat_top": np.where(V[:, 1] >= (H + T) / float(W) - 1e-12)[0]}
     return V, F, sets
+
+
+def balloon(longitudes: int = 48, latitudes: int = 32) -> tuple[np.ndarray, np.ndarray]:
+    """Closed balloon-like surface of revolution about y (height 2.4, max radius ~1.1); `longitudes` even
+    so that x -> -x maps vertices to vertices. Vertex 0 is the top pole, the last one the bottom pole."""
+    assert longitudes % 2 == 0
+    phi = np.pi * np.arange(1, latitudes) / latitudes  # polar angle of each ring, 0 at the top
+    knot = 0.12 * np.exp(-(((np.pi - phi) - 0.22) / 0.07) ** 2)  # a small bulge near the bottom pole
+    radius = np.sin(phi) * (1.0 + 0.3 * np.cos(phi)) + knot
+    height = 1.2 * np.cos(phi)
+    theta = 2.0 * np.pi * np.arange(longitudes) / longitudes
+    rings = np.stack([np.outer(radius, np.cos(theta)), np.repeat(height[:, None], longitudes, axis=1),
+                      np.outer(radius, np.sin(theta))], axis=2).reshape(-1, 3)
+    V = np.vstack([[0.0, 1.2, 0.0], rings, [0.0, -1.2, 0.0]])
+    bottom = len(V) - 1
+    ring = lambda r, j: 1 + r * longitudes + j % longitudes  # noqa: E731
+    F = [[0, ring(0, j + 1), ring(0, j)] for j in range(longitudes)]
+    for r in range(latitudes - 2):
+        for j in range(longitudes):
+            a, b, c, d = ring(r, j), ring(r, j + 1), ring(r + 1, j), ring(r + 1, j + 1)
+            F += [[a, b, d], [a, d, c]]  # outward: theta runs from x towards z, rings downwards
+    F += [[bottom, ring(latitudes - 2, j), ring(latitudes - 2, j + 1)] for j in range(longitudes)]
+    return V, np.array(F, dtype=np.int64)

@@ -5,6 +5,7 @@ import datetime
 import json
 import os
 import platform
+import re
 import resource
 import shutil
 import subprocess
@@ -12,13 +13,14 @@ import sys
 import time
 import traceback
 
-from . import (section_fig8, section_gallery, section_lion, section_rest_stability, section_symmetry,
-               section_table1, section_table2, section_table3)
+from . import (section_fig8, section_gallery, section_lion, section_operator_identity, section_rest_stability,
+               section_symmetry, section_table1, section_table2, section_table3)
 from .context import Context, Stopwatch
 from .report_document import Document, Heading, Paragraph, Table, to_html, to_markdown
 
+# One module per section, in report order; report.py numbers their headings (see number_headings).
 SECTIONS = [("table1", section_table1), ("table2", section_table2), ("table3", section_table3),
-            ("fig8", section_fig8), ("rest_stability", section_rest_stability), ("symmetry", section_symmetry),
+            ("operator_identity", section_operator_identity), ("fig8", section_fig8), ("rest_stability", section_rest_stability), ("symmetry", section_symmetry),
             ("lion", section_lion), ("gallery", section_gallery)]
 RENDERER = os.path.join(os.path.dirname(os.path.abspath(__file__)), "render_vtk.py")
 
@@ -43,6 +45,14 @@ def render_pictures(ctx: Context) -> str | None:
         return f"renderer failed ({done.returncode}): {done.stderr.strip()[-800:]}"
     missing = [job["out"] for job in ctx.render_jobs if not os.path.exists(job["out"])]
     return f"renderer wrote no {', '.join(missing)}" if missing else None
+
+
+def number_headings(blocks: list, number: int) -> None:
+    """Numbers a section's level-2 headings by its position in SECTIONS ("N. title"), replacing any number the
+    section wrote itself, so adding or moving a section never leaves two sections with the same number."""
+    for block in blocks:
+        if isinstance(block, Heading) and block.level == 2:
+            block.text = f"{number}. " + re.sub(r"^\d+\.\s*", "", block.text)
 
 
 def closing_note(ctx: Context, doc: Document) -> None:
@@ -75,7 +85,8 @@ def build_report(ctx: Context) -> int:
                       "Raw data: `data/` (JSON and CSV). "
                       "Each section states the paper's claim, our measurement and whether it holds."))
     failures = 0
-    for name, module in SECTIONS:
+    for number, (name, module) in enumerate(SECTIONS, start=1):
+        first = len(doc.blocks)
         try:
             with Stopwatch(ctx, name):
                 module.run(ctx, doc)
@@ -84,6 +95,7 @@ def build_report(ctx: Context) -> int:
             doc.add(Heading(f"{name}: FAILED"), Paragraph(f"`{type(error).__name__}`: {error}"))
             ctx.claim(name, "section ran", f"failed: {type(error).__name__}", "-", "no")
             traceback.print_exc()
+        number_headings(doc.blocks[first:], number)
         print(f"experiments: {name} done ({ctx.timings.get(name, 0):.1f} s)", file=sys.stderr, flush=True)
     with Stopwatch(ctx, "render"):
         render_error = render_pictures(ctx)

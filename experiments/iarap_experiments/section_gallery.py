@@ -51,7 +51,7 @@ def run(ctx: Context, doc) -> None:
                                             [V[ears]]).tolist()
         ctx.render_jobs.append(job)
     ctx.write_json("gallery_bunny.json", {"energies": energies, "distance_to_iarap": rest_to_iarap})
-    doc.add(Heading("8. Fig. 9 and the gallery"),
+    doc.add(Heading("Fig. 9 and the gallery"),
             Paragraph("**Paper (Fig. 9):** the bunny's ill-shaped ear triangles make original ARAP crease; "
                       "spokes-and-rims and iARAP give similar, better results (Fig. 10: often very similar).\n\n"
                       f"**Bunny:** `data/bunny_scenario.json` ({scene['description']}), up to {iterations} "
@@ -61,8 +61,8 @@ def run(ctx: Context, doc) -> None:
             Image("fig9_bunny_front.png", "Bunny: rest (constrained vertices red), original ARAP, spokes-and-rims, "
                                           "iARAP."),
             Image("fig9_bunny_ears.png", "Bunny, close-up of the ears (same runs)."))
-    for picture, caption in (("symmetry_Fig11.png", "Cube (Fig. 11), from Section 6."),
-                             ("fig14_lion_results.png", "Lion (Fig. 14), from Section 7.")):
+    for picture, caption in (("symmetry_Fig11.png", "Cube (Fig. 11), from the symmetry section."),
+                             ("fig14_lion_results.png", "Lion (Fig. 14), from the Fig. 14 section.")):
         if ctx.quick and picture.startswith("fig14"):
             continue
         doc.add(Image(picture, caption))

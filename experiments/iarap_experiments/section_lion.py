@@ -69,7 +69,7 @@ def _base_lines(ctx: Context, setup: dict, edges_obj: str) -> tuple[str, str, li
 
 def run(ctx: Context, doc) -> None:
     path = None if ctx.quick else ctx.shared("lion.off")
-    doc.add(Heading("7. Fig. 14: the lion's base"))
+    doc.add(Heading("Fig. 14: the lion's base"))
     if path is None:
         doc.add(Paragraph("`lion.off` is not available (reduced report or no ../shared/meshes): section skipped."))
         return

@@ -89,7 +89,7 @@ def run(ctx: Context, doc) -> None:
                   [f"{n}_{k}" for n in names for k in checkpoints],
                   [[r["mesh"], r["vertices"], r["non_delaunay_edges"], r["boundary_edges"], r["obtuse_boundary_edges"]]
                    + [r["drift"][n][str(k)] for n in names for k in checkpoints] for r in results])
-    doc.add(Heading("5. Rest stability (Sec. 5, Fig. 9)"),
+    doc.add(Heading("Rest stability (Sec. 5, Fig. 9)"),
             Paragraph("**Paper:** original ARAP's negative cotan weights make its energy negative on non-Delaunay "
                       "meshes, so it creases 'already without displacing the constraints'; spokes-and-rims and "
                       "iARAP are non-negative and stay at rest. iARAP never flips boundary edges, so a boundary "

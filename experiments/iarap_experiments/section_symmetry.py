@@ -1,4 +1,6 @@
-"""Symmetry (Figs. 1, 11-13): symmetric shapes with asymmetric triangulations, deformed symmetrically."""
+"""Symmetry (Figs. 1, 11-13): symmetric shapes with asymmetric triangulations, deformed symmetrically.
+
+Also the paper's remark on Fig. 13 that original ARAP diverges on the stool, checked on our stool's energies."""
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -6,10 +8,11 @@ from dataclasses import dataclass
 import numpy as np
 
 from .context import METHOD_LABELS, METHODS, Context, fmt
-from .generated_meshes import _box_union_surface, diagonal_grid, stool
+from .cotan import cotan_laplacian
+from .generated_meshes import _box_union_surface, balloon, diagonal_grid, stool
 from .mesh_io import bbox_diagonal, read_mesh, write_constraints, write_obj
 from .report_document import Heading, Image, Paragraph, Table
-from .shape_measures import mirror_map, symmetry_error
+from .shape_measures import mirror_map, rotation_degrees, symmetry_error
 
 # Runs converge to the tolerance below; a symmetric energy keeps the iterates symmetric up to round-off
 # (~1e-13 of the diagonal), so 1e-7 separates "keeps" from "breaks" with a wide margin on both sides.
@@ -86,8 +89,29 @@ def _case_stool(ctx: Context) -> Case:
                 {"direction": [0.0, 0.1, 1.0], "up": [0, 1, 0]})
 
 
+def _case_balloon(ctx: Context) -> Case:
+    V, F = balloon(32 if ctx.quick else 48, 20 if ctx.quick else 32)
+    width = V[:, 0].max() - V[:, 0].min()
+    # Squeezed between two side pads (the outer 15% of the width on each side), nothing else held.
+    left = np.where(V[:, 0] <= V[:, 0].min() + 0.15 * width)[0]
+    right = np.where(V[:, 0] >= V[:, 0].max() - 0.15 * width)[0]
+    fixed = np.concatenate([left, right])
+    targets = V[fixed].copy()
+    targets[:len(left), 0] += 0.15 * width
+    targets[len(left):, 0] -= 0.15 * width
+    obj, constraints = ctx.work("sym_balloon.obj"), ctx.work("sym_balloon.txt")
+    write_obj(obj, V, F)
+    write_constraints(constraints, fixed, targets)
+    return Case("balloon (Fig. 12)", "Fig. 12", obj, constraints, fixed, 0, 0.0,
+                f"generated balloon ({len(V)} V, `generated_meshes.balloon`): a teardrop surface of revolution "
+                "with a knot, latitude-longitude quads all split along the same diagonal (cyclic trapezoids, so "
+                "Delaunay with zero-weight diagonals); squeezed between two side pads, each moved inwards by "
+                "15% of the width, nothing else held",
+                {"direction": [0.0, 0.25, 1.0], "up": [0, 1, 0]})
+
+
 def cases(ctx: Context) -> list[Case]:
-    return [_case_grid(ctx), _case_cube(ctx), _case_stool(ctx)]
+    return [_case_grid(ctx), _case_cube(ctx), _case_balloon(ctx), _case_stool(ctx)]
 
 
 def run(ctx: Context, doc) -> None:
@@ -99,14 +123,20 @@ def run(ctx: Context, doc) -> None:
         sigma = mirror_map(rest.V, case.mirror_axis, case.mirror_center, 1e-9 * diagonal)
         info = ctx.cli.info(case.obj)
         row = {"case": case.name, "vertices": len(rest.V), "non_delaunay_edges": info["non_delaunay_edges"],
-               "symmetry_error": {}, "outputs": {}}
+               "symmetry_error": {}, "rotation_degrees": {}, "outputs": {}, "runs": {}}
+        L = cotan_laplacian(rest.V, rest.F).tocoo()
+        off = L.row != L.col
+        # Largest wrong-signed (negative-weight) entry relative to max |L_ii|: how non-Delaunay it is.
+        row["worst_negative_weight"] = float(max(L.data[off].max(), 0.0) / abs(L.diagonal()).max())
         deformed = {}
         for method in METHODS:
             out = ctx.work(f"sym_{case.figure.replace('. ', '')}_{method}.obj")
-            ctx.cli.deform(case.obj, out, method, iterations, constraints=case.constraints, tolerance=0.0)
+            r = ctx.cli.deform(case.obj, out, method, iterations, constraints=case.constraints, tolerance=0.0)
+            row["runs"][method] = {k: r[k] for k in ("initial_energy", "energies", "max_displacement", "bbox_diagonal")}
             deformed[method] = read_mesh(out).V
             row["symmetry_error"][method] = symmetry_error(deformed[method], sigma, case.mirror_axis,
                                                            case.mirror_center) / diagonal
+            row["rotation_degrees"][method] = rotation_degrees(rest.V, deformed[method])
             row["outputs"][method] = out
         row["iarap_vs_arap"] = float(np.linalg.norm(deformed["iarap"] - deformed["arap"], axis=1).max()) / diagonal
         results.append(row)
@@ -123,7 +153,7 @@ def run(ctx: Context, doc) -> None:
     ctx.write_csv("symmetry.csv", ["case", "vertices", "non_delaunay_edges"] + [f"sym_{m}" for m in METHODS] +
                   ["iarap_vs_arap"], [[r["case"], r["vertices"], r["non_delaunay_edges"]] +
                                      [r["symmetry_error"][m] for m in METHODS] + [r["iarap_vs_arap"]] for r in results])
-    doc.add(Heading("6. Symmetry (Figs. 1, 11-13)"),
+    doc.add(Heading("Symmetry (Figs. 1, 11-13)"),
             Paragraph("**Paper:** on symmetric shapes whose triangulation is not symmetric, spokes-and-rims breaks "
                       "the symmetry (its cells follow the diagonals), iARAP keeps it, and on Delaunay meshes "
                       "iARAP coincides with original ARAP.\n\n"
@@ -132,9 +162,12 @@ def run(ctx: Context, doc) -> None:
                       "(`--tolerance 0`). 'iARAP vs original' = max vertex distance between the two results / "
                       "bbox diagonal.\n\n" + "\n".join(f"- {r['case']}: {r['description']}" for r in results)),
             Table(["case", "V", "non-Delaunay edges"] + [f"symmetry error, {METHOD_LABELS[m]}" for m in METHODS] +
-                  ["iARAP vs original"],
+                  ["iARAP vs original"] + [f"turn (deg), {METHOD_LABELS[m]}" for m in METHODS],
                   [[r["case"], str(r["vertices"]), str(r["non_delaunay_edges"])] +
-                   [fmt(r["symmetry_error"][m], 2) for m in METHODS] + [fmt(r["iarap_vs_arap"], 2)] for r in results]))
+                   [fmt(r["symmetry_error"][m], 2) for m in METHODS] + [fmt(r["iarap_vs_arap"], 2)] +
+                   [f"{r['rotation_degrees'][m]:.3f}" for m in METHODS] for r in results]),
+            Paragraph("'turn': angle of the best-fit rotation (Kabsch) taking the whole rest mesh to the result, "
+                      "the paper's \"rotates the entire mesh\" (Fig. 12)."))
     for r in results:
         doc.add(Image(r["picture"], f"{r['case']}: rest (constrained vertices red), original ARAP, "
                                     "spokes-and-rims, iARAP."))
@@ -164,3 +197,35 @@ def run(ctx: Context, doc) -> None:
                       "triangulation-independent at rest only; a traced intrinsic edge keeps fixed barycentric "
                       "crossing points on the extrinsic edges, so once the deformed quads are no longer planar the "
                       "polyline on one side of the mirror is bent where its mirror image is straight."))
+
+    stool_row = next((r for r in results if r["case"].startswith("stool")), None)
+    if stool_row:
+        stool_divergence(ctx, doc, stool_row, iterations)
+
+
+def stool_divergence(ctx: Context, doc, row: dict, iterations: int) -> None:
+    """Paper Fig. 13: 'As the original ARAP energy diverges we stopped the optimization after a few steps.'"""
+    run = row["runs"]["arap"]
+    E = np.asarray([run["initial_energy"]] + run["energies"])
+    increases = int(np.sum(np.diff(E) > 1e-12 * abs(E[0])))
+    last_change = abs(E[-1] - E[-2]) / max(abs(E[-1]), 1e-300)
+    displacement = run["max_displacement"] / run["bbox_diagonal"]
+    others = {m: row["runs"][m]["max_displacement"] / row["runs"][m]["bbox_diagonal"] for m in METHODS}
+    # "Diverges" read as: the energy rises at some iteration, stops being finite, or the shape runs away
+    # (largest displacement more than twice the other methods').
+    diverges = increases > 0 or not np.isfinite(E).all() or displacement > 2 * max(others["spokes-rims"], others["iarap"])
+    ours = (f"energy {'rises' if increases else 'decreases monotonically'} from {fmt(E[0])} to {fmt(E[-1])} in "
+            f"{iterations} iterations ({increases} increases, {'stays positive' if E.min() >= 0 else 'goes negative'}, "
+            f"last relative change {fmt(last_change, 2)}), largest displacement {fmt(displacement, 2)} of the diagonal "
+            f"(spokes-and-rims {fmt(others['spokes-rims'], 2)}, iARAP {fmt(others['iarap'], 2)})")
+    ctx.claim("Symmetry", "stool (Fig. 13): the original ARAP energy diverges", ours,
+              "diverges; stopped after a few steps", "yes" if diverges else "no")
+    doc.add(Paragraph(f"**Fig. 13, original ARAP.** The paper stopped original ARAP after a few steps on its "
+                      f"stool because its energy diverged. On our generated stool it "
+                      f"{'diverges' if diverges else 'does not'}: {ours}; the stool picture above shows its result "
+                      f"after {iterations} iterations, next to the other two. Our stool has "
+                      f"{row['non_delaunay_edges']} non-Delaunay edges, the diagonals of its splayed legs' "
+                      "trapezoids, whose negative cotan weights are small (the largest is "
+                      f"{fmt(row['worst_negative_weight'], 2)} of max |L_ii|); the paper's Thingi10K stool is not "
+                      "available here, and the divergence would depend on its triangulation, presumably with "
+                      "stronger negative weights."))

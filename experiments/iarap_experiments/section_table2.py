@@ -1,6 +1,8 @@
 """Table 2: iARAP local-step time at a fixed vertex and edge count and a growing segments/edges ratio."""
 from __future__ import annotations
 
+import numpy as np
+
 from .context import Context, fmt, load_note
 from .generated_meshes import flipped_lattice
 from .mesh_io import write_obj
@@ -36,7 +38,7 @@ def run(ctx: Context, doc) -> None:
         del row["path"]
     ctx.write_json("table2.json", rows_data)
     ctx.write_csv("table2.csv", list(rows_data[0].keys()), [list(r.values()) for r in rows_data])
-    doc.add(Heading("2. Table 2: local step vs. segments per intrinsic edge"),
+    doc.add(Heading("Table 2: local step vs. segments per intrinsic edge"),
             Paragraph("**Paper:** at 35K vertices and 105K edges, the local step takes 62.9 / 65.8 / 69.5 ms at "
                       "1.05 / 1.16 / 1.29 segments per intrinsic edge: the overhead grows with the number of "
                       "crossings, mildly.\n\n"
@@ -55,21 +57,38 @@ def run(ctx: Context, doc) -> None:
             Table(["paper: segments / edges"] + [f"{s}" for s, _ in PAPER],
                   [["paper: local step (ms)"] + [f"{t}" for _, t in PAPER]]))
     first, last = rows_data[0], rows_data[-1]
-    growth = last["local_ms"] / first["local_ms"] - 1.0
-    ratio_growth = last["segments_per_edge"] / first["segments_per_edge"] - 1.0
+    # The paper's baseline is 1.05 segments per edge, not 1.0: measure the growth from our row nearest 1.05
+    # as well, so both ends of the comparison match the paper's.
+    base = min(rows_data, key=lambda r: abs(r["segments_per_edge"] - PAPER[0][0]))
+    growth = last["local_ms"] / base["local_ms"] - 1.0
+    ratio_growth = last["segments_per_edge"] / base["segments_per_edge"] - 1.0
+    growth_from_one = last["local_ms"] / first["local_ms"] - 1.0
+    ratio_growth_from_one = last["segments_per_edge"] / first["segments_per_edge"] - 1.0
     paper_growth = PAPER[-1][1] / PAPER[0][1] - 1.0
     paper_ratio_growth = PAPER[-1][0] / PAPER[0][0] - 1.0
+    # Cost per extra segment against the cost per edge at 1.0: slope of a least-squares line through the rows.
+    segments = np.array([r["segments"] for r in rows_data], dtype=float)
+    local = np.array([r["local_ms"] for r in rows_data])
+    slope, intercept = np.polyfit(segments, local, 1)
+    per_segment_share = slope * first["segments"] / first["local_ms"]
     # The paper's time grows less than the segment count (fixed per-vertex work dominates): holds when
     # ours grows too, and by no more than the segment count itself.
     # Growth below 2% is within the run-to-run noise of these timings: not a measured growth.
     holds = 0.02 < growth <= ratio_growth * 1.5
     verdict = ("yes" if holds else ("no (no growth beyond noise)" if growth <= 0.02 else "no")) + load_note(ctx)
     ctx.claim("Table 2", "local-step time grows mildly with segments per intrinsic edge",
-              f"{growth * 100:+.1f}% for segments/edge {first['segments_per_edge']:.3f} -> "
-              f"{last['segments_per_edge']:.3f} (+{ratio_growth * 100:.1f}%)",
+              f"{growth * 100:+.1f}% for segments/edge {base['segments_per_edge']:.3f} -> "
+              f"{last['segments_per_edge']:.3f} (+{ratio_growth * 100:.1f}%); {growth_from_one * 100:+.1f}% from "
+              f"{first['segments_per_edge']:.3f}",
               f"+{paper_growth * 100:.1f}% for 1.05 -> 1.29 (+{paper_ratio_growth * 100:.1f}%)", verdict)
-    doc.add(Paragraph(f"**Holds?** {verdict}: local step {fmt(first['local_ms'])} -> {fmt(last['local_ms'])} ms "
-                      f"({growth * 100:+.1f}%) while segments per edge grow by {ratio_growth * 100:.1f}%; the "
-                      f"paper reports +{paper_growth * 100:.1f}% for +{paper_ratio_growth * 100:.1f}%. Rule: "
+    doc.add(Paragraph(f"**Holds?** {verdict}: from the paper's baseline, local step {fmt(base['local_ms'])} -> "
+                      f"{fmt(last['local_ms'])} ms ({growth * 100:+.1f}%) while segments per edge grow from "
+                      f"{base['segments_per_edge']:.3f} to {last['segments_per_edge']:.3f} "
+                      f"(+{ratio_growth * 100:.1f}%); the paper reports +{paper_growth * 100:.1f}% for "
+                      f"+{paper_ratio_growth * 100:.1f}%. From 1.000 (no crossing): {growth_from_one * 100:+.1f}% for "
+                      f"+{ratio_growth_from_one * 100:.1f}%. A least-squares line through the rows gives "
+                      f"{slope * 1e3:.3g} ms per 1000 segments; at 1.000 segments per edge the segment-proportional "
+                      f"part is {per_segment_share * 100:.0f}% of the local step, the rest is per-vertex work (one polar "
+                      "decomposition per cell), which is why the time grows less than the segment count. Rule: "
                       "the time must grow by more than 2% (noise) and at most 1.5x the growth of the segment "
-                      "count."))
+                      "count (from the 1.05 row)."))

@@ -39,11 +39,23 @@ def plane_distance_max(P: np.ndarray) -> float:
     return float(np.abs(centred @ normal).max())
 
 
+def best_rotation(P: np.ndarray, Q: np.ndarray) -> np.ndarray:
+    """The rotation R of the least-squares rigid motion q = R (p - p0) + q0 (Kabsch)."""
+    p0, q0 = P.mean(axis=0), Q.mean(axis=0)
+    U, _, Vt = np.linalg.svd((P - p0).T @ (Q - q0))
+    D = np.diag([1.0, 1.0, np.sign(np.linalg.det(U @ Vt))])
+    return (U @ D @ Vt).T
+
+
 def rigid_residual_max(P: np.ndarray, Q: np.ndarray) -> float:
     """Max distance between Q and the best rigid motion of P (Kabsch, least squares): how much a region
     bent or stretched, independent of where it moved."""
     p0, q0 = P.mean(axis=0), Q.mean(axis=0)
-    U, _, Vt = np.linalg.svd((P - p0).T @ (Q - q0))
-    D = np.diag([1.0, 1.0, np.sign(np.linalg.det(U @ Vt))])
-    R = (U @ D @ Vt).T
+    R = best_rotation(P, Q)
     return float(np.linalg.norm((P - p0) @ R.T + q0 - Q, axis=1).max())
+
+
+def rotation_degrees(P: np.ndarray, Q: np.ndarray) -> float:
+    """Angle of the best-fit rotation taking P to Q (degrees): how much the whole shape turned."""
+    R = best_rotation(P, Q)
+    return float(np.degrees(np.arccos(np.clip((np.trace(R) - 1.0) / 2.0, -1.0, 1.0))))

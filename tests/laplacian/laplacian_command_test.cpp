@@ -80,7 +80,10 @@ TEST(LaplacianCommand, JsonReportsEveryKind) {
   }
   EXPECT_EQ(report[2]["kind"], "iarap");
   EXPECT_EQ(report[2]["symmetric"], true);
-  EXPECT_EQ(report[2]["local"]["strong"], false);
+  // Strongly local, measured: it is the cotan Laplacian (docs/operator-identity.md).
+  EXPECT_EQ(report[2]["local"]["strong"], true);
+  EXPECT_EQ(report[1]["kind"], "intrinsic");
+  EXPECT_EQ(report[1]["local"]["strong"], false);
   EXPECT_EQ(report[3]["kind"], "iarap-plus");
   EXPECT_EQ(report[3]["positive_weights"], true);
 }

@@ -6,6 +6,7 @@
 #include "iarap/mesh/cotan.h"
 #include "iarap/mesh/edge_topology.h"
 #include "intrinsic/mesh_generators.h"
+#include "laplacian/sparse_norms.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>
@@ -17,17 +18,8 @@
 namespace iarap {
 namespace {
 
-double max_abs_diagonal(const Eigen::SparseMatrix<double>& L) {
-  return Eigen::VectorXd(L.diagonal()).cwiseAbs().maxCoeff();
-}
-
-double max_abs(const Eigen::SparseMatrix<double>& A) {
-  double m = 0;
-  for (int k = 0; k < A.outerSize(); ++k)
-    for (Eigen::SparseMatrix<double>::InnerIterator it(A, k); it; ++it)
-      m = std::max(m, std::abs(it.value()));
-  return m;
-}
+using test::max_abs;
+using test::max_abs_diagonal;
 
 // A flat jittered grid with random convex flips: a valid planar embedding far from Delaunay.
 test::TestMesh flipped_grid() {
@@ -105,20 +97,7 @@ TEST(Laplacians, EqualCotanOnDelaunayCube) {
   expect_all_equal_cotan(cube.V, cube.F, "cube.obj");
 }
 
-// Measured identity (not claimed by the paper, which says the opposite): B^T D_w B (Eq. 17) equals the
-// extrinsic cotan Laplacian on non-Delaunay meshes too, curved or flat, although its segments differ
-// from the input edges. The quadratic form of the PL interpolant summed over traced segments reproduces
-// its Dirichlet energy. 1e-12 relative: weights and crossings carry round-off of the tracing.
-TEST(Laplacians, IarapEqualsCotanOnNonDelaunayMeshes) {
-  const MeshData bunny = read_mesh(test::data_path("bunny.off"));
-  const test::TestMesh grid = flipped_grid();
-  for (const auto& [V, F] : {std::pair(bunny.V, bunny.F), std::pair(grid.V, grid.F)}) {
-    const IntrinsicDelaunay idt = intrinsic_delaunay(V, F);
-    ASSERT_GT(idt.segments.edge.size(), idt.triangulation.E.rows()) << "some edges must be split";
-    const Eigen::SparseMatrix<double> cotan = cotan_laplacian(V, F);
-    EXPECT_LE(max_abs(laplacian(V, F, LaplacianKind::Iarap, &idt) - cotan), 1e-12 * max_abs_diagonal(cotan));
-  }
-}
+// B^T D_w B equals the cotan Laplacian on every mesh: operator_identity_test.cpp.
 
 // max over interior vertices of |(L x)_i|, |(L y)_i| relative to max |L_ii| * bbox diagonal.
 double linear_residual(const test::TestMesh& m, const Eigen::SparseMatrix<double>& L) {

@@ -10,10 +10,10 @@ namespace iarap {
 // D_w = diag(w_ij sigma_s) (Eq. 11). Symmetric, PSD (w_ij >= 0 on the intrinsic Delaunay mesh),
 // nonzero only between vertices of a common input face. Equals the cotan Laplacian when every
 // intrinsic edge is an input edge (one segment, sigma = 1).
-// Measured (tests/laplacian): on non-Delaunay meshes too, flat or curved, L equals the extrinsic cotan
-// Laplacian to round-off (1e-14 relative on bunny, fertility, flipped grids; an independent hand
-// construction on flipped quads agrees to 1e-15): the traced-segment quadrature of the PL interpolant
-// reproduces its Dirichlet energy. iARAP differs from original ARAP in its rotations, not in this matrix.
+// It is the extrinsic cotan Laplacian of the input mesh on every mesh, Delaunay or not, with boundary or
+// boundary refinement, whenever the intrinsic lengths are not mollified: proof in docs/operator-identity.md,
+// tests in tests/laplacian/operator_identity_test.cpp (round-off, 8 eps kappa m). iARAP differs from original
+// ARAP in its rotations and right-hand side, not in this matrix.
 Eigen::SparseMatrix<double> iarap_laplacian(const Segments& segments, int num_vertices);
 
 } // namespace iarap
