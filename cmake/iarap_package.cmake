@@ -20,9 +20,9 @@ set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS_PRIVATE_DIRS ${PROJECT_BINARY_DIR}/src)
 set(CPACK_DEBIAN_PACKAGE_RECOMMENDS "python3-numpy, python3-scipy")
 # Linked with Debian's CHOLMOD (supernodal module: GPL), the binaries are distributed under the GPL; the
 # package says so beside this project's own MIT license (README, "Licenses").
-set(CPACK_DEBIAN_PACKAGE_DESCRIPTION "${PROJECT_DESCRIPTION}
- A C++17 library, the `iarap` command-line tool with a web viewer and a Python module for
- as-rigid-as-possible surface deformation (original ARAP, spokes-and-rims, iARAP).
- iarap's own code is MIT-licensed; these binaries link Debian's CHOLMOD, whose supernodal module is
- GPL-licensed, so the package as a whole is distributed under the terms of the GPL.")
+# CPack puts CPACK_PACKAGE_DESCRIPTION_SUMMARY on the Description line and this text below it.
+set(CPACK_DEBIAN_PACKAGE_DESCRIPTION "A C++17 library, the `iarap` command-line tool with a web viewer and a Python
+module for as-rigid-as-possible surface deformation (original ARAP, spokes-and-rims, iARAP).
+iarap's own code is MIT-licensed; these binaries link Debian's CHOLMOD, whose supernodal module is
+GPL-licensed, so the package as a whole is distributed under the terms of the GPL.")
 include(CPack)
