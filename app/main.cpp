@@ -1,6 +1,7 @@
 // Entry point of the iarap tool: builds the subcommands from the registry and maps errors to exit codes.
 #include "command_registry.h"
 #include "iarap/core/errors.h"
+#include "iarap/core/version.h"
 
 #include <algorithm>
 #include <iostream>
@@ -8,9 +9,11 @@
 int main(int argc, char** argv) {
   CLI::App app{"iarap: as-rigid-as-possible surface deformation (original ARAP, spokes-and-rims, iARAP)"};
   app.require_subcommand(1);
+  app.set_version_flag("--version", "iarap " + iarap::version());
   auto& commands = iarap::cli::command_registry();
   std::sort(commands.begin(), commands.end(), [](const auto& a, const auto& b) { return a.name < b.name; });
-  for (const auto& command : commands) command.setup(app);
+  for (const auto& command : commands)
+    command.setup(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

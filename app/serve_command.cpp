@@ -4,6 +4,7 @@
 #include "serve/api_routes.h"
 #include "serve/private_temp_dir.h"
 #include "serve/serve_state.h"
+#include "serve/static_files.h"
 
 #include "iarap/core/errors.h"
 #include "iarap/core/threads.h"
@@ -22,6 +23,9 @@
 #ifndef IARAP_WEB_DIR
 #define IARAP_WEB_DIR ""
 #endif
+#ifndef IARAP_WEB_FROM_BIN
+#define IARAP_WEB_FROM_BIN ""
+#endif
 
 namespace iarap::cli {
 namespace {
@@ -30,7 +34,7 @@ struct ServeArguments {
   std::vector<std::string> meshes;
   int port = 8080;
   std::string host = "127.0.0.1";
-  std::string app_dir = IARAP_WEB_DIR;
+  std::string app_dir = serve::default_web_root(IARAP_WEB_FROM_BIN, IARAP_WEB_DIR).string();
   double max_upload_mb = 64;
   int threads = 0;
   bool verbose = false;

@@ -1,5 +1,6 @@
 # Installs the library, headers, the tool and a CMake package so that find_package(iarap) works.
-include(GNUInstallDirs)
+# The tool and the Python module find libiarap (and the web app) relative to themselves, so an installed
+# tree works at any --prefix and keeps working when moved (no LD_LIBRARY_PATH, no ldconfig).
 include(CMakePackageConfigHelpers)
 install(TARGETS iarap EXPORT iarapTargets
   LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
@@ -14,3 +15,4 @@ write_basic_package_version_file(${CMAKE_CURRENT_BINARY_DIR}/iarapConfigVersion.
   COMPATIBILITY SameMajorVersion)
 install(FILES ${CMAKE_CURRENT_BINARY_DIR}/iarapConfig.cmake ${CMAKE_CURRENT_BINARY_DIR}/iarapConfigVersion.cmake
   DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/iarap)
+install(FILES LICENSE README.md CHANGELOG.md CITATION.cff DESTINATION ${CMAKE_INSTALL_DOCDIR})

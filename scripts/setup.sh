@@ -10,6 +10,7 @@ mkdir -p out
 ./build/iarap deform data/bunny.off --scenario data/bunny_scenario.json --method iarap \
   --iterations 50 --out out/bunny_iarap.off --report out/bunny_iarap.json
 echo "setup: deformed mesh in out/bunny_iarap.off, report in out/bunny_iarap.json"
-if ls build/python/iarap*.so >/dev/null 2>&1; then
-  echo "setup: Python module in build/python: PYTHONPATH=$PWD/build/python /usr/bin/python3 -c 'import iarap'"
+if ls build/python/iarap/_core*.so >/dev/null 2>&1; then
+  echo "setup: Python package in build/python: PYTHONPATH=$PWD/build/python /usr/bin/python3 -c 'import iarap'"
+  echo "setup: or install it: pip install --no-build-isolation . (README, Python)"
 fi

@@ -93,4 +93,21 @@ std::optional<StaticFile> resolve_static_file(const std::filesystem::path& app_d
   return StaticFile{file, *type};
 }
 
+std::filesystem::path default_web_root(const std::filesystem::path& from_executable,
+                                       const std::filesystem::path& build_tree_web_dir) {
+  std::error_code error;
+  std::vector<std::filesystem::path> candidates;
+  // Linux names the running executable here, whatever argv[0] or PATH said; symlinks are resolved.
+  const std::filesystem::path executable = std::filesystem::read_symlink("/proc/self/exe", error);
+  if (!error && !from_executable.empty())
+    candidates.push_back(executable.parent_path() / from_executable);
+  if (!build_tree_web_dir.empty())
+    candidates.push_back(build_tree_web_dir);
+  for (const auto& folder : candidates) {
+    if (std::filesystem::is_regular_file(folder / "index.html", error))
+      return folder.lexically_normal();
+  }
+  return {};
+}
+
 } // namespace iarap::serve

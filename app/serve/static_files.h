@@ -19,4 +19,12 @@ struct StaticFile {
 std::optional<StaticFile> resolve_static_file(const std::filesystem::path& app_dir,
                                               const std::string& request_path);
 
+// The web app folder `iarap serve` uses without --app-dir: the first of these that holds an index.html,
+// else "" (serve then asks for --app-dir):
+//  1. <folder of the running executable>/from_executable, so that an installed tool finds
+//     <prefix>/share/iarap/web at any prefix, also after the prefix was moved;
+//  2. build_tree_web_dir, the source checkout's web/ the build was configured from.
+std::filesystem::path default_web_root(const std::filesystem::path& from_executable,
+                                       const std::filesystem::path& build_tree_web_dir);
+
 } // namespace iarap::serve

@@ -1,5 +1,7 @@
 #include "numpy_arrays.h"
 
+#include "iarap/core/errors.h"
+
 #include <cmath>
 #include <cstdint>
 #include <functional>
@@ -23,12 +25,12 @@ std::string dtype_text(const py::array& a) {
   return py::str(a.dtype()).cast<std::string>();
 }
 
-// numpy.asarray(object) without copying when it already is an array; ValueError when numpy cannot.
+// numpy.asarray(object) without copying when it already is an array; InputError when numpy cannot.
 py::array as_array(const py::handle& object, const std::string& name) {
   py::array a = py::array::ensure(object);
   if (!a)
-    throw py::value_error(name + " cannot be converted to a numeric array (got " +
-                          py::str(py::type::of(object)).cast<std::string>() + ")");
+    throw InputError(name + " cannot be converted to a numeric array (got " +
+                     py::str(py::type::of(object)).cast<std::string>() + ")");
   return a;
 }
 
@@ -44,7 +46,7 @@ std::vector<std::int64_t> integer_values(const py::array& a, const std::string& 
   if (a.size() == 0 && kind == 'f')
     return {}; // np.array([]) is float64: an empty list of indices
   if (!is_integer_kind(kind))
-    throw py::value_error(name + " must hold integer " + what + ", got dtype " + dtype_text(a));
+    throw InputError(name + " must hold integer " + what + ", got dtype " + dtype_text(a));
   std::vector<std::int64_t> values(static_cast<std::size_t>(a.size()));
   if (kind == 'u' && a.itemsize() == 8) {
     const auto c = py::array_t<std::uint64_t, py::array::c_style | py::array::forcecast>::ensure(a);
@@ -53,8 +55,7 @@ std::vector<std::int64_t> integer_values(const py::array& a, const std::string& 
     for (std::size_t k = 0; k < values.size(); ++k) {
       const std::uint64_t value = c.data()[k];
       if (value > static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max()))
-        throw py::value_error(where(k) + " is " + std::to_string(value) +
-                              ", outside the range of a 32-bit index");
+        throw InputError(where(k) + " is " + std::to_string(value) + ", outside the range of a 32-bit index");
       values[k] = static_cast<std::int64_t>(value);
     }
     return values;
@@ -69,12 +70,11 @@ std::vector<std::int64_t> integer_values(const py::array& a, const std::string& 
 // Checks one index against 0..vertex_count-1 (or the int range when vertex_count < 0).
 void check_index(std::int64_t value, Eigen::Index vertex_count, const std::string& where) {
   if (vertex_count >= 0 && (value < 0 || value >= vertex_count)) {
-    throw py::value_error(where + " is " + std::to_string(value) +
-                          ", not a vertex: indices are 0-based and " + "the mesh has " +
-                          std::to_string(vertex_count) + " vertices");
+    throw InputError(where + " is " + std::to_string(value) + ", not a vertex: indices are 0-based and " +
+                     "the mesh has " + std::to_string(vertex_count) + " vertices");
   }
   if (value < std::numeric_limits<int>::min() || value > std::numeric_limits<int>::max())
-    throw py::value_error(where + " is " + std::to_string(value) + ", outside the range of a 32-bit index");
+    throw InputError(where + " is " + std::to_string(value) + ", outside the range of a 32-bit index");
 }
 
 template <typename Matrix> py::array_t<double> doubles_to_numpy(const Matrix& M) {
@@ -116,11 +116,11 @@ Eigen::MatrixXd to_points(const py::handle& object, const std::string& name, boo
   const py::array a = as_array(object, name);
   const char kind = a.dtype().kind();
   if (kind != 'f' && !is_integer_kind(kind))
-    throw py::value_error(name + " must hold real coordinates, got dtype " + dtype_text(a));
+    throw InputError(name + " must hold real coordinates, got dtype " + dtype_text(a));
   const std::string expected =
       expected_rows < 0 ? "#rows x 3" : rows_label + " x 3 = " + std::to_string(expected_rows) + " x 3";
   if (a.ndim() != 2 || a.shape(1) != 3 || (expected_rows >= 0 && a.shape(0) != expected_rows))
-    throw py::value_error(name + " must be a " + expected + " array, got shape " + shape_text(a));
+    throw InputError(name + " must be a " + expected + " array, got shape " + shape_text(a));
   auto c = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(a);
   if (!c)
     throw py::error_already_set();
@@ -132,7 +132,7 @@ Eigen::MatrixXd to_points(const py::handle& object, const std::string& name, boo
       if (require_finite && !std::isfinite(x)) {
         std::ostringstream message;
         message << name << " row " << i << " column " << j << " is " << x << "; coordinates must be finite";
-        throw py::value_error(message.str());
+        throw InputError(message.str());
       }
       M(i, j) = x;
     }
@@ -145,8 +145,8 @@ Eigen::MatrixXi to_faces(const py::handle& object, const std::string& name, Eige
   const py::array a = as_array(object, name);
   if (a.ndim() != 2 || (columns >= 0 && a.shape(1) != columns)) {
     const std::string expected = columns >= 0 ? "#F x " + std::to_string(columns) : "2-D";
-    throw py::value_error(name + " must be a " + expected + " array of vertex indices, got shape " +
-                          shape_text(a));
+    throw InputError(name + " must be a " + expected + " array of vertex indices, got shape " +
+                     shape_text(a));
   }
   const Eigen::Index rows = a.shape(0), cols = a.shape(1);
   const auto where = [&](Eigen::Index f, Eigen::Index k) {
@@ -169,7 +169,7 @@ Eigen::MatrixXi to_faces(const py::handle& object, const std::string& name, Eige
 Eigen::VectorXi to_indices(const py::handle& object, const std::string& name, Eigen::Index vertex_count) {
   const py::array a = as_array(object, name);
   if (a.ndim() != 1)
-    throw py::value_error(name + " must be a 1-D array of vertex indices, got shape " + shape_text(a));
+    throw InputError(name + " must be a 1-D array of vertex indices, got shape " + shape_text(a));
   const auto where = [&](std::size_t k) { return name + "[" + std::to_string(k) + "]"; };
   const std::vector<std::int64_t> values = integer_values(a, name, "vertex indices", where);
   Eigen::VectorXi v(static_cast<Eigen::Index>(values.size()));

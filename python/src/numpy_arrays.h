@@ -1,6 +1,7 @@
 // Conversion between numpy / scipy objects and the Eigen types of the library. Inputs of any memory
 // order and of any real dtype are converted (copied); wrong shapes, dtypes, non-finite values and
-// out-of-range indices raise ValueError naming the argument, the row and the value.
+// out-of-range indices throw iarap::InputError (Python: iarap.InputError, a ValueError) naming the argument,
+// the row and the value.
 #pragma once
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
@@ -16,13 +17,13 @@ namespace py = pybind11;
 
 // An array-like of real numbers (float, int or uint dtype; any order) as a rows x 3 double matrix.
 // expected_rows < 0 accepts any row count; otherwise rows_label says what the count is ("#fixed").
-// Raises ValueError for another dtype or shape, or, when require_finite, a NaN or Inf entry.
+// Throws InputError for another dtype or shape, or, when require_finite, a NaN or Inf entry.
 Eigen::MatrixXd to_points(const py::handle& object, const std::string& name, bool require_finite = true,
                           Eigen::Index expected_rows = -1, const std::string& rows_label = "");
 
 // An integer array-like with 2 dimensions as an int matrix; columns < 0 accepts any column count. Entries
 // must lie in 0..vertex_count-1 when vertex_count >= 0, and always in the range of int.
-// Raises ValueError for a float or other non-integer dtype, another shape, an entry out of range.
+// Throws InputError for a float or other non-integer dtype, another shape, an entry out of range.
 Eigen::MatrixXi to_faces(const py::handle& object, const std::string& name, Eigen::Index vertex_count,
                          Eigen::Index columns = 3);
 

@@ -18,8 +18,8 @@ def shared_mesh(name):
 
 
 def build_dir():
-    """The CMake build tree the imported module comes from (it lies in <build>/python/), or None."""
-    folder = pathlib.Path(iarap.__file__).resolve().parent.parent
+    """The CMake build tree the imported package comes from (it lies in <build>/python/iarap/), or None."""
+    folder = pathlib.Path(iarap.__file__).resolve().parents[2]
     return folder if (folder / "CMakeCache.txt").exists() else None
 
 

@@ -1,4 +1,8 @@
-"""Every bad input raises ValueError (or SolverError, a RuntimeError) naming what is wrong; nothing crashes."""
+"""Every bad input raises an iarap.Error naming what is wrong, also a ValueError (InputError, TopologyError) or,
+for a solve that cannot proceed, a RuntimeError (SolverError); nothing crashes. Only an argument Python
+cannot pass at all (a number where a path goes, a string where a number goes) is the built-in TypeError."""
+import pathlib
+
 import numpy as np
 import pytest
 
@@ -72,14 +76,53 @@ CASES = {
     "write extension": (lambda: iarap.write_mesh("mesh.xyz", V, F), r"xyz"),
     "degenerate face without mollification": (
         lambda: iarap.intrinsic_delaunay(with_value(V, 3, V[1]), F, mollify=False), r"face"),
+    "mass kind": (lambda: iarap.mass_matrix(V, F, kind="lumped"), r"unknown mass matrix kind 'lumped'"),
+    "mass kind of laplacian": (lambda: iarap.laplacian(V, F, return_mass=True, mass="cells"),
+                               r"unknown mass matrix kind 'cells'"),
+    "mass V NaN": (lambda: iarap.mass_matrix(with_value(V, (0, 2), np.nan), F), r"V row 0 column 2 is nan"),
+    "mass F out of range": (lambda: iarap.mass_matrix(V, with_value(F, (2, 1), 9)), r"F\[2, 1\] \(face 2\) is 9"),
+    "mass not manifold, intrinsic": (
+        lambda: iarap.mass_matrix(np.vstack([V, [[0, 0, 3]]]), np.vstack([F, [[0, 1, 4]]]), kind="intrinsic"),
+        r"(?i)manifold"),
+    # files (also in test_io.py)
+    "read missing file": (lambda: iarap.read_mesh(pathlib.Path("no-such-folder") / "missing.off"), r"missing.off"),
+    "read unknown extension": (lambda: iarap.read_mesh("bunny.xyz"), r"xyz"),
+    "write into a missing folder": (lambda: iarap.write_mesh(pathlib.Path("no-such-folder") / "out.off", V, F),
+                                    r"no-such-folder"),
 }
 
 
 @pytest.mark.parametrize("name", list(CASES))
-def test_bad_input_raises_value_error_naming_it(name):
+def test_bad_input_raises_iarap_error_naming_it(name):
     call, message = CASES[name]
-    with pytest.raises(ValueError, match=message):
+    with pytest.raises(iarap.Error, match=message) as error:
         call()
+    assert isinstance(error.value, ValueError), type(error.value).__mro__
+    assert type(error.value) in (iarap.InputError, iarap.TopologyError)
+
+
+def test_malformed_file_names_file_and_line(tmp_path):
+    bad = tmp_path / "bad.off"
+    bad.write_text("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n")
+    with pytest.raises(iarap.InputError, match="bad.off:6"):
+        iarap.read_mesh(bad)
+
+
+def test_failed_solve_is_a_solver_error():
+    # Two tetrahedra, the second without a constrained vertex: L_ff is singular.
+    two_V = np.vstack([V, V + [10, 0, 0]])
+    two_F = np.vstack([F, F + len(V)])
+    with pytest.raises(iarap.Error, match="component") as error:
+        iarap.ARAP(two_V, two_F, fixed=FIXED, method="arap")
+    assert isinstance(error.value, iarap.SolverError) and isinstance(error.value, RuntimeError)
+
+
+def test_errors_are_named_as_members_of_iarap():
+    for cls in (iarap.Error, iarap.InputError, iarap.TopologyError, iarap.SolverError, iarap.ARAP):
+        assert cls.__module__ == "iarap", cls
+    with pytest.raises(iarap.InputError) as error:
+        iarap.laplacian(V, F, kind="bogus")
+    assert "iarap.InputError" in repr(error.type)
 
 
 def test_error_classes():

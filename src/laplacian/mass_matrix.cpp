@@ -76,4 +76,19 @@ Eigen::SparseMatrix<double> mass_matrix(const Eigen::MatrixXd& V, const Eigen::M
   return M;
 }
 
+const std::vector<std::string>& mass_kind_names() {
+  static const std::vector<std::string> names{"voronoi", "barycentric", "intrinsic"};
+  return names;
+}
+
+MassMatrixChoice parse_mass_kind(const std::string& name) {
+  if (name == "voronoi")
+    return {MassKind::Voronoi, false};
+  if (name == "barycentric")
+    return {MassKind::Barycentric, false};
+  if (name == "intrinsic")
+    return {MassKind::Voronoi, true};
+  throw InputError("unknown mass matrix kind '" + name + "'; expected voronoi, barycentric or intrinsic");
+}
+
 } // namespace iarap

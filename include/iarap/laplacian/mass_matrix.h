@@ -4,6 +4,8 @@
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <string>
+#include <vector>
 
 namespace iarap {
 
@@ -24,5 +26,18 @@ Eigen::VectorXd lumped_vertex_areas(const Eigen::MatrixXi& F, const Eigen::Matri
 Eigen::SparseMatrix<double> mass_matrix(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, MassKind kind,
                                         bool intrinsic = false,
                                         const IntrinsicDelaunay* precomputed = nullptr);
+
+// The mass matrices offered by name (Python's iarap.mass_matrix): "voronoi" (mixed Voronoi cells of the
+// input mesh, the usual partner of the cotan Laplacian), "barycentric" (a third of each triangle),
+// "intrinsic" (mixed Voronoi cells of the intrinsic Delaunay triangulation, the partner of the
+// intrinsic and iARAP Laplacians). All are positive on a mesh without zero-area faces and sum to its area.
+struct MassMatrixChoice {
+  MassKind kind = MassKind::Voronoi;
+  bool intrinsic = false;
+};
+// Throws InputError naming the unknown word and the valid ones.
+MassMatrixChoice parse_mass_kind(const std::string& name);
+// "voronoi", "barycentric", "intrinsic", in this order.
+const std::vector<std::string>& mass_kind_names();
 
 } // namespace iarap

@@ -1,0 +1,100 @@
+# Type stubs of the iarap package (the extension iarap._core, re-exported). Checked against the built
+# module by python/tests/test_stubs.py (mypy.stubtest, plus parameter names, kinds and defaults).
+import os
+from typing import Any, Literal, overload
+
+import numpy as np
+import numpy.typing as npt
+import scipy.sparse
+
+__version__: str
+
+_FloatArray = npt.NDArray[np.float64]
+_IndexArray = npt.NDArray[np.int64]
+_StrPath = str | bytes | os.PathLike[str] | os.PathLike[bytes]
+
+ARAP_METHODS: tuple[str, ...]
+LAPLACIAN_KINDS: tuple[str, ...]
+MASS_KINDS: tuple[str, ...]
+
+class Error(Exception): ...
+class InputError(Error, ValueError): ...
+class TopologyError(Error, ValueError): ...
+class SolverError(Error, RuntimeError): ...
+
+def read_mesh(path: _StrPath) -> tuple[_FloatArray, _IndexArray]: ...
+def write_mesh(path: _StrPath, V: npt.ArrayLike, F: npt.ArrayLike) -> None: ...
+def check_mesh(V: npt.ArrayLike, F: npt.ArrayLike) -> dict[str, Any]: ...
+
+class ARAP:
+    def __init__(
+        self,
+        V: npt.ArrayLike,
+        F: npt.ArrayLike,
+        fixed: npt.ArrayLike,
+        method: str = "iarap",
+        *,
+        pin_unconstrained_components: bool = False,
+        refine_boundary: bool = True,
+    ) -> None: ...
+    def solve(
+        self,
+        targets: npt.ArrayLike,
+        U0: npt.ArrayLike | None = None,
+        iterations: int = 50,
+        tolerance: float = 1e-06,
+    ) -> _FloatArray: ...
+    @property
+    def fixed(self) -> _IndexArray: ...
+    @fixed.setter
+    def fixed(self, fixed: npt.ArrayLike) -> None: ...
+    @property
+    def report(self) -> dict[str, Any] | None: ...
+    @property
+    def rotations(self) -> _FloatArray: ...
+    @property
+    def method(self) -> str: ...
+    @property
+    def factorization(self) -> str: ...
+    @property
+    def factorizations(self) -> int: ...
+    @property
+    def pinned(self) -> _IndexArray: ...
+    @property
+    def intrinsic(self) -> dict[str, Any]: ...
+    def energy(self, U: npt.ArrayLike) -> float: ...
+    def cell_energy(self, U: npt.ArrayLike) -> _FloatArray: ...
+    def gradient(self, U: npt.ArrayLike) -> _FloatArray: ...
+    def system_matrix(self) -> scipy.sparse.csr_matrix: ...
+
+@overload
+def laplacian(
+    V: npt.ArrayLike,
+    F: npt.ArrayLike,
+    kind: str = "cotan",
+    *,
+    return_mass: Literal[False] = False,
+    mass: str | None = None,
+) -> scipy.sparse.csr_matrix: ...
+@overload
+def laplacian(
+    V: npt.ArrayLike,
+    F: npt.ArrayLike,
+    kind: str = "cotan",
+    *,
+    return_mass: Literal[True],
+    mass: str | None = None,
+) -> tuple[scipy.sparse.csr_matrix, scipy.sparse.csr_matrix]: ...
+def mass_matrix(V: npt.ArrayLike, F: npt.ArrayLike, kind: str = "voronoi") -> scipy.sparse.csr_matrix: ...
+def intrinsic_delaunay(
+    V: npt.ArrayLike,
+    F: npt.ArrayLike,
+    *,
+    delaunay_tolerance: float = 1e-12,
+    mollify: bool = True,
+    mollify_epsilon: float = 1e-06,
+    refine_boundary: bool = False,
+    max_boundary_insertions: int = -1,
+) -> dict[str, Any]: ...
+def set_thread_count(n: int) -> None: ...
+def thread_count() -> int: ...

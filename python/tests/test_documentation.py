@@ -1,0 +1,164 @@
+"""The documentation says what the code does: the README's option defaults and JSON keys against the
+tool's --help and real reports, python/README.md's defaults and names against the module, its API
+snippet runs as pasted, docs/http-api.md against the server's routes and answers, and the version is the
+same everywhere."""
+import ast
+import json
+import os
+import re
+import signal
+import subprocess
+import sys
+import urllib.request
+
+import pytest
+
+import iarap
+from conftest import REPO
+
+README = (REPO / "README.md").read_text()
+PYTHON_README = (REPO / "python" / "README.md").read_text()
+HTTP_API = (REPO / "docs" / "http-api.md").read_text()
+VERSION = (REPO / "VERSION").read_text().strip()
+
+
+def section(text, heading):
+    """The text under a Markdown heading that starts with `heading`, up to the next heading of any level
+    (lines starting with # inside ``` blocks are code, not headings)."""
+    lines, inside, fenced = [], False, False
+    for line in text.splitlines():
+        if line.startswith("```"):
+            fenced = not fenced
+        is_heading = not fenced and re.match(r"#+ ", line)
+        if is_heading and inside:
+            break
+        if inside:
+            lines.append(line)
+        inside = inside or bool(is_heading and line.lstrip("#").strip().startswith(heading))
+    assert lines, f"no section {heading!r}"
+    return "\n".join(lines) + "\n"
+
+
+def backticked(text):
+    return re.findall(r"`([a-z_]+)`", text)
+
+
+def sentence(text, start):
+    """From `start` to the next period that ends a sentence."""
+    at = text.index(start)
+    return text[at:text.index(".\n", at) + 1]
+
+
+def test_version_is_the_same_everywhere():
+    assert iarap.__version__ == VERSION
+    assert f"Version {VERSION} " in README
+    assert f"## [{VERSION}]" in (REPO / "CHANGELOG.md").read_text()
+    assert re.search(rf"^version: {re.escape(VERSION)}$", (REPO / "CITATION.cff").read_text(), re.M)
+
+
+def test_version_flag(cli):
+    run = subprocess.run([cli, "--version"], capture_output=True, text=True)
+    assert run.returncode == 0 and run.stdout.strip() == f"iarap {VERSION}"
+
+
+def test_deform_option_defaults(cli):
+    """Every row of the README's deform table with a default matches the default --help prints."""
+    table = section(README, "`iarap deform")
+    documented = dict(re.findall(r"^\| `(--[a-z-]+)[^`]*` \| `?([^|`]+?)`? \|", table, re.M))
+    assert {"--method", "--boundary", "--iterations", "--tolerance", "--threads"} <= set(documented)
+    help_text = subprocess.run([cli, "deform", "--help"], capture_output=True, text=True, check=True).stdout
+    # CLI11 prints "  --iterations INT:INT in [0 - 1000000]=50": the default follows the last "=".
+    shown = dict(re.findall(r"^\s+(--[a-z-]+) .*=(\S+)$", help_text, re.M))
+    for option, default in documented.items():
+        assert option in shown, f"{option} shows no default in --help:\n{help_text}"
+        assert float(default) == float(shown[option]) if re.match(r"[\d.e+-]+$", default) else \
+            default == shown[option], f"{option}: README {default}, --help {shown[option]}"
+
+
+def test_deform_report_keys(cli, tmp_path):
+    report = json.loads(subprocess.run(
+        [cli, "deform", REPO / "data" / "bunny.off", "--scenario", REPO / "data" / "bunny_scenario.json",
+         "--iterations", "2", "--out", tmp_path / "out.off", "--json", "--quiet"],
+        capture_output=True, text=True, check=True).stdout)
+    text = section(README, "`iarap deform")
+    # repair: only with --repair; bench: a pointer to the bench command.
+    top = set(backticked(sentence(text, "The\nreport holds"))) - {"repair", "bench"}
+    assert top == set(report), f"README lists {sorted(top - set(report))} not in the report, " \
+                               f"misses {sorted(set(report) - top)}"
+    nested = set(backticked(sentence(text, "For iARAP, `intrinsic` holds"))) - {"intrinsic"}
+    assert nested == set(report["intrinsic"])
+
+
+def test_info_json_keys(cli):
+    report = json.loads(subprocess.run([cli, "info", "--json", REPO / "data" / "bunny.off"],
+                                       capture_output=True, text=True, check=True).stdout)
+    text = section(README, "`iarap info")
+    nested = set(backticked(sentence(text, "reports, in the JSON under the key `intrinsic`"))) - {"intrinsic"}
+    assert nested == set(report["intrinsic"])
+    assert not nested & set(report)  # the README says they are nested, and they are
+
+
+def python_signature(function):
+    """{name: default} from the signature pybind11 writes on a docstring's first line."""
+    tree = ast.parse("def " + function.__doc__.splitlines()[0] + ": pass").body[0].args
+    names = [a.arg for a in tree.args + tree.kwonlyargs]
+    defaults = [None] * (len(tree.args) - len(tree.defaults)) + list(tree.defaults) + list(tree.kw_defaults)
+    return {n: ast.literal_eval(d) for n, d in zip(names, defaults) if d is not None}
+
+
+def test_python_readme_defaults_and_names():
+    api = section(PYTHON_README, "API")
+    init = python_signature(iarap.ARAP.__init__)
+    for name, value in re.findall(r"(\w+)=(True|False)\b", api):
+        if name in init:
+            assert init[name] == (value == "True"), f"{name}: README {value}, module {init[name]}"
+    solve = python_signature(iarap.ARAP.solve)
+    call = re.search(r"solver\.solve\((.*)\)", api).group(1)
+    for name, value in re.findall(r"(\w+)=([^,)]+)", call):
+        assert solve[name] == ast.literal_eval(value), name
+    for names in (iarap.LAPLACIAN_KINDS, iarap.MASS_KINDS, iarap.ARAP_METHODS):
+        for name in names:
+            assert f'"{name}"' in api, f"{name} is not in python/README.md's API"
+
+
+def test_python_readme_snippet_runs(tmp_path):
+    """The API block runs as pasted (from a folder that has the repository's data/)."""
+    code = re.search(r"## API\n\n```python\n(.*?)```", PYTHON_README, re.S).group(1)
+    (tmp_path / "data").symlink_to(REPO / "data")
+    env = dict(os.environ, PYTHONPATH=os.path.dirname(os.path.dirname(iarap.__file__)))
+    run = subprocess.run([sys.executable, "-c", code], cwd=tmp_path, capture_output=True, text=True, env=env,
+                         timeout=300)
+    assert run.returncode == 0, run.stderr
+    assert (tmp_path / "out.obj").exists()
+
+
+def test_http_api_routes_are_the_servers():
+    source = (REPO / "app" / "serve" / "api_routes.cpp").read_text()
+    implemented = set(re.findall(r'server\.(Get|Post)\("(/api/[a-z_]+)"', source))
+    documented = {(m.capitalize(), p) for m, p in re.findall(r"^\| `(GET|POST) (/api/[a-z_]+)", HTTP_API, re.M)}
+    assert documented == implemented
+
+
+def test_http_api_session_json(cli):
+    """The documented session JSON has the keys (and nesting) of a real /api/state answer."""
+    example = json.loads(re.search(r"\*\*Session JSON\*\*.*?```json\n(.*?)```", HTTP_API, re.S).group(1))
+    server = subprocess.Popen([cli, "serve", "--port", "0", REPO / "data" / "bunny.off"], stdout=subprocess.PIPE,
+                              stderr=subprocess.DEVNULL, text=True)
+    try:
+        port = re.search(r"127\.0\.0\.1:(\d+)/", server.stdout.readline()).group(1)
+        base = f"http://127.0.0.1:{port}/api/"
+        request = urllib.request.Request(base + "constraints", method="POST",
+                                         data=json.dumps({"fixed": [12, 40], "handle": [7]}).encode())
+        with urllib.request.urlopen(request, timeout=60) as response:
+            state = json.load(response)
+    finally:
+        server.send_signal(signal.SIGTERM)
+        server.wait(timeout=60)
+
+    def keys(value):
+        if isinstance(value, dict):
+            return {k: keys(v) for k, v in value.items()}
+        return type(value).__name__ if value is not None else None
+
+    assert keys(example) == keys(state)
+    assert state["mesh"]["vertices"] == 3485 and state["fixed"] == [12, 40] and state["handle"] == [7]
