@@ -19,6 +19,7 @@
 #include <fstream>
 #include <iostream>
 #include <limits>
+#include <memory>
 #include <sstream>
 
 namespace iarap::serve {
@@ -31,6 +32,19 @@ using nlohmann::json;
 void send_json(httplib::Response& res, const json& body, int status = 200) {
   res.status = status;
   res.set_content(body.dump(-1, ' ', false, json::error_handler_t::replace), "application/json");
+}
+
+// Files (the app's scripts, downloads, scenario files) go out as they are. httplib compresses text types
+// with brotli at its highest quality whenever the client accepts it: three.core.js (1.4 MB) took 36 s
+// on a loaded 2-core machine instead of 1.3 s, and compression buys nothing over loopback. A body given
+// by a provider with a known length is sent as is.
+void send_file(httplib::Response& res, std::string bytes, const std::string& content_type) {
+  const auto body = std::make_shared<const std::string>(std::move(bytes));
+  res.set_content_provider(body->size(), content_type,
+                           [body](std::size_t offset, std::size_t length, httplib::DataSink& sink) {
+                             sink.write(body->data() + offset, std::min(length, body->size() - offset));
+                             return true;
+                           });
 }
 
 void send_binary(httplib::Response& res, const std::string& body) {
@@ -408,7 +422,7 @@ void register_routes(httplib::Server& server, const ServeConfig& config, ServeSt
         targets, request.transform, "saved by iarap serve from " + mesh + ", method " + arap_method_name(request.method));
     const std::string file = file_stem(mesh) + (saved.is_scenario ? "_scenario.json" : "_constraints.txt");
     res.set_header("Content-Disposition", "attachment; filename=\"" + file + "\"");
-    res.set_content(saved.text, saved.is_scenario ? "application/json" : "text/plain");
+    send_file(res, saved.text, saved.is_scenario ? "application/json" : "text/plain");
   });
 
   // A scenario or constraints file (body) for the current mesh; name only labels messages.
@@ -447,8 +461,7 @@ void register_routes(httplib::Server& server, const ServeConfig& config, ServeSt
     write_mesh(file.path().string(), snapshot.V, snapshot.F);
     res.set_header("Content-Disposition", "attachment; filename=\"" + file_stem(snapshot.name) + "_" +
                                               arap_method_name(method) + "." + format + "\"");
-    res.set_content(read_file_bytes(file.path()),
-                    format == "ply" ? "application/octet-stream" : "text/plain");
+    send_file(res, read_file_bytes(file.path()), format == "ply" ? "application/octet-stream" : "text/plain");
   });
 
   routes.answer_other_methods_with_405();
@@ -463,7 +476,7 @@ void register_routes(httplib::Server& server, const ServeConfig& config, ServeSt
       throw HttpError(404, "not found: " + safe_label(req.path));
     res.set_header("Cache-Control", "no-cache");
     res.set_header("X-Content-Type-Options", "nosniff");
-    res.set_content(read_file_bytes(file->path), file->content_type);
+    send_file(res, read_file_bytes(file->path), file->content_type);
   });
 }
 

@@ -436,7 +436,7 @@ describe('undo revisions, scenario files, progress', () => {
     const transform = [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0.3 * height, 0, 0, 1];
     const solving = postJson('/api/solve', { method: 'arap', iterations: 1000, tolerance: -1, transform });
     let progress;
-    for (let k = 0; k < 400; ++k) { // at most 4 s for the first chunk of 10 iterations
+    for (let k = 0; k < 2000; ++k) { // at most 20 s (sanitizer builds) for the first chunk of 10 iterations
       progress = await (await fetch(base + '/api/progress')).json();
       if (progress.running && progress.iteration > 0) break;
       await new Promise((resolve) => setTimeout(resolve, 10));

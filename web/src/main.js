@@ -21,7 +21,7 @@ function setStatus(text) {
   $('status').textContent = text;
 }
 
-// Errors go to a banner over the view (visible at any window size) until closed or the next success.
+// Errors go to a banner over the view (visible at any window size) until closed or the next solve.
 function showError(message) {
   $('banner-text').textContent = message;
   $('banner').hidden = false;
@@ -145,6 +145,7 @@ async function solveShown() {
   drawEnergyPlot($('energy-plot'), app.curves);
   $('solve-info').textContent = lines.join('\n');
   app.solves += 1;
+  $('banner').hidden = true; // a solve went through: an earlier error no longer applies
   if (cancelled) setStatus('Solve cancelled; the shape is the last finished iteration.');
 }
 
