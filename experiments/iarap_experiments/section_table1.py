@@ -151,13 +151,13 @@ def explain(ctx: Context, doc, by_key: dict) -> None:
                       "visits 2 pairs per edge (2E), spokes-and-rims 3 cells for each of its 3 elements per face "
                       "(9F, about 3 x 2E on a closed mesh), iARAP 2 per segment (2S)."),
             Table(["mesh", "method", "(element, cell) pairs / original's", "local step", "global step", "iteration"], rows),
-            Paragraph(f"- **iARAP costs what original ARAP costs** ({span(ia)}x per iteration): its "
+            Paragraph(f"- **iARAP costs what original ARAP costs** ({span(ia)}x per iteration{load_note(ctx)}): its "
                       "global step solves with the same matrix, because the iARAP matrix B^T D_w B *is* the cotan "
                       "Laplacian (section \"The iARAP operator is the cotan Laplacian\"), so the factorization and "
                       "the solves are identical; only the sums run over segments instead of edges, "
                       f"{span(spe)} segments per edge on these meshes, so only the sums can cost more, by at most that "
                       "factor. (The paper measured 1.3-1.6x.)\n"
-                      f"- **Spokes-and-rims costs {span(sr)}x** because it visits about 3x the "
+                      f"- **Spokes-and-rims costs {span(sr)}x**{load_note(ctx)} because it visits about 3x the "
                       "(element, cell) pairs of original ARAP in the local step and in the right-hand side, while the "
                       "polar decompositions (one per vertex) and the solve (same matrix size and pattern) are the "
                       "same: the pair sums are a part of the iteration, not all of it, so 3x the pairs gives well "
