@@ -262,6 +262,10 @@ httplib::Server::HandlerResponse answer_transport_error(const ServeConfig& confi
   std::string message = "HTTP " + std::to_string(res.status);
   if (res.status == 404) {
     message = "not found: " + safe_label(req.path);
+  } else if (res.status == 400) {
+    // httplib refuses a POST without Content-Length (e.g. `curl -X POST URL`) before any route runs.
+    message = "malformed HTTP request: a " + safe_label(req.method) +
+              " needs a Content-Length header (send a body, e.g. curl -d '{}' -H 'Content-Type: application/json')";
   } else if (res.status == 413) {
     const std::string length = req.get_header_value("Content-Length");
     const bool within = !length.empty() && length.size() < 19 &&

@@ -134,8 +134,9 @@ def test_python_readme_snippet_runs(tmp_path):
 
 def test_http_api_routes_are_the_servers():
     source = (REPO / "app" / "serve" / "api_routes.cpp").read_text()
-    implemented = set(re.findall(r'server\.(Get|Post)\("(/api/[a-z_]+)"', source))
-    documented = {(m.capitalize(), p) for m, p in re.findall(r"^\| `(GET|POST) (/api/[a-z_]+)", HTTP_API, re.M)}
+    implemented = set(re.findall(r'routes\.(get|post)\("(/api/[a-z_/]+)"', source))
+    documented = {(m.lower(), p) for m, p in re.findall(r"^\| `(GET|POST) (/api/[a-z_/]+)", HTTP_API, re.M)}
+    assert len(implemented) >= 14
     assert documented == implemented
 
 
@@ -148,7 +149,8 @@ def test_http_api_session_json(cli):
         port = re.search(r"127\.0\.0\.1:(\d+)/", server.stdout.readline()).group(1)
         base = f"http://127.0.0.1:{port}/api/"
         request = urllib.request.Request(base + "constraints", method="POST",
-                                         data=json.dumps({"fixed": [12, 40], "handle": [7]}).encode())
+                                         data=json.dumps({"fixed": [12, 40], "handle": [7]}).encode(),
+                                         headers={"Content-Type": "application/json"})
         with urllib.request.urlopen(request, timeout=60) as response:
             state = json.load(response)
     finally:
