@@ -33,7 +33,7 @@ const Expected meshes[] = {
 TEST(SharedMeshes, LoadWithReadmeCounts) {
   int found = 0;
   for (const Expected& e : meshes) {
-    const std::string path = iarap::test::shared_mesh_path(e.name);
+    const std::string path = iarap::test::shared_mesh_in_loop(e.name);
     if (path.empty())
       continue;
     ++found;
