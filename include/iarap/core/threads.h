@@ -9,11 +9,12 @@ void set_thread_count(int n);
 // The number of threads parallel loops will use.
 int thread_count();
 
-// Below this many vertices the whole deformation takes milliseconds, and a team of threads costs more
-// than it saves: waking it, and on a busy machine waiting at each loop's end for a thread the scheduler
-// put behind other work (measured on a loaded 2-core machine: a 382-vertex sphere 1.37 s with all threads
-// against 0.12 s with one).
-constexpr int serial_vertex_threshold = 5000;
+// Below this many vertices a team of threads costs more than it saves: waking it, and on a busy machine
+// waiting at each loop's end for a thread the scheduler put behind other work. Measured with `deform`
+// (iarap, 5 iterations) on a loaded 2-core machine, median of 3 paired rounds, time with 2 threads over 1:
+// decimated-knight (502 vertices) 3.77, bunny (3.5K) 2.02, horse (5K) 1.56, armadillo_30K (15K) 1.02,
+// beetle (20K) 1.02 (the issue: a 382-vertex sphere 1.37 s against 0.12 s).
+constexpr int serial_vertex_threshold = 10000;
 
 // The thread count an automatic choice (--threads 0) should use for a mesh of `vertices` vertices: 1
 // below serial_vertex_threshold, else every hardware thread.
