@@ -1,10 +1,12 @@
 // `iarap bench MESH...`: precomputation and per-iteration timings of the three ARAP variants.
 #include "command_registry.h"
 #include "cpu_name.h"
+#include "json_text.h"
 #include "write_text_file.h"
 
 #include "iarap/core/errors.h"
 #include "iarap/core/threads.h"
+#include "iarap/io/check_output_path.h"
 #include "iarap/io/read_mesh.h"
 #include "iarap/mesh/subdivide.h"
 #include "iarap/mesh/validate.h"
@@ -165,6 +167,8 @@ void print_table(const nlohmann::json& results) {
 }
 
 void run_bench(const BenchArguments& args) {
+  if (!args.report.empty())
+    check_output_path(args.report); // before the runs, which can take minutes
   set_thread_count(args.threads);
   nlohmann::json j;
   j["cpu"] = cpu_name();
@@ -177,14 +181,29 @@ void run_bench(const BenchArguments& args) {
   j["results"] = nlohmann::json::array();
   int failed = 0;
   for (const auto& path : args.meshes) {
-    MeshData mesh = read_mesh(path);
-    subdivide_midpoint(mesh.V, mesh.F, args.subdivide);
-    const MeshReport check = check_mesh(mesh.V, mesh.F);
-    if (!check.usable()) {
-      throw TopologyError(path + ": mesh not usable for ARAP: " + check.errors.front() +
-                          " (see `iarap info`)");
+    // A mesh that cannot be benchmarked gets an error entry and the others still run: results are printed
+    // and the exit status is 1 at the end.
+    MeshData mesh;
+    ConstraintSet constraints;
+    try {
+      mesh = read_mesh(path);
+      subdivide_midpoint(mesh.V, mesh.F, args.subdivide);
+      const MeshReport check = check_mesh(mesh.V, mesh.F);
+      if (!check.usable())
+        throw TopologyError(path + ": mesh not usable for ARAP: " + check.errors.front() + " (see `iarap info`)");
+      constraints = resolve_scenario(bench_scenario(), mesh.V);
+    } catch (const Error& e) {
+      if (!args.json)
+        std::cerr << "bench: " << path << ": skipped: " << e.what() << "\n";
+      for (const auto& method : args.methods)
+        j["results"].push_back({{"mesh", path},
+                                {"vertices", mesh.V.rows()},
+                                {"method", method},
+                                {"threads", thread_count()},
+                                {"error", e.what()}});
+      ++failed;
+      continue;
     }
-    const ConstraintSet constraints = resolve_scenario(bench_scenario(), mesh.V);
     // Rounds go round-robin over the methods, so that a burst of other load on a shared machine hits every
     // method alike instead of one method's block of rounds; each method keeps its fastest round.
     std::vector<nlohmann::json> best(args.methods.size());
@@ -222,7 +241,7 @@ void run_bench(const BenchArguments& args) {
       }
     for (const auto& r : best) j["results"].push_back(r);
   }
-  const std::string text = j.dump(2) + "\n";
+  const std::string text = json_text(j);
   if (!args.report.empty())
     write_text_file(args.report, text);
   if (args.json) {

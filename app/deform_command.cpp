@@ -1,23 +1,31 @@
 // `iarap deform MESH`: one ARAP deformation from a constraints or scenario file, written to a mesh file.
 #include "command_registry.h"
+#include "explain_error.h"
+#include "json_text.h"
 #include "write_text_file.h"
 
 #include "iarap/core/errors.h"
 #include "iarap/core/threads.h"
+#include "iarap/io/check_output_path.h"
 #include "iarap/io/read_mesh.h"
 #include "iarap/io/write_mesh.h"
+#include "iarap/mesh/normalize_scale.h"
 #include "iarap/mesh/repair.h"
 #include "iarap/mesh/validate.h"
 #include "iarap/scene/read_constraints.h"
 #include "iarap/scene/read_scenario.h"
 #include "iarap/scene/remap_constraints.h"
+#include "iarap/scene/remap_scenario.h"
 #include "iarap/solver/arap.h"
 
 #include <nlohmann/json.hpp>
 
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <iostream>
+#include <optional>
+#include <sstream>
 
 namespace iarap::cli {
 namespace {
@@ -29,6 +37,19 @@ struct DeformArguments {
   int threads = 0;
   bool json = false, repair = false, pin_unconstrained = false, quiet = false;
 };
+
+// CLI::NonNegativeNumber lets nan through (then a runtime error, exit 1) and words its range with the
+// 309 digits of DBL_MAX; this one is a usage error (exit 2) in plain words.
+const CLI::Validator finite_non_negative(
+    [](const std::string& text) -> std::string {
+      double value = 0;
+      if (!CLI::detail::lexical_cast(text, value))
+        return "'" + text + "' is not a number";
+      if (!std::isfinite(value) || value < 0)
+        return "'" + text + "' must be a finite number >= 0";
+      return {};
+    },
+    "NUMBER >= 0");
 
 double elapsed_ms(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
@@ -43,11 +64,73 @@ bool same_file(const std::string& a, const std::string& b) {
   return std::filesystem::weakly_canonical(a, error) == std::filesystem::weakly_canonical(b, error);
 }
 
-// The constraint set of the run, on the mesh as read (before any repair).
-ConstraintSet load_constraints(const DeformArguments& args, const Eigen::MatrixXd& V) {
-  if (!args.constraints.empty())
-    return read_constraints(args.constraints, static_cast<int>(V.rows()));
-  return resolve_scenario(read_scenario(args.scenario), V);
+// The mesh to deform and its constraints. With --repair the mesh is repaired first (welded, unreferenced
+// vertices and zero-area faces dropped, the defects `iarap info` warns about) and a scenario is resolved on
+// the repaired mesh, so that its regions cannot select a vertex the repair drops; a constraints file's
+// indices are carried over.
+void load_mesh_and_constraints(const DeformArguments& args, MeshData& mesh, ConstraintSet& constraints,
+                               nlohmann::json& j) {
+  mesh = read_mesh(args.mesh);
+  Scenario scenario;
+  if (!args.scenario.empty())
+    scenario = read_scenario(args.scenario);
+  if (!args.repair) {
+    constraints = args.constraints.empty() ? resolve_scenario(scenario, mesh.V)
+                                           : read_constraints(args.constraints, static_cast<int>(mesh.V.rows()));
+    return;
+  }
+  RepairOptions repair_options;
+  repair_options.remove_zero_area = true;
+  RepairResult repaired = repair_mesh(mesh.V, mesh.F, repair_options);
+  if (args.constraints.empty()) {
+    constraints = resolve_scenario(remap_scenario(scenario, repaired.old_to_new), repaired.V);
+  } else {
+    constraints = remap_constraints(read_constraints(args.constraints, static_cast<int>(mesh.V.rows())),
+                                    repaired.old_to_new);
+  }
+  mesh.V = std::move(repaired.V);
+  mesh.F = std::move(repaired.F);
+  j["repair"] = repaired.actions;
+}
+
+// Original ARAP's energy is bounded below only with non-negative cotangent weights: on meshes with many
+// non-Delaunay edges it can go negative, and the "minimum" then drifts far from a rigid deformation
+// (measured on nefertiti: free vertices moved by 0.47 of the diagonal for a handle moved by 0.1).
+constexpr double many_negative_weights = 0.1; // share of the edges
+
+void warn_about_original_energy(const ArapReport& report, const MeshReport& check) {
+  double lowest = report.initial_energy;
+  for (double e : report.energies) lowest = std::min(lowest, e);
+  const double share = check.edges > 0 ? static_cast<double>(check.non_delaunay_edges) / check.edges : 0.0;
+  if (lowest < 0) {
+    std::cerr << "deform: warning: original ARAP's energy went negative: " << check.non_delaunay_edges
+              << " edges have negative cotangent weights, so the energy is not bounded below and the result "
+                 "can be far from rigid; use --method iarap\n";
+  } else if (share >= many_negative_weights) {
+    std::cerr << "deform: warning: " << check.non_delaunay_edges << " of " << check.edges
+              << " edges have negative cotangent weights; original ARAP's energy is then not bounded below "
+                 "and its result can be far from rigid; --method iarap has no negative weights\n";
+  }
+}
+
+// The constraint whose target lies farthest from its rest position, named by where it came from: when
+// the energy overflows, this is the target to fix.
+std::string farthest_target(const ConstraintSet& constraints, const Eigen::MatrixXd& V) {
+  Eigen::Index worst = 0;
+  double distance = -1;
+  for (Eigen::Index k = 0; k < constraints.fixed.size(); ++k) {
+    const double d = (constraints.targets.row(k) - V.row(constraints.fixed(k))).stableNorm();
+    if (!(d <= distance)) {
+      worst = k;
+      distance = d;
+    }
+  }
+  std::ostringstream text;
+  text << "the target of vertex " << constraints.fixed(worst) << " lies " << distance
+       << " from its rest position";
+  if (static_cast<Eigen::Index>(constraints.origins.size()) == constraints.fixed.size())
+    text << " (" << constraints.origins[static_cast<std::size_t>(worst)] << ")";
+  return text.str();
 }
 
 void run_deform(const DeformArguments& args) {
@@ -60,24 +143,24 @@ void run_deform(const DeformArguments& args) {
   if (!args.report.empty() && (same_file(args.report, args.mesh) || same_file(args.report, args.out))) {
     throw CLI::ValidationError("--report " + args.report + " is the input or output mesh");
   }
+  // Before the solve, which can take seconds: a bad output path fails now.
+  check_mesh_output_path(args.out);
+  if (!args.report.empty())
+    check_output_path(args.report);
   const auto total_start = std::chrono::steady_clock::now();
   nlohmann::json j;
   j["input"] = args.mesh;
-  MeshData mesh = read_mesh(args.mesh);
-  ConstraintSet constraints = load_constraints(args, mesh.V);
-  if (args.repair) {
-    RepairResult repaired = repair_mesh(mesh.V, mesh.F);
-    constraints = remap_constraints(constraints, repaired.old_to_new);
-    mesh.V = std::move(repaired.V);
-    mesh.F = std::move(repaired.F);
-    j["repair"] = repaired.actions;
-  }
+  MeshData mesh;
+  ConstraintSet constraints;
+  load_mesh_and_constraints(args, mesh, constraints, j);
   const MeshReport check = check_mesh(mesh.V, mesh.F);
   if (!check.usable()) {
-    std::string message = args.mesh + ": mesh not usable for ARAP:";
+    std::string message = args.mesh + (args.repair ? ": mesh not usable for ARAP after --repair:" : ": mesh not usable for ARAP:");
     for (const auto& error : check.errors)
       message += "\n  " + error;
-    throw TopologyError(message + "\n(run `iarap info " + args.mesh + "` for the full report)");
+    throw TopologyError(message + (args.repair ? "\n(numbers refer to the repaired mesh; `iarap info " + args.mesh +
+                                                     "` reports the file as it is)"
+                                               : "\n(run `iarap info " + args.mesh + "` for the full report)"));
   }
   for (const auto& warning : constraints.warnings)
     std::cerr << "deform: warning: " << warning << "\n";
@@ -86,20 +169,47 @@ void run_deform(const DeformArguments& args) {
       std::cerr << "deform: mesh warning: " << warning << "\n";
   }
 
-  set_thread_count(args.threads);
+  set_thread_count(args.threads == 0 ? automatic_thread_count(static_cast<int>(mesh.V.rows())) : args.threads);
   ArapOptions options;
   options.method = parse_arap_method(args.method);
   options.pin_unconstrained_components = args.pin_unconstrained;
   options.intrinsic.refine_boundary = args.boundary == "refine";
+  // The solve runs on the mesh divided by a power of two s that brings its coordinates near 1 (exact), so
+  // that squared lengths neither overflow nor underflow at 1e+-80 and beyond; results return in file units.
+  const double s = normalizing_scale(mesh.V);
+  const Eigen::MatrixXd V = mesh.V / s;
+  const Eigen::MatrixXd targets = constraints.targets / s;
+  const ErrorContext context{args.mesh, args.repair};
   const auto precompute_start = std::chrono::steady_clock::now();
-  ArapData data = arap_precompute(mesh.V, mesh.F, constraints.fixed, options);
+  std::optional<ArapData> data;
+  try {
+    data.emplace(arap_precompute(V, mesh.F, constraints.fixed, options));
+  } catch (const SolverError& e) {
+    throw SolverError(explain_solver_error(e.what(), context));
+  } catch (const TopologyError& e) {
+    throw TopologyError(explain_solver_error(e.what(), context));
+  }
   const double precompute_ms = elapsed_ms(precompute_start);
 
-  Eigen::MatrixXd U = mesh.V;
+  Eigen::MatrixXd U = V;
   ArapSolveOptions solve_options;
   solve_options.max_iterations = args.iterations;
   solve_options.tolerance = args.tolerance;
-  const ArapReport report = arap_solve(data, constraints.targets, U, solve_options);
+  ArapReport report;
+  try {
+    report = arap_solve(*data, targets, U, solve_options);
+  } catch (const SolverError& e) {
+    if (std::string(e.what()).find("initial guess is not finite") != std::string::npos)
+      throw SolverError("the ARAP energy of the constraints overflows: " + farthest_target(constraints, mesh.V) +
+                        ", against a mesh of bounding-box diagonal " + std::to_string(check.bbox_diagonal) +
+                        "; give targets at a distance comparable to the mesh");
+    throw SolverError(explain_solver_error(e.what(), context));
+  }
+  const double max_displacement = (U - V).rowwise().norm().maxCoeff() * s; // no overflow at 1e300
+  U *= s;
+  const double energy_unit = s * s; // energies scale with length^2
+  report.initial_energy *= energy_unit;
+  for (double& e : report.energies) e *= energy_unit;
   if (!args.quiet) {
     std::cerr << "deform: " << arap_method_name(options.method) << ", " << mesh.V.rows() << " vertices, "
               << constraints.fixed.size() << " constrained, initial energy " << report.initial_energy << "\n";
@@ -110,43 +220,46 @@ void run_deform(const DeformArguments& args) {
     }
     std::cerr << "deform: " << (report.converged ? "converged" : "stopped at the iteration limit") << "\n";
   }
+  if (options.method == ArapMethod::Arap)
+    warn_about_original_energy(report, check);
   write_mesh(args.out, U, mesh.F);
+  const ArapData& arap = *data;
 
   j["method"] = arap_method_name(options.method);
   j["vertices"] = mesh.V.rows();
   j["faces"] = mesh.F.rows();
   j["constrained"] = constraints.fixed.size();
-  j["pinned"] = data.pinned.size();
+  j["pinned"] = arap.pinned.size();
   j["threads"] = thread_count();
   j["iterations"] = report.iterations;
   j["converged"] = report.converged;
   j["initial_energy"] = report.initial_energy;
   j["energies"] = report.energies;
   j["precompute_ms"] = precompute_ms;
-  j["intrinsic_ms"] = data.timings.intrinsic_ms;
-  j["assembly_ms"] = data.timings.assembly_ms;
-  j["factor_ms"] = data.timings.factor_ms;
-  j["analyze_ms"] = data.timings.analyze_ms; // overlapped with intrinsic + assembly when threads > 1
-  j["factorization"] = factorization_name(arap_factorization(data));
+  j["intrinsic_ms"] = arap.timings.intrinsic_ms;
+  j["assembly_ms"] = arap.timings.assembly_ms;
+  j["factor_ms"] = arap.timings.factor_ms;
+  j["analyze_ms"] = arap.timings.analyze_ms; // overlapped with intrinsic + assembly when threads > 1
+  j["factorization"] = factorization_name(arap_factorization(arap));
   j["local_ms"] = report.local_ms;
   j["global_ms"] = report.global_ms;
-  j["max_displacement"] = (U - mesh.V).rowwise().norm().maxCoeff();
+  j["max_displacement"] = max_displacement;
   j["bbox_diagonal"] = check.bbox_diagonal;
   j["output"] = args.out;
   j["total_ms"] = elapsed_ms(total_start);
   if (options.method == ArapMethod::Iarap) {
-    j["intrinsic"] = {{"flips", data.intrinsic.flips},
-                      {"non_delaunay_before", data.intrinsic.non_delaunay_before},
-                      {"non_delaunay_after", data.intrinsic.non_delaunay_after},
-                      {"mollify_delta", data.intrinsic.mollify_delta},
-                      {"intrinsic_edges", data.intrinsic.intrinsic_edges},
-                      {"segments", data.intrinsic.segments},
+    j["intrinsic"] = {{"flips", arap.intrinsic.flips},
+                      {"non_delaunay_before", arap.intrinsic.non_delaunay_before},
+                      {"non_delaunay_after", arap.intrinsic.non_delaunay_after},
+                      {"mollify_delta", arap.intrinsic.mollify_delta},
+                      {"intrinsic_edges", arap.intrinsic.intrinsic_edges},
+                      {"segments", arap.intrinsic.segments},
                       {"boundary", args.boundary},
-                      {"obtuse_boundary_before", data.intrinsic.obtuse_boundary_before},
-                      {"obtuse_boundary_after", data.intrinsic.obtuse_boundary_after},
-                      {"inserted_points", data.intrinsic.inserted_points}};
+                      {"obtuse_boundary_before", arap.intrinsic.obtuse_boundary_before},
+                      {"obtuse_boundary_after", arap.intrinsic.obtuse_boundary_after},
+                      {"inserted_points", arap.intrinsic.inserted_points}};
   }
-  const std::string text = j.dump(2) + "\n";
+  const std::string text = json_text(j);
   if (!args.report.empty())
     write_text_file(args.report, text);
   if (args.json)
@@ -184,7 +297,7 @@ const bool registered = register_command(
        sub->add_option(
               "--tolerance", args->tolerance,
               "Stop when the energy decreases by at most this fraction of itself in one iteration (>= 0)")
-           ->check(CLI::NonNegativeNumber)
+           ->check(finite_non_negative)
            ->capture_default_str();
        sub->add_option("--threads", args->threads, "Threads for the parallel loops; 0 = all hardware threads")
            ->check(CLI::Range(0, 4096))

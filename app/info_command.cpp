@@ -1,10 +1,12 @@
 // `iarap info MESH`: what check_mesh finds, and what the intrinsic Delaunay triangulation looks like.
 #include "command_registry.h"
+#include "json_text.h"
 #include "mesh_report_json.h"
 
 #include "iarap/core/errors.h"
 #include "iarap/intrinsic/intrinsic_delaunay.h"
 #include "iarap/io/read_mesh.h"
+#include "iarap/mesh/normalize_scale.h"
 #include "iarap/mesh/validate.h"
 
 #include <chrono>
@@ -24,7 +26,9 @@ void print_text(const nlohmann::json& j) {
   if (j.contains("vertices")) {
     std::cout << "vertices " << j["vertices"] << ", faces " << j["faces"] << ", components "
               << j["components"] << ", boundary loops " << j["boundary_loops"] << ", genus "
-              << (j["genus"].is_null() ? std::string("undefined") : j["genus"].dump()) << "\n"
+              << (j["genus"].is_null() ? std::string(j["orientable"].get<bool>() ? "undefined" : "undefined (non-orientable)")
+                                       : j["genus"].dump())
+              << ", orientable " << (j["orientable"].get<bool>() ? "yes" : "no") << "\n"
               << "bounding-box diagonal " << j["bbox_diagonal"] << "\n";
     for (const char* count :
          {"non_manifold_edges", "non_manifold_vertices", "inconsistently_oriented_edges",
@@ -50,7 +54,34 @@ void print_text(const nlohmann::json& j) {
                 << in["max_segments_per_edge"] << "), " << in["time_ms"].get<double>() << " ms\n";
     }
   }
+  for (const auto& need : j.value("deform_needs", nlohmann::json::array()))
+    std::cout << "deform needs " << need["flag"].get<std::string>() << ": " << need["why"].get<std::string>()
+              << "\n";
   std::cout << (j["usable"].get<bool>() ? "usable for ARAP: yes" : "usable for ARAP: no") << "\n";
+}
+
+// What `iarap deform` needs beyond the defaults to run on a usable mesh, each entry a flag and why, so that
+// `info` and `deform` agree: the defects check_mesh only warns about stop the solve without these flags.
+nlohmann::json deform_needs(const MeshReport& report) {
+  nlohmann::json needs = nlohmann::json::array();
+  if (!report.usable())
+    return needs;
+  std::string repair;
+  const auto add = [&](int count, const std::string& what) {
+    if (count > 0)
+      repair += (repair.empty() ? "" : "; ") + std::to_string(count) + " " + what;
+  };
+  add(report.zero_area_faces, "zero-area faces (infinite cotangent weights), which it drops");
+  add(report.unreferenced_vertices, "vertices used by no face (each a part no constraint reaches), which it drops");
+  add(report.coincident_vertices, "coincident vertices (seams that split the surface), which it welds");
+  if (!repair.empty())
+    needs.push_back({{"flag", "--repair"}, {"why", repair}});
+  if (report.components > 1)
+    needs.push_back({{"flag", "--pin-unconstrained"},
+                     {"why", std::to_string(report.components) +
+                                 " components: each needs a constraint, or this flag pins one vertex of each "
+                                 "that has none"}});
+  return needs;
 }
 
 void run_info(const InfoArguments& args) {
@@ -59,15 +90,20 @@ void run_info(const InfoArguments& args) {
   bool ok = true;
   try {
     const MeshData mesh = read_mesh(args.mesh);
-    j.update(mesh_report_json(check_mesh(mesh.V, mesh.F)));
+    const MeshReport report = check_mesh(mesh.V, mesh.F);
+    j.update(mesh_report_json(report));
     j["notes"] = mesh.notes;
+    j["deform_needs"] = deform_needs(report);
     ok = j["usable"].get<bool>();
     if (ok && !args.no_intrinsic) {
       try {
         const auto start = std::chrono::steady_clock::now();
         IntrinsicOptions options;
         options.keep_traces = false; // the summary reads the segments
-        const IntrinsicDelaunay intrinsic = intrinsic_delaunay(mesh.V, mesh.F, options);
+        // On the mesh divided by a power of two (exact), as `deform` does: coordinates of 1e+-80 and beyond
+        // would overflow or underflow its squared lengths.
+        const IntrinsicDelaunay intrinsic =
+            intrinsic_delaunay(mesh.V / normalizing_scale(mesh.V), mesh.F, options);
         const std::chrono::duration<double, std::milli> elapsed = std::chrono::steady_clock::now() - start;
         j["intrinsic"] = intrinsic_summary_json(intrinsic);
         j["intrinsic"]["time_ms"] = elapsed.count();
@@ -83,7 +119,7 @@ void run_info(const InfoArguments& args) {
     ok = false;
   }
   if (args.json) {
-    std::cout << j.dump(2) << "\n";
+    std::cout << json_text(j);
   } else {
     print_text(j);
   }

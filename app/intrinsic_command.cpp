@@ -1,6 +1,7 @@
 // `iarap intrinsic MESH`: the intrinsic Delaunay triangulation's figures, its traced edges as polylines
 // (paper Fig. 14) and, for the performance target of the preprocess, a CHOLMOD factorization to compare.
 #include "command_registry.h"
+#include "json_text.h"
 #include "mesh_report_json.h"
 #include "write_text_file.h"
 
@@ -188,7 +189,7 @@ void run(const IntrinsicArgs& args) {
     j["out_edges"] = args.out_edges;
   }
   if (args.json) {
-    std::cout << j.dump(2) << "\n";
+    std::cout << json_text(j);
     return;
   }
   std::printf("%s: %ld vertices, %ld faces, %d threads\n", args.mesh.c_str(), static_cast<long>(mesh.V.rows()),

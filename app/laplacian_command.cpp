@@ -1,6 +1,7 @@
 // `iarap laplacian MESH`: writes one Laplace-Beltrami operator as a Matrix Market file and/or reports the
 // properties of the operators (paper Section 6, Table 3) as a table or JSON.
 #include "command_registry.h"
+#include "json_text.h"
 #include "iarap/core/errors.h"
 #include "iarap/io/read_mesh.h"
 #include "iarap/laplacian/laplacian_properties.h"
@@ -153,7 +154,7 @@ void run(const LaplacianArgs& args) {
     nlohmann::json array = nlohmann::json::array();
     for (const auto& p : rows)
       array.push_back(to_json(p));
-    std::cout << array.dump(2) << "\n";
+    std::cout << iarap::cli::json_text(array);
   } else {
     print_table(rows);
   }

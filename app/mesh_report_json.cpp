@@ -11,6 +11,8 @@ nlohmann::json mesh_report_json(const MeshReport& report) {
   j["components"] = report.components;
   j["boundary_loops"] = report.boundary_loops;
   j["genus"] = report.genus ? nlohmann::json(*report.genus) : nlohmann::json(nullptr);
+  j["orientable"] = report.orientable();
+  j["non_orientable_components"] = report.non_orientable_components;
   j["non_manifold_edges"] = report.non_manifold_edges;
   j["non_manifold_vertices"] = report.non_manifold_vertices;
   j["zero_area_faces"] = report.zero_area_faces;
@@ -21,6 +23,7 @@ nlohmann::json mesh_report_json(const MeshReport& report) {
   j["out_of_range_indices"] = report.out_of_range_indices;
   j["non_finite_coordinates"] = report.non_finite_coordinates;
   j["coincident_vertices"] = report.coincident_vertices;
+  j["edges"] = report.edges;
   j["boundary_edges"] = report.boundary_edges;
   j["bbox_diagonal"] = report.bbox_diagonal;
   j["errors"] = report.errors;

@@ -81,6 +81,9 @@ def sphere():
 def read_shared_mesh(name):
     path = shared_mesh(name)
     if path is None:
+        # CI sets IARAP_REQUIRE_SHARED_MESHES=1: an incomplete ../shared must fail, not pass with skips.
+        if os.environ.get("IARAP_REQUIRE_SHARED_MESHES") == "1":
+            pytest.fail(f"shared mesh {name} is missing and IARAP_REQUIRE_SHARED_MESHES=1")
         pytest.skip(f"shared mesh {name} not found (../shared/meshes or $IARAP_SHARED_MESHES)")
     return iarap.read_mesh(path)
 

@@ -11,6 +11,8 @@ void set_thread_count(int n) { omp_set_num_threads(n > 0 ? n : omp_get_num_procs
 
 int thread_count() { return omp_get_max_threads(); }
 
+int automatic_thread_count(int vertices) { return vertices < serial_vertex_threshold ? 1 : omp_get_num_procs(); }
+
 namespace {
 std::atomic<int> reserved_cores{0};
 } // namespace

@@ -13,7 +13,7 @@ using io_detail::quote_token;
 
 MeshData read_obj(const std::string& path) {
   const std::string text = io_detail::read_whole_file(path);
-  io_detail::LineReader lines(text);
+  io_detail::LineReader lines(text, io_detail::utf8_bom_length(text));
   io_detail::FaceBuilder faces(path, io_detail::Location::line, 1);
   std::vector<double> positions;
   std::vector<std::string_view> tokens;

@@ -31,7 +31,7 @@ bool next_content_line(io_detail::LineReader& lines, std::vector<std::string_vie
 
 MeshData read_off(const std::string& path) {
   const std::string text = io_detail::read_whole_file(path);
-  io_detail::LineReader lines(text);
+  io_detail::LineReader lines(text, io_detail::utf8_bom_length(text));
   std::vector<std::string_view> tokens;
   if (!next_content_line(lines, tokens))
     fail_at_line(path, lines.line(), "empty file; expected an OFF header");
@@ -101,19 +101,29 @@ MeshData read_off(const std::string& path) {
     if (!io_detail::parse_int(tokens[0], n) || n < 0)
       fail_at_line(path, lines.line(),
                    "face " + std::to_string(f) + ": bad corner count " + quote_token(tokens[0]));
-    // Values past the n indices are a per-face color, which is allowed and ignored.
-    if (static_cast<std::int64_t>(tokens.size()) - 1 < n)
-      fail_at_line(path, lines.line(),
-                   "face " + std::to_string(f) + " declares " + std::to_string(n) + " corners but lists " +
-                       std::to_string(tokens.size() - 1));
-    corners.resize(static_cast<std::size_t>(n));
-    for (std::int64_t k = 0; k < n; ++k) {
-      const std::string_view token = tokens[static_cast<std::size_t>(k + 1)];
-      if (!io_detail::parse_int(token, corners[static_cast<std::size_t>(k)]))
+    // A record may continue on the following lines (valid OFF; libigl's test data has such files); values
+    // past the n indices on its last line are a per-face color, which is allowed and ignored.
+    const std::int64_t face_line = lines.line();
+    corners.clear();
+    std::size_t next = 1;
+    while (static_cast<std::int64_t>(corners.size()) < n) {
+      if (next >= tokens.size()) {
+        if (!next_content_line(lines, tokens))
+          fail_at_line(path, face_line,
+                       "face " + std::to_string(f) + " declares " + std::to_string(n) +
+                           " corners but the file ends after " + std::to_string(corners.size()));
+        next = 0;
+      }
+      const std::string_view token = tokens[next++];
+      std::int64_t index;
+      if (!io_detail::parse_int(token, index))
         fail_at_line(path, lines.line(),
-                     "face " + std::to_string(f) + ": bad vertex index " + quote_token(token));
+                     "face " + std::to_string(f) + ": bad vertex index " + quote_token(token) + " (face " +
+                         std::to_string(f) + " declares " + std::to_string(n) + " corners and starts on line " +
+                         std::to_string(face_line) + ")");
+      corners.push_back(index);
     }
-    faces.add_polygon(corners, lines.line());
+    faces.add_polygon(corners, face_line);
   }
   if (next_content_line(lines, tokens))
     fail_at_line(path, lines.line(),

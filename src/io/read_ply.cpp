@@ -170,7 +170,7 @@ Role role_of(const std::string& path, const Element& e) {
 
 MeshData read_ply(const std::string& path) {
   const std::string text = io_detail::read_whole_file(path);
-  io_detail::LineReader lines(text);
+  io_detail::LineReader lines(text, io_detail::utf8_bom_length(text));
   std::vector<std::string_view> tokens;
   std::string_view line;
 

@@ -94,7 +94,7 @@ std::vector<double> read_binary_corners(const std::string& bytes, std::uint32_t 
 }
 
 std::vector<double> read_ascii_corners(const std::string& path, const std::string& text) {
-  io_detail::LineReader lines(text);
+  io_detail::LineReader lines(text, io_detail::utf8_bom_length(text));
   std::vector<std::string_view> tokens;
   std::string_view line;
   std::vector<double> corners;
@@ -193,7 +193,7 @@ MeshData read_stl(const std::string& path) {
     // Binary files may also start with "solid"; the exact size decides.
     binary = bytes.size() == 84 + 50 * static_cast<std::uint64_t>(count);
   }
-  const bool looks_ascii = bytes.compare(0, 5, "solid") == 0;
+  const bool looks_ascii = bytes.compare(io_detail::utf8_bom_length(bytes), 5, "solid") == 0;
   if (!binary && !looks_ascii) {
     if (bytes.size() < 84)
       fail_at_offset(path, static_cast<std::int64_t>(bytes.size()),

@@ -6,18 +6,23 @@
 #include <charconv>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 
 namespace iarap::io_detail {
 
 std::string read_whole_file(const std::string& path) {
+  // A folder opens as a stream on Linux and reports a size of 2^63: say what it is before reading.
+  std::error_code error;
+  if (std::filesystem::is_directory(path, error))
+    throw InputError(path + ": is a folder, not a mesh file; give the path of a .obj, .off, .ply or .stl file");
   std::ifstream in(path, std::ios::binary);
   if (!in)
     throw InputError(path + ": cannot open: " + std::strerror(errno));
   in.seekg(0, std::ios::end);
   const std::streamoff size = in.tellg();
-  if (size < 0)
-    throw InputError(path + ": cannot determine the file size");
+  if (size < 0 || !std::filesystem::is_regular_file(path, error))
+    throw InputError(path + ": not a regular file (cannot determine its size); give the path of a mesh file");
   in.seekg(0, std::ios::beg);
   std::string bytes(static_cast<std::size_t>(size), '\0');
   if (size > 0 && !in.read(bytes.data(), size))
@@ -88,6 +93,10 @@ bool LineReader::next(std::string_view& line) {
   pos_ = end < text_.size() ? end + 1 : end;
   ++line_;
   return true;
+}
+
+std::size_t utf8_bom_length(std::string_view text) {
+  return text.substr(0, 3) == "\xEF\xBB\xBF" ? 3 : 0;
 }
 
 std::string quote_token(std::string_view token) {

@@ -36,6 +36,10 @@ private:
   std::int64_t line_;
 };
 
+// 3 when the text starts with a UTF-8 byte-order mark (some Windows editors write one), else 0: text
+// readers start after it, so that it is not glued to the first keyword.
+std::size_t utf8_bom_length(std::string_view text);
+
 // Returns "name" quoted and shortened to at most 40 characters, for error messages about bad tokens.
 std::string quote_token(std::string_view token);
 

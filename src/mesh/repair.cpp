@@ -2,6 +2,7 @@
 
 #include "iarap/core/errors.h"
 #include "iarap/mesh/connected_components.h"
+#include "iarap/mesh/normalize_scale.h"
 #include "iarap/mesh/validate.h"
 
 #include <Eigen/Geometry>
@@ -28,11 +29,35 @@ Eigen::VectorXi weld_representatives(const Eigen::MatrixXd& V, double tolerance)
   // (identical positions only) still needs a positive cell, taken tiny relative to the coordinates.
   const double bbox = bounding_box_diagonal(V);
   const double cell = tolerance > 0 ? tolerance : std::max(bbox, 1.0) * 1e-15;
+  // Copies of one position join first, by a sort of the positions, and only the first copy enters the
+  // grid: the pair search below visits every pair within a cell neighbourhood, quadratic in a pile of 100K
+  // copies of one point.
+  std::vector<int> order;
+  order.reserve(static_cast<std::size_t>(n));
+  for (int v = 0; v < n; ++v)
+    if (V.row(v).allFinite())
+      order.push_back(v);
+  const auto position_less = [&](int a, int b) {
+    for (int k = 0; k < 3; ++k)
+      if (V(a, k) != V(b, k))
+        return V(a, k) < V(b, k);
+    return a < b;
+  };
+  std::sort(order.begin(), order.end(), position_less);
+  std::vector<int> pair_a, pair_b;
+  std::vector<char> is_copy(static_cast<std::size_t>(n), 0);
+  for (std::size_t i = 1; i < order.size(); ++i)
+    if (V.row(order[i]) == V.row(order[i - 1])) {
+      pair_a.push_back(order[i - 1]);
+      pair_b.push_back(order[i]);
+      is_copy[static_cast<std::size_t>(order[i])] = 1;
+    }
+
   using Key = std::array<std::int64_t, 4>; // cell x, y, z, vertex
   std::vector<Key> keys;
   keys.reserve(static_cast<std::size_t>(n));
   for (int v = 0; v < n; ++v) {
-    if (!V.row(v).allFinite())
+    if (!V.row(v).allFinite() || is_copy[static_cast<std::size_t>(v)])
       continue;
     Key key;
     for (int k = 0; k < 3; ++k) {
@@ -44,7 +69,6 @@ Eigen::VectorXi weld_representatives(const Eigen::MatrixXd& V, double tolerance)
     keys.push_back(key);
   }
   std::sort(keys.begin(), keys.end());
-  std::vector<int> pair_a, pair_b;
   for (const Key& key : keys) {
     const int i = static_cast<int>(key[3]);
     for (std::int64_t dx = -1; dx <= 1; ++dx)
@@ -57,7 +81,7 @@ Eigen::VectorXi weld_representatives(const Eigen::MatrixXd& V, double tolerance)
           if (j <= i)
             continue; // each pair once
           // Zero tolerance compares positions exactly (a norm of 1e-300 differences would underflow to 0).
-          const bool close = tolerance > 0 ? (V.row(i) - V.row(j)).norm() <= tolerance : V.row(i) == V.row(j);
+          const bool close = tolerance > 0 ? (V.row(i) - V.row(j)).stableNorm() <= tolerance : V.row(i) == V.row(j);
           if (close) {
             pair_a.push_back(i);
             pair_b.push_back(j);
@@ -96,12 +120,14 @@ RepairResult repair_mesh(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, con
         throw InputError("repair_mesh: face " + std::to_string(f) + " uses vertex " +
                          std::to_string(F(f, k)) + "; mesh has " + std::to_string(nv) + " vertices");
   RepairResult result;
-  const double diagonal = bounding_box_diagonal(V);
+  // Tolerances and areas on V / s (exact for a power of two s), so that they hold at any scale.
+  const Eigen::MatrixXd Vn = V / normalizing_scale(V);
+  const double diagonal = bounding_box_diagonal(Vn);
 
   Eigen::VectorXi representative(nv);
   std::iota(representative.data(), representative.data() + nv, 0);
   if (options.weld) {
-    representative = weld_representatives(V, options.weld_tolerance * diagonal);
+    representative = weld_representatives(Vn, options.weld_tolerance * diagonal);
     const int merged = static_cast<int>(
         (representative.array() != Eigen::VectorXi::LinSpaced(nv, 0, nv - 1).array()).count());
     if (merged > 0)
@@ -122,7 +148,7 @@ RepairResult repair_mesh(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, con
       continue;
     }
     if (options.remove_zero_area && !repeated_before) {
-      const Eigen::RowVector3d pa = V.row(a), pb = V.row(b), pc = V.row(c);
+      const Eigen::RowVector3d pa = Vn.row(a), pb = Vn.row(b), pc = Vn.row(c);
       const double area = 0.5 * (pb - pa).cross(pc - pa).norm();
       if (area <= min_area) {
         ++flat;

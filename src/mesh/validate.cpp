@@ -3,6 +3,7 @@
 #include "iarap/mesh/connected_components.h"
 #include "iarap/mesh/cotan.h"
 #include "iarap/mesh/edge_topology.h"
+#include "iarap/mesh/normalize_scale.h"
 #include "iarap/mesh/repair.h"
 
 #include <algorithm>
@@ -29,6 +30,48 @@ Eigen::VectorXi group_pairs(const std::vector<int>& a, const std::vector<int>& b
   return vertex_components(pairs, n, count);
 }
 
+// Per face component (faces joined through manifold edges): whether its faces can be oriented
+// consistently, found by propagating a flip bit face to face: across an edge whose two faces run the same
+// way the bit changes, else it stays; a face reached with both bits lies on a non-orientable surface
+// (Moebius strip, Klein bottle). Returns the number of such components; first_bad gets one of their faces.
+int non_orientable_components(const Eigen::MatrixXi& G, const EdgeTopology& t, int* first_bad) {
+  const int ng = static_cast<int>(G.rows());
+  std::vector<signed char> flip(static_cast<std::size_t>(ng), -1);
+  std::vector<int> stack;
+  int bad = 0;
+  for (int seed = 0; seed < ng; ++seed) {
+    if (flip[static_cast<std::size_t>(seed)] >= 0)
+      continue;
+    flip[static_cast<std::size_t>(seed)] = 0;
+    stack.assign(1, seed);
+    bool orientable = true;
+    while (!stack.empty()) {
+      const int g = stack.back();
+      stack.pop_back();
+      for (int k = 0; k < 3; ++k) {
+        const int e = t.FE(g, k);
+        if (t.face_count(e) != 2)
+          continue;
+        const int side = t.EF(e, 0) == g ? 0 : 1;
+        const int h = t.EF(e, 1 - side), kh = t.EK(e, 1 - side);
+        const bool same_direction = G(g, (k + 1) % 3) == G(h, (kh + 1) % 3);
+        const signed char want = static_cast<signed char>(flip[static_cast<std::size_t>(g)] ^ same_direction);
+        signed char& have = flip[static_cast<std::size_t>(h)];
+        if (have < 0) {
+          have = want;
+          stack.push_back(h);
+        } else if (have != want && orientable) {
+          orientable = false;
+          if (bad == 0 && first_bad)
+            *first_bad = h;
+        }
+      }
+    }
+    bad += !orientable;
+  }
+  return bad;
+}
+
 std::string plural(int n, const char* one, const char* many) {
   return std::to_string(n) + " " + (n == 1 ? one : many);
 }
@@ -48,10 +91,14 @@ double bounding_box_diagonal(const Eigen::MatrixXd& V) {
     hi = hi.cwiseMax(V.row(v));
     any = true;
   }
-  return any ? (hi - lo).norm() : 0.0;
+  return any ? (hi - lo).stableNorm() : 0.0; // stableNorm: the squares of 1e200 would overflow
 }
 
-MeshReport check_mesh(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
+MeshReport check_mesh(const Eigen::MatrixXd& V_in, const Eigen::MatrixXi& F) {
+  // Geometry on V / s, exact for a power of two s, so that areas and cotangents neither overflow nor
+  // underflow at scales like 1e300 or 1e-300; lengths are reported back in the file's units.
+  const double scale = normalizing_scale(V_in);
+  const Eigen::MatrixXd V = V_in / scale;
   MeshReport r;
   r.vertices = static_cast<int>(V.rows());
   r.faces = static_cast<int>(F.rows());
@@ -75,7 +122,7 @@ MeshReport check_mesh(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
   if (r.non_finite_coordinates > 0)
     r.errors.push_back(plural(r.non_finite_coordinates, "vertex has", "vertices have") +
                        " a NaN or Inf coordinate; first: vertex " + std::to_string(first_bad_vertex));
-  r.bbox_diagonal = bounding_box_diagonal(V);
+  r.bbox_diagonal = bounding_box_diagonal(V); // in units of `scale` until the end
 
   // ---- face indices; only faces with three distinct in-range indices enter the topological checks
   std::vector<int> good;
@@ -121,7 +168,7 @@ MeshReport check_mesh(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
   if (r.unreferenced_vertices > 0)
     r.warnings.push_back(plural(r.unreferenced_vertices, "vertex is", "vertices are") +
                          " used by no face; first: vertex " + std::to_string(first_unused) +
-                         " (repair_mesh removes them)");
+                         " (repair removes them: `iarap deform --repair`, repair_mesh)");
 
   const int ng = static_cast<int>(good.size());
   Eigen::MatrixXi G(ng, 3);
@@ -140,11 +187,12 @@ MeshReport check_mesh(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
   if (r.zero_area_faces > 0)
     r.warnings.push_back(plural(r.zero_area_faces, "face has", "faces have") +
                          " zero area (<= 1e-12 x bbox diagonal^2); first: face " +
-                         std::to_string(first_flat) + " (repair_mesh with remove_zero_area drops them)");
+                         std::to_string(first_flat) + " (repair drops them: `iarap deform --repair`, repair_mesh with remove_zero_area)");
 
   // ---- edges: boundary, non-manifold, orientation, Delaunay
   const EdgeTopology t = edge_topology(G, nv);
   const int ne = static_cast<int>(t.E.rows());
+  r.edges = ne;
   const Eigen::MatrixXd C = face_cotangents(V, G);
   int first_nm_edge = -1, first_flip_edge = -1;
   for (int e = 0; e < ne; ++e) {
@@ -169,12 +217,27 @@ MeshReport check_mesh(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
     r.errors.push_back(plural(r.non_manifold_edges, "edge is", "edges are") +
                        " non-manifold (3 or more faces); first: " + edge_name(first_nm_edge) + " with " +
                        std::to_string(t.face_count(first_nm_edge)) + " faces");
-  if (r.inconsistently_oriented_edges > 0)
-    r.errors.push_back(plural(r.inconsistently_oriented_edges, "edge joins", "edges join") +
-                       " inconsistently oriented faces; first: " + edge_name(first_flip_edge) +
-                       " between faces " +
-                       std::to_string(good[static_cast<std::size_t>(t.EF(first_flip_edge, 0))]) + " and " +
-                       std::to_string(good[static_cast<std::size_t>(t.EF(first_flip_edge, 1))]));
+  int first_non_orientable_face = -1;
+  r.non_orientable_components = non_orientable_components(G, t, &first_non_orientable_face);
+  if (r.inconsistently_oriented_edges > 0) {
+    const std::string where = "; first: " + edge_name(first_flip_edge) + " between faces " +
+                              std::to_string(good[static_cast<std::size_t>(t.EF(first_flip_edge, 0))]) + " and " +
+                              std::to_string(good[static_cast<std::size_t>(t.EF(first_flip_edge, 1))]);
+    if (r.non_orientable_components > 0)
+      r.errors.push_back(
+          "the surface is non-orientable (" +
+          plural(r.non_orientable_components, "component has", "components have") +
+          " no consistent orientation, like a Moebius strip or a Klein bottle; first: the component of face " +
+          std::to_string(good[static_cast<std::size_t>(first_non_orientable_face)]) +
+          "): no choice of face orientations fixes it, and ARAP needs one; " +
+          plural(r.inconsistently_oriented_edges, "edge joins", "edges join") +
+          " faces oriented in the same direction" + where);
+    else
+      r.errors.push_back(plural(r.inconsistently_oriented_edges, "edge joins", "edges join") +
+                         " inconsistently oriented faces" + where +
+                         "; the surface is orientable: reverse the faces of one side (re-export with "
+                         "consistent normals)");
+  }
 
   // ---- non-manifold vertices: join the corners of a vertex in faces sharing an edge at it; more than one
   // group of corners at a vertex means more than one fan.
@@ -290,16 +353,18 @@ MeshReport check_mesh(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
     --chi[static_cast<std::size_t>(comp(t.E(e, 0)))];
   for (int g = 0; g < ng; ++g)
     ++chi[static_cast<std::size_t>(comp(G(g, 0)))];
-  if (r.non_manifold_edges == 0 && r.non_manifold_vertices == 0) {
+  // Only for an orientable manifold: a non-orientable surface of even 2 - chi - b (the Klein bottle: 0 - 0
+  // + 2) would otherwise pass for an orientable one of genus (2 - chi - b) / 2.
+  if (r.non_manifold_edges == 0 && r.non_manifold_vertices == 0 && r.non_orientable_components == 0) {
     std::int64_t genus = 0;
-    bool orientable = true;
+    bool valid = true;
     for (int c = 0; c < r.components; ++c) {
       const std::int64_t twice = 2 - chi[static_cast<std::size_t>(c)] - loops_in[static_cast<std::size_t>(c)];
       if (twice % 2 != 0 || twice < 0)
-        orientable = false;
+        valid = false;
       genus += twice / 2;
     }
-    if (orientable)
+    if (valid)
       r.genus = static_cast<int>(genus);
   }
 
@@ -313,11 +378,12 @@ MeshReport check_mesh(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
     r.warnings.push_back(plural(r.coincident_vertices, "vertex coincides", "vertices coincide") +
                          " with an earlier vertex (within 1e-12 x bbox diagonal); first: vertex " +
                          std::to_string(first_coincident) + " at the position of vertex " +
-                         std::to_string(representative(first_coincident)) + " (repair_mesh welds them)");
+                         std::to_string(representative(first_coincident)) + " (repair welds them: `iarap deform --repair`, repair_mesh)");
   if (ng > 1 && r.components == ng)
     r.warnings.push_back(
         "the mesh falls apart into one component per face (" + std::to_string(ng) +
-        "): faces share no vertices, as in an unwelded triangle soup (STL); repair_mesh welds it");
+        "): faces share no vertices, as in an unwelded triangle soup (STL); repair welds it (`iarap deform --repair`, repair_mesh)");
+  r.bbox_diagonal *= scale;
   return r;
 }
 

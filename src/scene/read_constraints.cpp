@@ -106,6 +106,7 @@ ConstraintSet parse_constraints(std::istream& in, const std::string& source, int
     const auto row = static_cast<Eigen::Index>(k);
     result.fixed(row) = order[k];
     result.targets.row(row) = seen.at(order[k]).target.transpose();
+    result.origins.push_back(source + ":" + std::to_string(seen.at(order[k]).line));
   }
   return result;
 }

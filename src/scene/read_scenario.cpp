@@ -6,6 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <functional>
@@ -210,6 +211,19 @@ Scenario parse_scenario(const std::string& text, const std::string& source) {
     const std::string message = e.what();
     const auto at = message.find("parse error");
     throw InputError(source + ": " + (at == std::string::npos ? message : message.substr(at)));
+  } catch (const json::out_of_range& e) {
+    // e.what() reads "[json.exception.out_of_range.406] number overflow parsing '1e400'", without a place.
+    const std::string message = e.what();
+    const auto open = message.find('\'');
+    const auto close = open == std::string::npos ? open : message.find('\'', open + 1);
+    if (close == std::string::npos)
+      throw InputError(source + ": " + message);
+    const std::string number = message.substr(open + 1, close - open - 1);
+    const auto at = text.find(number);
+    const std::string line =
+        at == std::string::npos ? "" : ":" + std::to_string(1 + std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(at), '\n'));
+    throw InputError(source + line + ": number " + number +
+                     " is beyond the range of a double (about 1.8e308); every number must be finite");
   }
   const Node root{document, source + ": $"};
   root.require_object({"description", "fixed", "handles"});

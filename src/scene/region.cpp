@@ -78,7 +78,7 @@ std::vector<int> select_by_rule(const Region& region, const Eigen::MatrixXd& V, 
     if (!(region.radius >= 0))
       throw InputError(region.path + ": sphere radius must be >= 0");
     for (int i = 0; i < n; ++i) {
-      if ((V.row(i).transpose() - c).squaredNorm() <= r * r)
+      if ((V.row(i).transpose() - c).stableNorm() <= r) // squares would overflow at 1e200
         selected.push_back(i);
     }
     break;

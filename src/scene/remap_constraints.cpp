@@ -38,6 +38,8 @@ ConstraintSet remap_constraints(const ConstraintSet& constraints, const Eigen::V
   result.targets.resize(result.fixed.size(), 3);
   for (std::size_t k = 0; k < source_row.size(); ++k) {
     result.targets.row(static_cast<Eigen::Index>(k)) = constraints.targets.row(source_row[k]);
+    if (static_cast<Eigen::Index>(constraints.origins.size()) == constraints.fixed.size())
+      result.origins.push_back(constraints.origins[static_cast<std::size_t>(source_row[k])]);
   }
   return result;
 }

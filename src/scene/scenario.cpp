@@ -32,6 +32,7 @@ ConstraintSet resolve_scenario(const Scenario& scenario, const Eigen::MatrixXd& 
   std::vector<int> owner(static_cast<std::size_t>(V.rows()), -1);
   std::vector<int> fixed;
   std::vector<Eigen::Vector3d> targets;
+  std::vector<std::string> origins;
   const auto claim = [&](int vertex, int who, const std::string& path) {
     int& current = owner[static_cast<std::size_t>(vertex)];
     if (current != -1) {
@@ -48,6 +49,7 @@ ConstraintSet resolve_scenario(const Scenario& scenario, const Eigen::MatrixXd& 
       claim(i, 0, scenario.fixed.front().path);
       fixed.push_back(i);
       targets.emplace_back(V.row(i).transpose());
+      origins.push_back(scenario.fixed.front().path);
     }
   }
   for (std::size_t h = 0; h < scenario.handles.size(); ++h) {
@@ -81,12 +83,14 @@ ConstraintSet resolve_scenario(const Scenario& scenario, const Eigen::MatrixXd& 
       claim(i, static_cast<int>(h) + 1, handle.path);
       fixed.push_back(i);
       targets.emplace_back(R * (V.row(i).transpose() - center) + center + t);
+      origins.push_back(handle.path);
     }
   }
   if (fixed.empty())
     throw InputError(scenario.source + ": the scenario constrains no vertex");
 
   ConstraintSet result;
+  result.origins = std::move(origins);
   result.fixed = Eigen::Map<const Eigen::VectorXi>(fixed.data(), static_cast<Eigen::Index>(fixed.size()));
   result.targets.resize(static_cast<Eigen::Index>(targets.size()), 3);
   for (std::size_t k = 0; k < targets.size(); ++k) {

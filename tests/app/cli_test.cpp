@@ -3,6 +3,7 @@
 #include "iarap/io/read_mesh.h"
 #include "iarap/io/write_mesh.h"
 #include "iarap/scene/read_constraints.h"
+#include "app/cli_runner.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>
@@ -15,49 +16,9 @@
 
 namespace {
 
+using namespace iarap::test::cli;
 namespace fs = std::filesystem;
 using nlohmann::json;
-
-struct CliRun {
-  int code = -1;
-  std::string out; // stdout (stderr too when asked)
-};
-
-// Runs `iarap ARGS`; stderr goes to the test log unless merge_stderr.
-CliRun iarap_cli(const std::string& args, bool merge_stderr = false) {
-  const std::string command = std::string("'") + IARAP_CLI_PATH + "' " + args + (merge_stderr ? " 2>&1" : "");
-  CliRun run;
-  std::FILE* pipe = ::popen(command.c_str(), "r");
-  if (pipe == nullptr)
-    return run;
-  char buffer[4096];
-  std::size_t n = 0;
-  while ((n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0)
-    run.out.append(buffer, n);
-  const int status = ::pclose(pipe);
-  run.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return run;
-}
-
-json parse_json(const CliRun& run) {
-  try {
-    return json::parse(run.out);
-  } catch (const json::exception& e) {
-    ADD_FAILURE() << "not JSON (" << e.what() << "):\n" << run.out;
-    return json::object();
-  }
-}
-
-std::string read_file(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-void write_file(const fs::path& path, const std::string& text) {
-  std::ofstream(path, std::ios::binary) << text;
-}
 
 const std::string bunny = iarap::test::data_path("bunny.off");
 
@@ -123,9 +84,7 @@ TEST(Cli, InfoOnUnreadableOrMissingMeshExitsOneAndSaysWhy) {
 }
 
 TEST(Cli, InfoOnNonManifoldCubeExitsOne) {
-  const std::string cube = iarap::test::shared_mesh_path("cube_40k.obj");
-  if (cube.empty())
-    GTEST_SKIP() << "shared mesh cube_40k.obj not present";
+  IARAP_SHARED_MESH_OR_SKIP(cube, "cube_40k.obj");
   const CliRun run = iarap_cli("info --json '" + cube + "'");
   EXPECT_EQ(run.code, 1);
   const json j = parse_json(run);

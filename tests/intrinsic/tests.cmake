@@ -1,1 +1,1 @@
-list(APPEND IARAP_TEST_SOURCES intrinsic/intrinsic_delaunay_test.cpp)
+list(APPEND IARAP_TEST_SOURCES intrinsic/intrinsic_delaunay_test.cpp intrinsic/hand_derived_test.cpp)

@@ -90,9 +90,7 @@ TEST(Laplacians, EqualCotanOnDelaunayGrid) {
 }
 
 TEST(Laplacians, EqualCotanOnDelaunayCube) {
-  const std::string path = test::shared_mesh_path("cube.obj");
-  if (path.empty())
-    GTEST_SKIP() << "shared mesh cube.obj not found (set IARAP_SHARED_MESHES)";
+  IARAP_SHARED_MESH_OR_SKIP(path, "cube.obj");
   const MeshData cube = read_mesh(path);
   expect_all_equal_cotan(cube.V, cube.F, "cube.obj");
 }

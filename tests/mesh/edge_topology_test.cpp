@@ -62,3 +62,20 @@ TEST(EdgeTopology, NonManifoldEdgeKeepsTheFirstTwoFaces) {
 }
 
 } // namespace
+
+// Issue 20: a disc whose centre has valence 200K, faces listed in decreasing order, took 48.7 s (an
+// insertion sort per vertex, quadratic in the valence); it must build in well under a second in Release.
+// The timing itself is a benchmark (bench/edge_topology_bench.cpp, the 200K / 50K ratio); this checks the
+// result against the sorted reference on the same input.
+TEST(EdgeTopology, HighValenceDiscInDecreasingOrder) {
+  const int n = 200000;
+  Eigen::MatrixXi F(n, 3);
+  for (int i = 0; i < n; ++i) {
+    const int ring = n - 1 - i; // decreasing order
+    F.row(i) << 0, 1 + ring, 1 + (ring + 1) % n;
+  }
+  expect_matches_sorted_reference(F, n + 1);
+  const EdgeTopology t = edge_topology(F, n + 1);
+  EXPECT_EQ(t.E.rows(), 2 * n);                     // n spokes + n rim edges
+  EXPECT_EQ((t.face_count.array() == 1).count(), n); // the rim is the boundary
+}

@@ -32,8 +32,11 @@ MeshReport check_shared(const char* name) {
 }
 
 #define SKIP_WITHOUT(name)                                                                                   \
-  if (iarap::test::shared_mesh_path(name).empty())                                                           \
-  GTEST_SKIP() << name << " not found in the shared meshes"
+  if (iarap::test::shared_mesh_path(name).empty()) {                                                         \
+    if (iarap::test::shared_meshes_required())                                                               \
+      FAIL() << name << " is missing and IARAP_REQUIRE_SHARED_MESHES=1";                                      \
+    GTEST_SKIP() << name << " not found in the shared meshes";                                               \
+  }
 
 } // namespace
 
@@ -113,7 +116,7 @@ TEST(CheckMesh, FlippedFace) {
   EXPECT_EQ(r.inconsistently_oriented_edges, 3);
   EXPECT_TRUE(any_contains(r.errors, "inconsistently oriented")) << joined(r.errors);
   // The first such edge lies on face 3, the flipped one.
-  EXPECT_TRUE(std::regex_search(joined(r.errors), std::regex("between faces (3 and [0-9]+|[0-9]+ and 3)\n")))
+  EXPECT_TRUE(std::regex_search(joined(r.errors), std::regex("between faces (3 and [0-9]+|[0-9]+ and 3);")))
       << joined(r.errors);
 }
 
@@ -172,4 +175,57 @@ TEST(CheckMesh, FlatGridRightAnglesAreNotNonDelaunay) {
   EXPECT_EQ(r.non_delaunay_edges, 0);
   EXPECT_EQ(r.boundary_loops, 1);
   EXPECT_EQ(r.genus, 0);
+}
+
+// Issue 20: the Klein bottle (figure-8 immersion, 15 x 32 grid glued with a flip) has chi = 0 and no
+// boundary, so the parity rule called it a torus (genus 1). Orientations propagated face to face find
+// the contradiction.
+TEST(CheckMesh, KleinBottleIsNonOrientable) {
+  const int m = 15, n = 32; // m odd: the immersion's self-intersection circle (v = 0, pi) is sampled once
+  const double pi = 3.14159265358979323846;
+  Eigen::MatrixXd V(m * n, 3);
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < m; ++i) {
+      const double u = 2 * pi * j / n, v = 2 * pi * i / m;
+      const double r = 3 + std::cos(u / 2) * std::sin(v) - std::sin(u / 2) * std::sin(2 * v);
+      V.row(j * m + i) << r * std::cos(u), r * std::sin(u),
+          std::sin(u / 2) * std::sin(v) + std::cos(u / 2) * std::sin(2 * v);
+    }
+  // Row n is row 0 with v -> -v: the gluing that makes the surface non-orientable.
+  const auto index = [&](int i, int j) { return j == n ? (m - i % m) % m : j * m + i % m; };
+  Eigen::MatrixXi F(2 * m * n, 3);
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < m; ++i) {
+      const int a = index(i, j), b = index(i + 1, j), c = index(i + 1, j + 1), d = index(i, j + 1);
+      F.row(2 * (j * m + i)) << a, b, c;
+      F.row(2 * (j * m + i) + 1) << a, c, d;
+    }
+  const MeshReport r = check_mesh(V, F);
+  EXPECT_FALSE(r.orientable());
+  EXPECT_EQ(r.non_orientable_components, 1);
+  EXPECT_FALSE(r.genus.has_value());
+  EXPECT_GT(r.inconsistently_oriented_edges, 0);
+  EXPECT_TRUE(any_contains(r.errors, "non-orientable")) << joined(r.errors);
+  // An orientable mesh with one face reversed is inconsistent but orientable, and says how to fix it.
+  auto flipped = iarap::test::octahedron();
+  std::swap(flipped.F(3, 1), flipped.F(3, 2));
+  const MeshReport o = check_mesh(flipped.V, flipped.F);
+  EXPECT_TRUE(o.orientable());
+  EXPECT_TRUE(any_contains(o.errors, "the surface is orientable: reverse the faces")) << joined(o.errors);
+}
+
+// Issue 20: at 1e300 the diagonal overflowed (reported null) and every vertex "coincided"; at 1e-300 every
+// face had "zero area". The report is the same at any scale, the diagonal in the file's units (relative
+// 1e-14: the power-of-two normalisation is exact; stableNorm rounds differently from norm by a few ulp).
+TEST(CheckMesh, ReportIsScaleInvariant) {
+  const auto m = iarap::test::octahedron();
+  for (double scale : {1e300, 1e-300, 1e80, 1e-80}) {
+    const MeshReport r = check_mesh(m.V * scale, m.F);
+    EXPECT_TRUE(r.usable()) << scale << ": " << joined(r.errors);
+    EXPECT_TRUE(r.warnings.empty()) << scale << ": " << joined(r.warnings);
+    EXPECT_EQ(r.coincident_vertices, 0) << scale;
+    EXPECT_EQ(r.zero_area_faces, 0) << scale;
+    EXPECT_EQ(r.genus, 0) << scale;
+    EXPECT_NEAR(r.bbox_diagonal / scale, 2.0 * std::sqrt(3.0), 1e-14) << scale;
+  }
 }

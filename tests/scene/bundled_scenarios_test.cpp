@@ -60,10 +60,8 @@ TEST(BundledScenarios, BunnyScenes) {
 }
 
 TEST(BundledScenarios, PaperFigureScenesOnSharedMeshes) {
-  const std::string cube = iarap::test::shared_mesh_path("cube.obj");
-  const std::string grid = iarap::test::shared_mesh_path("grid.off");
-  if (cube.empty() || grid.empty())
-    GTEST_SKIP() << "shared meshes cube.obj / grid.off not present";
+  IARAP_SHARED_MESH_OR_SKIP(cube, "cube.obj");
+  IARAP_SHARED_MESH_OR_SKIP(grid, "grid.off");
   resolve_and_check("cube_push_back.json", iarap::read_mesh(cube).V);
   resolve_and_check("plane_lift.json", iarap::read_mesh(grid).V);
 }

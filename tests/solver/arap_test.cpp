@@ -135,9 +135,7 @@ TEST(Arap, RestStabilityOnBunny) {
 // On a Delaunay mesh the intrinsic triangulation is the mesh itself, every segment is an edge with
 // sigma = 1 and iARAP is original ARAP (paper Fig. 11).
 TEST(Arap, IarapEqualsArapOnDelaunayCube) {
-  const std::string path = test::shared_mesh_path("cube.obj");
-  if (path.empty())
-    GTEST_SKIP() << "shared mesh cube.obj not found (set IARAP_SHARED_MESHES)";
+  IARAP_SHARED_MESH_OR_SKIP(path, "cube.obj");
   const MeshData m = read_mesh(path);
   const double diag = test::bbox_diagonal(m.V);
   std::vector<int> bottom = test::axis_band(m.V, 1, 0.05, -1), top = test::axis_band(m.V, 1, 0.05, +1);

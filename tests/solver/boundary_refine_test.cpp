@@ -133,7 +133,7 @@ TEST(BoundaryRefine, IdenticalToPaperWithoutObtuseBoundaryEdges) {
 TEST(BoundaryRefine, SharedMeshesWithBoundaryStayAtRest) {
   int tested = 0;
   for (const std::string name : {"lion.off", "beetle.off", "ogre.obj", "face.obj", "camelhead.off", "spike.ply", "grid.off"}) {
-    const std::string path = iarap::test::shared_mesh_path(name);
+    const std::string path = iarap::test::shared_mesh_in_loop(name);
     if (path.empty()) continue;
     const MeshData mesh = read_mesh(path);
     const RestRun refined = rest_run(mesh.V, mesh.F, true, 200);

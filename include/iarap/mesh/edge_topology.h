@@ -14,7 +14,8 @@ struct EdgeTopology {
 
 // Builds the edge topology of F (#F x 3, indices into #V vertices). Edges with more than two faces keep
 // the first two in EF and count all of them in face_count. Edges are ordered by (E(e,0), E(e,1)), the
-// faces of an edge by (face, corner). O(#F + #V).
+// faces of an edge by (face, corner). O(#F log(max valence) + #V): linear at bounded valence, never
+// quadratic in a vertex of huge valence.
 EdgeTopology edge_topology(const Eigen::MatrixXi& F, int num_vertices);
 
 } // namespace iarap

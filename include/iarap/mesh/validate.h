@@ -13,8 +13,12 @@ struct MeshReport {
   int components = 0; // pieces of the faces connected through shared vertices (unused vertices not counted)
   int boundary_loops = 0; // connected chains of boundary edges
   // Per component chi = V - E + F and genus = (2 - chi - b) / 2, summed; null when the mesh is non-manifold
-  // or a component is non-orientable (odd 2 - chi - b).
+  // or a component is non-orientable.
   std::optional<int> genus;
+  // Components whose faces admit no consistent orientation (Moebius strip, Klein bottle), found by
+  // propagating orientations across manifold edges, not from the parity of the Euler characteristic.
+  int non_orientable_components = 0;
+  bool orientable() const { return non_orientable_components == 0; }
   int non_manifold_edges = 0;    // edges with 3 or more faces
   int non_manifold_vertices = 0; // vertices whose faces form more than one edge-connected fan
   int zero_area_faces = 0;       // area <= 1e-12 * bbox_diagonal^2
@@ -26,6 +30,7 @@ struct MeshReport {
   int non_finite_coordinates = 0; // vertices with a NaN or Inf coordinate
   int coincident_vertices = 0;    // vertices within 1e-12 * bbox_diagonal of a vertex with a smaller index
   int boundary_edges = 0;
+  int edges = 0; // distinct edges of the faces that enter the topological checks
   double bbox_diagonal = 0.0;                // of the finite vertices
   std::vector<std::string> errors, warnings; // each names the first offending element and the count
   bool usable() const { return errors.empty(); }

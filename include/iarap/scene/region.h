@@ -31,7 +31,7 @@ struct Region {
 // Axis-aligned bounding box of the finite rows of V (#V x 3); rows with NaN/Inf are ignored.
 struct BoundingBox {
   Eigen::Vector3d min = Eigen::Vector3d::Zero(), max = Eigen::Vector3d::Zero();
-  double diagonal() const { return (max - min).norm(); }
+  double diagonal() const { return (max - min).stableNorm(); } // no overflow of squares at 1e200
 };
 BoundingBox bounding_box(const Eigen::MatrixXd& V);
 
