@@ -278,7 +278,7 @@ ArapData arap_precompute(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, con
                [&] {
                  const auto t = Clock::now();
                  const Eigen::MatrixXd C = face_cotangents(V, F);
-                 data.elements = options.method == ArapMethod::Arap ? arap_edge_elements(V, F, topology, C)
+                 data.elements = options.method == ArapMethod::Arap ? arap_edge_elements(V, topology, C)
                                                                     : spokes_rims_elements(V, F, C);
                  build_ms = ms_since(t);
                });

@@ -86,20 +86,15 @@ int intrinsic_cell_count(const Eigen::MatrixXi& E, int num_vertices) {
   return cells;
 }
 
-// The (cell, p_vc) terms of vertex v's right-hand side (ArapElements::rhs_term), in the order its slots and
-// their cells first name each cell.
-void vertex_rhs_terms(const ArapElements& el, int v, std::vector<ArapElements::RhsTerm>& terms) {
-  terms.clear();
+// Calls visit(cell, w_e (b_e)_v, e) for every (slot, cell) pair of vertex v, in slot order.
+template <class Visit>
+void for_each_vertex_cell(const ArapElements& el, int v, const Visit& visit) {
   for (int k = el.vertex_slot_start[static_cast<size_t>(v)]; k < el.vertex_slot_start[static_cast<size_t>(v) + 1]; ++k) {
     const int slot = el.vertex_slot[static_cast<size_t>(k)];
     const int e = slot / 3;
     const double wb = el.w(e) * el.b_value(e, slot % 3);
-    for (int j = el.cell_start[static_cast<size_t>(e)]; j < el.cell_start[static_cast<size_t>(e) + 1]; ++j) {
-      const int c = el.cell[static_cast<size_t>(j)];
-      auto term = std::find_if(terms.begin(), terms.end(), [c](const ArapElements::RhsTerm& t) { return t.cell == c; });
-      if (term == terms.end()) term = terms.insert(terms.end(), ArapElements::RhsTerm{{0.0, 0.0, 0.0}, c});
-      for (int d = 0; d < 3; ++d) term->p[d] += wb * el.s_hat(e, d);
-    }
+    for (int j = el.cell_start[static_cast<size_t>(e)]; j < el.cell_start[static_cast<size_t>(e) + 1]; ++j)
+      visit(el.cell[static_cast<size_t>(j)], wb, e);
   }
 }
 
@@ -118,17 +113,26 @@ void fill_streamed_layout(ArapElements& el) {
     }
     entry.w = el.w(e);
   }
-  // Two sweeps over the vertices, one counting their terms and one placing them, so that no pair list of
-  // the size of the slots is stored.
+  // Two sweeps over the vertices, one counting their distinct cells and one summing the terms in place,
+  // so that no pair list of the size of the slots is stored. where[c] is the position of cell c among the
+  // current vertex's terms (-1: none yet), reset after each vertex.
   const int n = el.num_vertices;
   el.rhs_term_start.assign(static_cast<size_t>(n) + 1, 0);
 #pragma omp parallel num_threads(loop_thread_count())
   {
-    std::vector<ArapElements::RhsTerm> terms;
+    std::vector<int> where(static_cast<size_t>(el.num_cells), -1);
+    std::vector<int> seen;
 #pragma omp for schedule(dynamic, 1024)
     for (int v = 0; v < n; ++v) {
-      vertex_rhs_terms(el, v, terms);
-      el.rhs_term_start[static_cast<size_t>(v) + 1] = static_cast<int>(terms.size());
+      for_each_vertex_cell(el, v, [&](int c, double, int) {
+        if (where[static_cast<size_t>(c)] < 0) {
+          where[static_cast<size_t>(c)] = 0;
+          seen.push_back(c);
+        }
+      });
+      el.rhs_term_start[static_cast<size_t>(v) + 1] = static_cast<int>(seen.size());
+      for (const int c : seen) where[static_cast<size_t>(c)] = -1;
+      seen.clear();
     }
 #pragma omp single
     {
@@ -137,8 +141,17 @@ void fill_streamed_layout(ArapElements& el) {
     }
 #pragma omp for schedule(dynamic, 1024)
     for (int v = 0; v < n; ++v) {
-      vertex_rhs_terms(el, v, terms);
-      std::copy(terms.begin(), terms.end(), el.rhs_term.begin() + el.rhs_term_start[static_cast<size_t>(v)]);
+      const int begin = el.rhs_term_start[static_cast<size_t>(v)];
+      int end = begin;
+      for_each_vertex_cell(el, v, [&](int c, double wb, int e) {
+        int& at = where[static_cast<size_t>(c)];
+        if (at < 0) {
+          at = end++;
+          el.rhs_term[static_cast<size_t>(at)] = ArapElements::RhsTerm{{0.0, 0.0, 0.0}, c};
+        }
+        for (int d = 0; d < 3; ++d) el.rhs_term[static_cast<size_t>(at)].p[d] += wb * el.s_hat(e, d);
+      });
+      for (int k = begin; k < end; ++k) where[static_cast<size_t>(el.rhs_term[static_cast<size_t>(k)].cell)] = -1;
     }
   }
 }
@@ -162,11 +175,10 @@ void check_arap_mesh(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
 
 ArapElements arap_edge_elements(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
   check_arap_mesh(V, F);
-  return arap_edge_elements(V, F, edge_topology(F, static_cast<int>(V.rows())), face_cotangents(V, F));
+  return arap_edge_elements(V, edge_topology(F, static_cast<int>(V.rows())), face_cotangents(V, F));
 }
 
-ArapElements arap_edge_elements(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const EdgeTopology& topo,
-                                const Eigen::MatrixXd& C) {
+ArapElements arap_edge_elements(const Eigen::MatrixXd& V, const EdgeTopology& topo, const Eigen::MatrixXd& C) {
   const int n = static_cast<int>(V.rows());
   check_face_cotangents(C);
   ArapElements el;

@@ -57,12 +57,17 @@ double fit_rotations(const ArapElements& el, const Eigen::MatrixXd& U, ArapEleme
   for (int c = 0; c < n; ++c) {
     const int begin = el.cell_element_start[static_cast<size_t>(c)];
     const int end = el.cell_element_start[static_cast<size_t>(c) + 1];
+    // The first kKeep element vectors are kept for the energy sweep; longer cells recompute the rest.
+    constexpr int kKeep = 32;
+    double kept[kKeep][3];
     Eigen::Matrix3d S = Eigen::Matrix3d::Zero(); // Eq. 15
     for (int k = begin; k < end; ++k) {
       const ArapElements::CellEntry& x = entry[k];
       double s[3];
       element_vector(x, u, s);
       add_covariance(x, s, S);
+      if (k - begin < kKeep)
+        for (int d = 0; d < 3; ++d) kept[k - begin][d] = s[d];
     }
     const Eigen::Matrix3d Rc = warm ? polar_rotation_near(S, R[static_cast<size_t>(c)]) : polar_rotation(S);
     // The energy from the residuals themselves (not from tr(R^T S)): it stays accurate as it goes to zero,
@@ -71,7 +76,10 @@ double fit_rotations(const ArapElements& el, const Eigen::MatrixXd& U, ArapEleme
     for (int k = begin; k < end; ++k) {
       const ArapElements::CellEntry& x = entry[k];
       double s[3];
-      element_vector(x, u, s);
+      if (k - begin < kKeep)
+        for (int d = 0; d < 3; ++d) s[d] = kept[k - begin][d];
+      else
+        element_vector(x, u, s);
       double r2 = 0.0;
       for (int i = 0; i < 3; ++i) {
         const double r = s[i] - (Rc(i, 0) * x.s_hat[0] + Rc(i, 1) * x.s_hat[1] + Rc(i, 2) * x.s_hat[2]);
