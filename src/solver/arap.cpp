@@ -380,6 +380,9 @@ ArapReport arap_solve(ArapData& data, const Eigen::MatrixXd& targets, Eigen::Mat
   Eigen::VectorXd cell_energy;
   Eigen::MatrixXd rhs, B(data.free.size(), 3), X(data.free.size(), 3);
 
+  // The first fit starts cold (fit_rotations warm-starts from rotations it is given): a solve's result then
+  // depends on its inputs only, bit for bit, not on what earlier solves left in data.R.
+  data.R.clear();
   auto start = Clock::now();
   double energy = fit_rotations(el, U, U_rows, data.R, cell_energy);
   report.local_ms += ms_since(start);
