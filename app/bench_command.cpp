@@ -12,6 +12,7 @@
 #include "iarap/mesh/validate.h"
 #include "iarap/scene/scenario.h"
 #include "iarap/solver/arap.h"
+#include "iarap/solver/fit_rotations.h"
 
 #include <nlohmann/json.hpp>
 
@@ -73,6 +74,38 @@ double elapsed_ms(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
+// The floor an iteration is measured against (issue 18), timed on the precomputed data: the median of
+// `repeats` runs of
+//  - one CHOLMOD solve of the three right-hand sides with the same factor (solve_floor_ms), and
+//  - one streaming pass over the cell-ordered elements (ArapElements::cell_entry) that reads U and writes
+//    each cell's 3x3 covariance, nothing else (element_pass_ms): the memory traffic of the local step without
+//    its rotation fits, energies and the right-hand side.
+struct IterationFloor {
+  double solve_ms = 0;
+  double element_pass_ms = 0;
+};
+
+IterationFloor iteration_floor(ArapData& data, const Eigen::MatrixXd& U, int repeats) {
+  const ArapElements& el = data.elements;
+  const ArapElements::ValueRows U_rows = U;
+  std::vector<Eigen::Matrix3d> S(static_cast<size_t>(el.num_cells));
+  std::vector<double> pass_ms, solve_ms;
+  for (int r = 0; r < repeats; ++r) {
+    auto start = std::chrono::steady_clock::now();
+    cell_covariances(el, U_rows, S);
+    pass_ms.push_back(elapsed_ms(start));
+  }
+  Eigen::MatrixXd B(data.free.size(), 3), X;
+  for (Eigen::Index i = 0; i < data.free.size(); ++i) B.row(i) = U.row(data.free(i));
+  data.solver.solve(B, X); // the workspaces as the iterations have them
+  for (int r = 0; r < repeats; ++r) {
+    const auto start = std::chrono::steady_clock::now();
+    data.solver.solve(B, X);
+    solve_ms.push_back(elapsed_ms(start));
+  }
+  return {median_after(solve_ms, 0), median_after(pass_ms, 0)};
+}
+
 nlohmann::json bench_one(const std::string& path, const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
                          const ConstraintSet& constraints, const std::string& name, int iterations) {
   // "iarap" is the tool's default iARAP, with boundary refinement (issue 8, as `deform --boundary refine`);
@@ -91,6 +124,7 @@ nlohmann::json bench_one(const std::string& path, const Eigen::MatrixXd& V, cons
   solve_options.max_iterations = iterations + 1; // the first is the warm-up
   solve_options.tolerance = -1;                  // run them all
   const ArapReport report = arap_solve(data, constraints.targets, U, solve_options);
+  const IterationFloor floor = iteration_floor(data, U, 11);
   std::vector<double> iteration_ms(report.local_ms_per_iteration.size());
   for (std::size_t k = 0; k < iteration_ms.size(); ++k)
     iteration_ms[k] = report.local_ms_per_iteration[k] + report.global_ms_per_iteration[k];
@@ -109,6 +143,8 @@ nlohmann::json bench_one(const std::string& path, const Eigen::MatrixXd& V, cons
   j["iteration_ms"] = median_after(iteration_ms, 1);
   j["local_ms"] = median_after(report.local_ms_per_iteration, 1);
   j["global_ms"] = median_after(report.global_ms_per_iteration, 1);
+  j["solve_floor_ms"] = floor.solve_ms;
+  j["element_pass_ms"] = floor.element_pass_ms;
   j["pinned"] = data.pinned.size();
   j["measured_iterations"] = std::max(report.iterations - 1, 0);
   j["factorization"] = factorization_name(arap_factorization(data));
@@ -124,8 +160,9 @@ double median_paired_ratio(const nlohmann::json& a, const nlohmann::json& b) {
 }
 
 void print_table(const nlohmann::json& results) {
-  std::printf("%-28s %9s %-12s %4s %12s %12s %12s %12s %12s %10s %10s\n", "mesh", "vertices", "method", "thr",
-              "precompute", "intrinsic", "assembly", "factor", "iteration", "local", "global");
+  std::printf("%-28s %9s %-12s %4s %12s %12s %12s %12s %12s %10s %10s %10s %10s\n", "mesh", "vertices", "method",
+              "thr", "precompute", "intrinsic", "assembly", "factor", "iteration", "local", "global", "solve_fl",
+              "elem_pass");
   for (const auto& r : results) {
     std::string name = r["mesh"].get<std::string>();
     if (name.size() > 28)
@@ -135,15 +172,24 @@ void print_table(const nlohmann::json& results) {
                   r["method"].get<std::string>().c_str(), r["error"].get<std::string>().c_str());
       continue;
     }
-    std::printf("%-28s %9lld %-12s %4d %12.3f %12.3f %12.3f %12.3f %12.3f %10.3f %10.3f\n", name.c_str(),
-                r["vertices"].get<long long>(), r["method"].get<std::string>().c_str(),
+    std::printf("%-28s %9lld %-12s %4d %12.3f %12.3f %12.3f %12.3f %12.3f %10.3f %10.3f %10.3f %10.3f\n",
+                name.c_str(), r["vertices"].get<long long>(), r["method"].get<std::string>().c_str(),
                 r["threads"].get<int>(), r["precompute_ms"].get<double>(), r["intrinsic_ms"].get<double>(),
                 r["assembly_ms"].get<double>(), r["factor_ms"].get<double>(), r["iteration_ms"].get<double>(),
-                r["local_ms"].get<double>(), r["global_ms"].get<double>());
+                r["local_ms"].get<double>(), r["global_ms"].get<double>(), r["solve_floor_ms"].get<double>(),
+                r["element_pass_ms"].get<double>());
   }
   std::printf("(milliseconds; iteration, local and global are medians over the measured iterations; with more "
               "than one thread the symbolic analysis runs beside the intrinsic flips (iarap) or the element build "
-              "(the others), and factor counts only the part of it they did not hide)\n");
+              "(the others), and factor counts only the part of it they did not hide; solve_fl (solve_floor_ms): "
+              "one CHOLMOD solve of the 3 right-hand sides, elem_pass (element_pass_ms): one streaming pass over "
+              "the cell-ordered elements reading U and writing the 3x3 covariances, medians of 11)\n");
+  for (const auto& r : results)
+    if (!r.contains("error"))
+      std::printf("%s: %s: iteration / (solve_floor + element_pass) = %.2f\n", r["mesh"].get<std::string>().c_str(),
+                  r["method"].get<std::string>().c_str(),
+                  r["iteration_ms"].get<double>() /
+                      (r["solve_floor_ms"].get<double>() + r["element_pass_ms"].get<double>()));
   // Ratios to original ARAP on the same mesh, from this one run: fastest to fastest, and with several rounds
   // also the median of the per-round ratios (round k of each method ran back to back, so a burst of other
   // load mostly cancels out of its ratio: the steadier figure on a shared machine).
@@ -229,7 +275,8 @@ void run_bench(const BenchArguments& args) {
             for (const char* key : {"precompute_ms", "intrinsic_ms", "assembly_ms", "factor_ms", "analyze_ms"})
               best[m][key] = r[key];
           if (r["iteration_ms"].get<double>() < best[m]["iteration_ms"].get<double>())
-            for (const char* key : {"iteration_ms", "local_ms", "global_ms"}) best[m][key] = r[key];
+            for (const char* key : {"iteration_ms", "local_ms", "global_ms", "solve_floor_ms", "element_pass_ms"})
+              best[m][key] = r[key];
         } catch (const Error& e) { // e.g. original ARAP on zero-area faces: report it, time the others
           best[m] = {{"mesh", path},
                      {"vertices", mesh.V.rows()},

@@ -1,4 +1,5 @@
-// Cost of one rotation fit (the ARAP local step's inner call) against a plain fixed-size JacobiSVD,
+// Cost of one rotation fit (the ARAP local step's inner call), cold (polar_rotation) and from a nearby
+// guess (polar_rotation_near, what the iterations call), against a plain fixed-size JacobiSVD,
 // on the matrices ARAP meets: general, near a rotation (converged iterations), symmetric positive
 // definite (the rest state) and rank 2 (flat one-rings).
 #include "iarap/solver/polar_rotation.h"
@@ -56,6 +57,25 @@ void BM_PolarRotation(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations());
 }
 
+// polar_rotation_near from the optimal rotation of S turned by 0.02 rad about a random axis: the guess a
+// local step has in the middle of an ARAP solve (its rotations move by about that much per iteration).
+void BM_PolarRotationNear(benchmark::State& state) {
+  const auto S = matrices(static_cast<Kind>(state.range(0)));
+  std::mt19937 rng(7);
+  std::normal_distribution<double> n;
+  std::vector<Eigen::Matrix3d> guess(S.size());
+  for (size_t i = 0; i < S.size(); ++i) {
+    const Eigen::Vector3d axis = Eigen::Vector3d(n(rng), n(rng), n(rng)).normalized();
+    guess[i] = iarap::polar_rotation(S[i]) * Eigen::AngleAxisd(0.02, axis).toRotationMatrix();
+  }
+  size_t i = 0;
+  for (auto _ : state) {
+    const size_t k = i++ & 1023;
+    benchmark::DoNotOptimize(iarap::polar_rotation_near(S[k], guess[k]));
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+
 void BM_JacobiSvdRotation(benchmark::State& state) {
   const auto S = matrices(static_cast<Kind>(state.range(0)));
   size_t i = 0;
@@ -78,5 +98,6 @@ void kinds(benchmark::internal::Benchmark* b) {
 } // namespace
 
 BENCHMARK(BM_PolarRotation)->Apply(kinds);
+BENCHMARK(BM_PolarRotationNear)->Apply(kinds);
 BENCHMARK(BM_JacobiSvdRotation)->Apply(kinds);
 BENCHMARK_MAIN();

@@ -3,6 +3,8 @@
 #include "iarap/core/errors.h"
 #include "iarap/core/threads.h"
 #include "iarap/mesh/connected_components.h"
+#include "iarap/mesh/cotan.h"
+#include "iarap/mesh/edge_topology.h"
 #include "iarap/solver/arap_rhs.h"
 #include "iarap/solver/fit_rotations.h"
 #include "iarap/solver/system_pattern.h"
@@ -227,6 +229,20 @@ void run_beside(const std::function<void()>& side, const std::function<void()>& 
 
 } // namespace
 
+namespace {
+
+// iARAP's elements and its intrinsic summary from the traced triangulation (which is released).
+void take_traced_elements(const Eigen::MatrixXd& V, std::optional<detail::TracedTriangulation>& traced, ArapData& data) {
+  data.elements = detail::traced_iarap_elements(V, traced->triangulation, traced->traces);
+  const IntrinsicTriangulation& t = traced->triangulation;
+  data.intrinsic = {t.flips,      t.non_delaunay_before,          t.non_delaunay_after,     t.mollify_delta,
+                    t.E.rows(),   traced->traces.segment_count(), t.obtuse_boundary_before, t.obtuse_boundary_after,
+                    t.inserted_t.size()};
+  traced.reset();
+}
+
+} // namespace
+
 ArapData arap_precompute(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const Eigen::VectorXi& fixed,
                          const ArapOptions& options) {
   check_arap_mesh(V, F);
@@ -237,71 +253,93 @@ ArapData arap_precompute(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, con
   data.F = F;
   data.component = vertex_components(F, static_cast<int>(V.rows()), &data.component_count);
   ConstraintLayout layout = constraint_layout(data, fixed); // bad constraints fail before any heavy work
+  const int n = static_cast<int>(V.rows());
 
   // The pattern of L (hence of L_ff) follows from F alone, so the pattern and CHOLMOD's symbolic analysis are
-  // built beside the elements (for iARAP: beside the intrinsic flips); with one thread, first.
+  // built beside the elements (for iARAP: beside the intrinsic flips); with one thread, first. The edge
+  // topology and the face cotangents are computed once and passed to whatever needs them.
   SystemPattern pattern;
   Eigen::SparseMatrix<double> L_ff, L_fc;
   SparseCholesky solver;
   double analyze_ms = 0.0;
-  auto analyze = [&] {
-    pattern = system_pattern(F, static_cast<int>(V.rows()));
+  auto analyze = [&](const EdgeTopology& topology) {
+    pattern = system_pattern(F, n, topology);
     split_system(pattern.matrix, layout, L_ff, nullptr);
     const auto t = Clock::now();
     solver.analyze(L_ff);
     analyze_ms = ms_since(t);
   };
-  // What is built beside the analysis: for the others the elements; for iARAP the intrinsic triangulation,
-  // flipped and traced; the analysis' thread joins the tracing (as tasks, trace_edges) once it is done.
-  // iARAP's elements follow on every thread, straight from the traces (no Segments).
-  std::optional<detail::TracedTriangulation> traced;
-  double build_ms = 0.0;
-  auto build = [&] {
-    const auto t = Clock::now();
-    switch (options.method) {
-    case ArapMethod::Arap:
-      data.elements = arap_edge_elements(V, F);
-      break;
-    case ArapMethod::SpokesRims:
-      data.elements = spokes_rims_elements(V, F);
-      break;
-    case ArapMethod::Iarap:
-      traced = detail::trace_phase(detail::flip_phase(V, F, options.intrinsic));
-      break;
-    }
-    build_ms = ms_since(t);
-  };
-  auto start = Clock::now();
-  run_beside(analyze, build);
-  // What the build did not hide of the analysis counts as factorization time.
-  data.timings.factor_ms = std::max(0.0, ms_since(start) - build_ms);
-  if (!traced) {
+
+  if (options.method != ArapMethod::Iarap) {
+    const EdgeTopology topology = edge_topology(F, n);
+    double build_ms = 0.0;
+    auto start = Clock::now();
+    run_beside([&] { analyze(topology); },
+               [&] {
+                 const auto t = Clock::now();
+                 const Eigen::MatrixXd C = face_cotangents(V, F);
+                 data.elements = options.method == ArapMethod::Arap ? arap_edge_elements(V, topology, C)
+                                                                    : spokes_rims_elements(V, F, C);
+                 build_ms = ms_since(t);
+               });
+    // What the build did not hide of the analysis counts as factorization time.
+    data.timings.factor_ms = std::max(0.0, ms_since(start) - build_ms);
     data.timings.assembly_ms = build_ms;
-  } else {
-    data.timings.intrinsic_ms = build_ms;
     start = Clock::now();
-    data.elements = detail::traced_iarap_elements(V, traced->triangulation, traced->traces);
-    data.timings.assembly_ms = ms_since(start);
-    const IntrinsicTriangulation& t = traced->triangulation;
-    data.intrinsic = {t.flips,      t.non_delaunay_before,           t.non_delaunay_after,     t.mollify_delta,
-                      t.E.rows(),   traced->traces.segment_count(),  t.obtuse_boundary_before, t.obtuse_boundary_after,
-                      t.inserted_t.size()};
-    traced.reset();
+    data.L = element_system_matrix(data.elements, F, pattern);
+    data.timings.assembly_ms += ms_since(start);
+    start = Clock::now();
+    split_system(data.L, layout, L_ff, &L_fc);
+    solver.factorize(L_ff); // throws SolverError
+    data.timings.factor_ms += ms_since(start);
+  } else {
+    // iARAP's L = 2 B^T D_w B is twice the cotan Laplacian of the input (cotan_system_matrix), so its
+    // assembly, analysis and numeric factorization need nothing of the intrinsic triangulation: they run on
+    // the caller's thread (its heap arena keeps the factor's pages warm) while the flips, the tracing and the
+    // elements are built beside them; the tracing's tasks are joined by whichever thread is free. Where the
+    // intrinsic lengths are not the input's (mollified degenerate faces) the identity does not hold: L is
+    // then assembled from the elements and factorized after them.
+    std::optional<detail::TracedTriangulation> traced;
+    double intrinsic_ms = 0.0, elements_ms = 0.0, cotan_ms = 0.0;
+    bool cotan_factorized = false;
+    auto start = Clock::now();
+    run_beside(
+        [&] {
+          analyze(edge_topology(F, n));
+          const auto t = Clock::now();
+          const Eigen::MatrixXd C = face_cotangents(V, F);
+          if (!C.allFinite()) return; // degenerate faces: mollified lengths, the identity does not hold
+          data.L = cotan_system_matrix(F, C, pattern);
+          split_system(data.L, layout, L_ff, &L_fc);
+          cotan_ms = ms_since(t);
+          solver.factorize(L_ff); // throws SolverError
+          cotan_factorized = true;
+        },
+        [&] {
+          auto t = Clock::now();
+          traced = detail::trace_phase(detail::flip_phase(V, F, options.intrinsic));
+          intrinsic_ms = ms_since(t);
+          t = Clock::now();
+          take_traced_elements(V, traced, data);
+          detail::finish_elements(V, data.elements);
+          elements_ms = ms_since(t);
+        },
+        true);
+    data.timings.intrinsic_ms = intrinsic_ms;
+    data.timings.assembly_ms = elements_ms + cotan_ms;
+    // What the intrinsic and element build did not hide of the analysis and factorization.
+    data.timings.factor_ms = std::max(0.0, ms_since(start) - intrinsic_ms - elements_ms - cotan_ms);
+    if (!cotan_factorized || data.intrinsic.mollify_delta != 0.0) {
+      start = Clock::now();
+      data.L = element_system_matrix(data.elements, F, pattern);
+      data.timings.assembly_ms += ms_since(start);
+      start = Clock::now();
+      split_system(data.L, layout, L_ff, &L_fc);
+      solver.factorize(L_ff);
+      data.timings.factor_ms += ms_since(start);
+    }
   }
-  start = Clock::now();
-  data.L = element_system_matrix(data.elements, F, pattern);
-  data.timings.assembly_ms += ms_since(start);
-  start = Clock::now();
-  split_system(data.L, layout, L_ff, &L_fc);
-  // Only the iterations read the elements' rest vectors and incidences: for iARAP they are filled beside
-  // the numeric factorization (the other builders filled them beside the analysis).
-  run_beside([&] { solver.factorize(L_ff); }, // throws SolverError
-             [&] {
-               if (options.method == ArapMethod::Iarap) detail::finish_elements(V, data.elements);
-             },
-             true);
   data.timings.analyze_ms = analyze_ms;
-  data.timings.factor_ms += ms_since(start);
   data.R.assign(static_cast<size_t>(data.elements.num_cells), Eigen::Matrix3d::Identity());
   commit_layout(data, fixed, layout, solver, L_fc);
   return data;
@@ -338,12 +376,15 @@ ArapReport arap_solve(ArapData& data, const Eigen::MatrixXd& targets, Eigen::Mat
   const Eigen::MatrixXd Lfc_Uc = data.L_fc * U_c;
 
   ArapReport report;
-  ArapElements::ValueRows s, q;
+  ArapElements::ValueRows U_rows; // workspaces: nothing is allocated inside the loop
   Eigen::VectorXd cell_energy;
-  Eigen::MatrixXd rhs, B(data.free.size(), 3);
+  Eigen::MatrixXd rhs, B(data.free.size(), 3), X(data.free.size(), 3);
 
+  // The first fit starts cold (fit_rotations warm-starts from rotations it is given): a solve's result then
+  // depends on its inputs only, bit for bit, not on what earlier solves left in data.R.
+  data.R.clear();
   auto start = Clock::now();
-  double energy = fit_rotations(el, U, s, data.R, cell_energy);
+  double energy = fit_rotations(el, U, U_rows, data.R, cell_energy);
   report.local_ms += ms_since(start);
   report.initial_energy = energy;
   if (!std::isfinite(energy))
@@ -351,16 +392,16 @@ ArapReport arap_solve(ArapData& data, const Eigen::MatrixXd& targets, Eigen::Mat
 
   for (int k = 0; k < options.max_iterations; ++k) {
     start = Clock::now();
-    arap_rhs(el, data.R, q, rhs); // Eq. 16
+    arap_rhs(el, data.R, rhs); // Eq. 16
     for (Eigen::Index i = 0; i < data.free.size(); ++i)
       B.row(i) = rhs.row(data.free(i)) - Lfc_Uc.row(i);
-    const Eigen::MatrixXd X = data.solver.solve(B); // three coordinates at once
+    data.solver.solve(B, X); // three coordinates at once
     for (Eigen::Index i = 0; i < data.free.size(); ++i)
       U.row(data.free(i)) = X.row(i);
     const double global_ms = ms_since(start);
 
     start = Clock::now();
-    const double next = fit_rotations(el, U, s, data.R, cell_energy);
+    const double next = fit_rotations(el, U, U_rows, data.R, cell_energy);
     const double local_ms = ms_since(start);
 
     report.iterations = k + 1;
@@ -389,21 +430,21 @@ double arap_energy(const ArapData& data, const Eigen::MatrixXd& U) {
 
 Eigen::VectorXd arap_cell_energy(const ArapData& data, const Eigen::MatrixXd& U) {
   check_positions(U, data.V.rows(), "positions U");
-  ArapElements::ValueRows s;
+  ArapElements::ValueRows U_rows;
   std::vector<Eigen::Matrix3d> R;
   Eigen::VectorXd cell_energy;
-  fit_rotations(data.elements, U, s, R, cell_energy);
+  fit_rotations(data.elements, U, U_rows, R, cell_energy);
   return cell_energy;
 }
 
 Eigen::MatrixXd arap_gradient(const ArapData& data, const Eigen::MatrixXd& U) {
   check_positions(U, data.V.rows(), "positions U");
-  ArapElements::ValueRows s, q;
+  ArapElements::ValueRows U_rows;
   std::vector<Eigen::Matrix3d> R;
   Eigen::VectorXd cell_energy;
   Eigen::MatrixXd rhs;
-  fit_rotations(data.elements, U, s, R, cell_energy);
-  arap_rhs(data.elements, R, q, rhs);
+  fit_rotations(data.elements, U, U_rows, R, cell_energy);
+  arap_rhs(data.elements, R, rhs);
   return data.L * U - rhs; // Eq. 14
 }
 

@@ -86,6 +86,76 @@ int intrinsic_cell_count(const Eigen::MatrixXi& E, int num_vertices) {
   return cells;
 }
 
+// Calls visit(cell, w_e (b_e)_v, e) for every (slot, cell) pair of vertex v, in slot order.
+template <class Visit>
+void for_each_vertex_cell(const ArapElements& el, int v, const Visit& visit) {
+  for (int k = el.vertex_slot_start[static_cast<size_t>(v)]; k < el.vertex_slot_start[static_cast<size_t>(v) + 1]; ++k) {
+    const int slot = el.vertex_slot[static_cast<size_t>(k)];
+    const int e = slot / 3;
+    const double wb = el.w(e) * el.b_value(e, slot % 3);
+    for (int j = el.cell_start[static_cast<size_t>(e)]; j < el.cell_start[static_cast<size_t>(e) + 1]; ++j)
+      visit(el.cell[static_cast<size_t>(j)], wb, e);
+  }
+}
+
+// ArapElements::cell_entry and rhs_term from the per-element arrays and their incidences.
+void fill_streamed_layout(ArapElements& el) {
+  el.cell_entry.resize(el.cell_element.size());
+  const int entries = static_cast<int>(el.cell_entry.size());
+#pragma omp parallel for num_threads(loop_thread_count()) schedule(static)
+  for (int k = 0; k < entries; ++k) {
+    const int e = el.cell_element[static_cast<size_t>(k)];
+    ArapElements::CellEntry& entry = el.cell_entry[static_cast<size_t>(k)];
+    for (int j = 0; j < 3; ++j) {
+      entry.index[j] = el.b_index(e, j);
+      entry.value[j] = el.b_value(e, j);
+      entry.s_hat[j] = el.s_hat(e, j);
+    }
+    entry.w = el.w(e);
+  }
+  // Two sweeps over the vertices, one counting their distinct cells and one summing the terms in place,
+  // so that no pair list of the size of the slots is stored. where[c] is the position of cell c among the
+  // current vertex's terms (-1: none yet), reset after each vertex.
+  const int n = el.num_vertices;
+  el.rhs_term_start.assign(static_cast<size_t>(n) + 1, 0);
+#pragma omp parallel num_threads(loop_thread_count())
+  {
+    std::vector<int> where(static_cast<size_t>(el.num_cells), -1);
+    std::vector<int> seen;
+#pragma omp for schedule(dynamic, 1024)
+    for (int v = 0; v < n; ++v) {
+      for_each_vertex_cell(el, v, [&](int c, double, int) {
+        if (where[static_cast<size_t>(c)] < 0) {
+          where[static_cast<size_t>(c)] = 0;
+          seen.push_back(c);
+        }
+      });
+      el.rhs_term_start[static_cast<size_t>(v) + 1] = static_cast<int>(seen.size());
+      for (const int c : seen) where[static_cast<size_t>(c)] = -1;
+      seen.clear();
+    }
+#pragma omp single
+    {
+      for (int v = 0; v < n; ++v) el.rhs_term_start[static_cast<size_t>(v) + 1] += el.rhs_term_start[static_cast<size_t>(v)];
+      el.rhs_term.resize(static_cast<size_t>(el.rhs_term_start[static_cast<size_t>(n)]));
+    }
+#pragma omp for schedule(dynamic, 1024)
+    for (int v = 0; v < n; ++v) {
+      const int begin = el.rhs_term_start[static_cast<size_t>(v)];
+      int end = begin;
+      for_each_vertex_cell(el, v, [&](int c, double wb, int e) {
+        int& at = where[static_cast<size_t>(c)];
+        if (at < 0) {
+          at = end++;
+          el.rhs_term[static_cast<size_t>(at)] = ArapElements::RhsTerm{{0.0, 0.0, 0.0}, c};
+        }
+        for (int d = 0; d < 3; ++d) el.rhs_term[static_cast<size_t>(at)].p[d] += wb * el.s_hat(e, d);
+      });
+      for (int k = begin; k < end; ++k) where[static_cast<size_t>(el.rhs_term[static_cast<size_t>(k)].cell)] = -1;
+    }
+  }
+}
+
 } // namespace
 
 void check_arap_mesh(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
@@ -105,9 +175,11 @@ void check_arap_mesh(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
 
 ArapElements arap_edge_elements(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
   check_arap_mesh(V, F);
+  return arap_edge_elements(V, edge_topology(F, static_cast<int>(V.rows())), face_cotangents(V, F));
+}
+
+ArapElements arap_edge_elements(const Eigen::MatrixXd& V, const EdgeTopology& topo, const Eigen::MatrixXd& C) {
   const int n = static_cast<int>(V.rows());
-  const EdgeTopology topo = edge_topology(F, n);
-  const Eigen::MatrixXd C = face_cotangents(V, F);
   check_face_cotangents(C);
   ArapElements el;
   el.num_vertices = el.num_cells = n;
@@ -137,7 +209,10 @@ ArapElements arap_edge_elements(const Eigen::MatrixXd& V, const Eigen::MatrixXi&
 
 ArapElements spokes_rims_elements(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
   check_arap_mesh(V, F);
-  const Eigen::MatrixXd C = face_cotangents(V, F);
+  return spokes_rims_elements(V, F, face_cotangents(V, F));
+}
+
+ArapElements spokes_rims_elements(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const Eigen::MatrixXd& C) {
   check_face_cotangents(C);
   ArapElements el;
   el.num_vertices = el.num_cells = static_cast<int>(V.rows());
@@ -245,6 +320,7 @@ void finish_elements(const Eigen::MatrixXd& V, ArapElements& el) {
             if (el.b_value(e, k) != 0.0) emit(el.b_index(e, k), static_cast<int>(3 * e + k));
       },
       el.vertex_slot_start, el.vertex_slot);
+  fill_streamed_layout(el);
 }
 
 ArapElements traced_iarap_elements(const Eigen::MatrixXd& V, const IntrinsicTriangulation& tri,

@@ -4,43 +4,88 @@
 
 namespace iarap {
 
-double fit_rotations(const ArapElements& el, const Eigen::MatrixXd& U, ArapElements::ValueRows& s,
+namespace {
+// s_e = U^T b_e from row-major positions u, summed in slot order exactly like s_hat (zero energy at rest).
+inline void element_vector(const ArapElements::CellEntry& x, const double* u, double (&s)[3]) {
+  for (int d = 0; d < 3; ++d) {
+    double v = 0.0;
+    for (int k = 0; k < 3; ++k) v += x.value[k] * u[3 * x.index[k] + d];
+    s[d] = v;
+  }
+}
+
+// S += w (s s_hat^T), as w (s_i s_hat_j) rather than (w s_i) s_hat_j: at rest S is then bitwise symmetric,
+// which polar_rotation turns into exactly R = I when S is positive definite.
+inline void add_covariance(const ArapElements::CellEntry& x, const double (&s)[3], Eigen::Matrix3d& S) {
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 3; ++i) S(i, j) += x.w * (s[i] * x.s_hat[j]);
+}
+} // namespace
+
+void cell_covariances(const ArapElements& el, const ArapElements::ValueRows& U_rows, std::vector<Eigen::Matrix3d>& S) {
+  S.resize(static_cast<size_t>(el.num_cells));
+  const double* u = U_rows.data();
+#pragma omp parallel for schedule(dynamic, 256)
+  for (int c = 0; c < el.num_cells; ++c) {
+    Eigen::Matrix3d Sc = Eigen::Matrix3d::Zero();
+    for (int k = el.cell_element_start[static_cast<size_t>(c)]; k < el.cell_element_start[static_cast<size_t>(c) + 1]; ++k) {
+      double s[3];
+      element_vector(el.cell_entry[static_cast<size_t>(k)], u, s);
+      add_covariance(el.cell_entry[static_cast<size_t>(k)], s, Sc);
+    }
+    S[static_cast<size_t>(c)] = Sc;
+  }
+}
+
+double fit_rotations(const ArapElements& el, const Eigen::MatrixXd& U, ArapElements::ValueRows& U_rows,
                      std::vector<Eigen::Matrix3d>& R, Eigen::VectorXd& cell_energy) {
-  const Eigen::Index m = el.size();
   const int n = el.num_cells;
-  s.resize(m, 3);
+  const Eigen::Index nv = U.rows();
+  // The previous rotations are a start for the fit only when there is one per cell.
+  const bool warm = R.size() == static_cast<size_t>(n);
   R.resize(static_cast<size_t>(n));
   cell_energy.resize(n);
-
-  // Deformed element vectors s_e = U^T b_e, summed in slot order exactly like s_hat (zero energy at rest).
+  // Row-major positions: an element's three gathers then touch three rows instead of nine column entries.
+  U_rows.resize(nv, 3);
 #pragma omp parallel for schedule(static)
-  for (Eigen::Index e = 0; e < m; ++e)
-    for (int d = 0; d < 3; ++d) {
-      double v = 0.0;
-      for (int k = 0; k < 3; ++k)
-        v += el.b_value(e, k) * U(el.b_index(e, k), d);
-      s(e, d) = v;
-    }
+  for (Eigen::Index v = 0; v < nv; ++v)
+    for (int d = 0; d < 3; ++d) U_rows(v, d) = U(v, d);
+  const double* u = U_rows.data();
+  const ArapElements::CellEntry* entry = el.cell_entry.data();
 
 #pragma omp parallel for schedule(dynamic, 256)
   for (int c = 0; c < n; ++c) {
-    const int begin = el.cell_element_start[c], end = el.cell_element_start[c + 1];
+    const int begin = el.cell_element_start[static_cast<size_t>(c)];
+    const int end = el.cell_element_start[static_cast<size_t>(c) + 1];
+    // The first kKeep element vectors are kept for the energy sweep; longer cells recompute the rest.
+    constexpr int kKeep = 32;
+    double kept[kKeep][3];
     Eigen::Matrix3d S = Eigen::Matrix3d::Zero(); // Eq. 15
     for (int k = begin; k < end; ++k) {
-      const int e = el.cell_element[k];
-      const double w = el.w(e);
-      // w (s_i s_hat_j) rather than (w s_i) s_hat_j: at rest S is then bitwise symmetric, which
-      // polar_rotation turns into exactly R = I when S is positive definite.
-      for (int j = 0; j < 3; ++j)
-        for (int i = 0; i < 3; ++i)
-          S(i, j) += w * (s(e, i) * el.s_hat(e, j));
+      const ArapElements::CellEntry& x = entry[k];
+      double s[3];
+      element_vector(x, u, s);
+      add_covariance(x, s, S);
+      if (k - begin < kKeep)
+        for (int d = 0; d < 3; ++d) kept[k - begin][d] = s[d];
     }
-    const Eigen::Matrix3d Rc = polar_rotation(S);
+    const Eigen::Matrix3d Rc = warm ? polar_rotation_near(S, R[static_cast<size_t>(c)]) : polar_rotation(S);
+    // The energy from the residuals themselves (not from tr(R^T S)): it stays accurate as it goes to zero,
+    // which the stopping rule needs. The cell's entries are still in L1 from the sweep above.
     double energy = 0.0;
     for (int k = begin; k < end; ++k) {
-      const int e = el.cell_element[k];
-      const Eigen::Vector3d r = s.row(e).transpose() - Rc * el.s_hat.row(e).transpose();
-      energy += 0.5 * el.w(e) * r.squaredNorm();
+      const ArapElements::CellEntry& x = entry[k];
+      double s[3];
+      if (k - begin < kKeep)
+        for (int d = 0; d < 3; ++d) s[d] = kept[k - begin][d];
+      else
+        element_vector(x, u, s);
+      double r2 = 0.0;
+      for (int i = 0; i < 3; ++i) {
+        const double r = s[i] - (Rc(i, 0) * x.s_hat[0] + Rc(i, 1) * x.s_hat[1] + Rc(i, 2) * x.s_hat[2]);
+        r2 += r * r;
+      }
+      energy += 0.5 * x.w * r2;
     }
     R[static_cast<size_t>(c)] = Rc;
     cell_energy(c) = energy;

@@ -9,6 +9,7 @@
 #include <Eigen/SparseCholesky>
 #include <algorithm>
 #include <cmath>
+#include <exception>
 
 namespace iarap {
 
@@ -35,12 +36,86 @@ private:
 };
 } // namespace
 
+namespace {
+// Eigen's wrapper with its CHOLMOD factor in reach, for cholmod_solve2 (Eigen's solve allocates per call).
+class CholmodLlt : public Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>> {
+public:
+  cholmod_factor* factor() const { return m_cholmodFactor; }
+};
+
+// cholmod_solve2's solution and workspaces, allocated by CHOLMOD on the first solve and reused after.
+// Freed with the CHOLMOD common of the factor that allocated them, before that factor goes.
+struct SolveWorkspace {
+  cholmod_common* common = nullptr;
+  cholmod_dense *X = nullptr, *Y = nullptr, *E = nullptr;
+  void release() {
+    if (common)
+      for (cholmod_dense** d : {&X, &Y, &E})
+        if (*d) cholmod_free_dense(d, common);
+    X = Y = E = nullptr;
+  }
+};
+
+// A CHOLMOD common of its own for a second thread's solves: the factor is only read, but the common holds
+// status and allocation state that two threads must not share.
+struct OwnCommon {
+  cholmod_common common;
+  OwnCommon() { cholmod_start(&common); }
+  ~OwnCommon() { cholmod_finish(&common); }
+  OwnCommon(const OwnCommon&) = delete;
+  OwnCommon& operator=(const OwnCommon&) = delete;
+};
+
+// cholmod_solve2 of A X = B for columns [first, first + count) of B into the workspace's X.
+void solve_columns(cholmod_factor* factor, const Eigen::MatrixXd& B, Eigen::Index first, Eigen::Index count,
+                   SolveWorkspace& ws) {
+  // A CHOLMOD view of the columns (column-major, leading dimension = rows); CHOLMOD only reads it.
+  cholmod_dense b{};
+  b.nrow = static_cast<size_t>(B.rows());
+  b.ncol = static_cast<size_t>(count);
+  b.nzmax = b.nrow * b.ncol;
+  b.d = b.nrow;
+  b.x = const_cast<double*>(B.data() + first * B.rows());
+  b.xtype = CHOLMOD_REAL;
+  b.dtype = CHOLMOD_DOUBLE;
+  if (!cholmod_solve2(CHOLMOD_A, factor, &b, nullptr, &ws.X, nullptr, &ws.Y, &ws.E, ws.common))
+    throw SolverError("sparse Cholesky: CHOLMOD's solve failed (status " + std::to_string(ws.common->status) + ")");
+}
+} // namespace
+
 struct SparseCholesky::Impl {
   Eigen::SparseMatrix<double> A; // kept so that copies can refactorize
   FactorizationKind kind = FactorizationKind::None;
   Eigen::SparseMatrix<double> analyzed; // the pattern llt was analyzed on (analyze()), values unused
-  std::unique_ptr<Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>>> llt;
+  std::unique_ptr<CholmodLlt> llt;
   std::unique_ptr<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>> ldlt;
+  SolveWorkspace workspace;
+  std::unique_ptr<OwnCommon> second_common; // for the second thread's columns (solve with 2+ threads)
+  SolveWorkspace second_workspace;
+
+  Impl() = default;
+  Impl(Impl&& other) noexcept { *this = std::move(other); }
+  // The workspace goes before the factor whose CHOLMOD common allocated it.
+  Impl& operator=(Impl&& other) noexcept {
+    if (this == &other) return *this;
+    workspace.release();
+    second_workspace.release();
+    A = std::move(other.A);
+    kind = other.kind;
+    analyzed = std::move(other.analyzed);
+    llt = std::move(other.llt);
+    ldlt = std::move(other.ldlt);
+    workspace = other.workspace;
+    other.workspace = SolveWorkspace{};
+    second_common = std::move(other.second_common);
+    second_workspace = other.second_workspace;
+    other.second_workspace = SolveWorkspace{};
+    return *this;
+  }
+  ~Impl() {
+    workspace.release();
+    second_workspace.release();
+  }
 };
 
 std::string factorization_name(FactorizationKind kind) {
@@ -94,7 +169,7 @@ void SparseCholesky::analyze(const Eigen::SparseMatrix<double>& pattern) {
   if (pattern.rows() != pattern.cols() || pattern.rows() == 0 || !pattern.isCompressed())
     return; // factorize() reports a non-square matrix; nothing to analyze for an empty one
   impl_->analyzed = pattern;
-  impl_->llt = std::make_unique<Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>>>();
+  impl_->llt = std::make_unique<CholmodLlt>();
   impl_->llt->cholmod().print = 0;
   const CholmodTeams teams;
   impl_->llt->analyzePattern(impl_->analyzed);
@@ -104,7 +179,7 @@ void SparseCholesky::factorize(const Eigen::SparseMatrix<double>& A) {
   if (!impl_)
     impl_ = std::make_unique<Impl>();
   // Reuse the symbolic analysis only for exactly the analyzed pattern.
-  std::unique_ptr<Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>>> analyzed;
+  std::unique_ptr<CholmodLlt> analyzed;
   if (impl_->llt && same_pattern(impl_->analyzed, A))
     analyzed = std::move(impl_->llt);
   *impl_ = Impl{};
@@ -130,7 +205,7 @@ void SparseCholesky::factorize(const Eigen::SparseMatrix<double>& A) {
     next.llt = std::move(analyzed);
     next.llt->factorize(next.A);
   } else {
-    next.llt = std::make_unique<Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>>>();
+    next.llt = std::make_unique<CholmodLlt>();
     next.llt->cholmod().print = 0; // "not positive definite" is an expected outcome, not a warning to print
     next.llt->compute(next.A);
   }
@@ -159,13 +234,68 @@ void SparseCholesky::factorize(const Eigen::SparseMatrix<double>& A) {
   *impl_ = std::move(next);
 }
 
+namespace {
+void check_solve(FactorizationKind kind, Eigen::Index rows, const Eigen::MatrixXd& B) {
+  if (kind == FactorizationKind::None)
+    throw SolverError("sparse Cholesky: solve called before a factorization");
+  if (B.rows() != rows)
+    throw SolverError("sparse Cholesky: right-hand side has " + std::to_string(B.rows()) +
+                      " rows, matrix has " + std::to_string(rows));
+}
+} // namespace
+
+void SparseCholesky::solve(const Eigen::MatrixXd& B, Eigen::MatrixXd& X) {
+  const FactorizationKind k = kind();
+  check_solve(k, rows(), B);
+  if (k != FactorizationKind::CholmodSupernodalLLT) {
+    X = solve(B);
+    return;
+  }
+  Impl& impl = *impl_;
+  impl.workspace.common = &impl.llt->cholmod();
+  cholmod_factor* factor = impl.llt->factor();
+  const Eigen::Index n = B.rows(), columns = B.cols();
+  X.resize(n, columns);
+  auto copy_out = [&](const SolveWorkspace& ws, Eigen::Index first, Eigen::Index count) {
+    for (Eigen::Index c = 0; c < count; ++c)
+      X.col(first + c) = Eigen::Map<const Eigen::VectorXd>(
+          static_cast<const double*>(ws.X->x) + c * static_cast<Eigen::Index>(ws.X->d), n);
+  };
+  // With two threads the columns are split (the solve is serial inside CHOLMOD): each thread streams the
+  // factor once for its columns.
+  if (columns >= 2 && !omp_in_parallel() && thread_count() >= 2) {
+    if (!impl.second_common) impl.second_common = std::make_unique<OwnCommon>();
+    impl.second_workspace.common = &impl.second_common->common;
+    const Eigen::Index first = (columns + 1) / 2;
+    std::exception_ptr error;
+#pragma omp parallel num_threads(2)
+    {
+      try {
+        if (omp_get_num_threads() < 2) { // the runtime gave one thread after all
+          solve_columns(factor, B, 0, columns, impl.workspace);
+          copy_out(impl.workspace, 0, columns);
+        } else if (omp_get_thread_num() == 0) {
+          solve_columns(factor, B, 0, first, impl.workspace);
+          copy_out(impl.workspace, 0, first);
+        } else {
+          solve_columns(factor, B, first, columns - first, impl.second_workspace);
+          copy_out(impl.second_workspace, first, columns - first);
+        }
+      } catch (...) {
+#pragma omp critical(iarap_sparse_cholesky_solve)
+        error = std::current_exception();
+      }
+    }
+    if (error) std::rethrow_exception(error);
+    return;
+  }
+  solve_columns(factor, B, 0, columns, impl.workspace);
+  copy_out(impl.workspace, 0, columns);
+}
+
 Eigen::MatrixXd SparseCholesky::solve(const Eigen::MatrixXd& B) const {
   const FactorizationKind k = kind();
-  if (k == FactorizationKind::None)
-    throw SolverError("sparse Cholesky: solve called before a factorization");
-  if (B.rows() != impl_->A.rows())
-    throw SolverError("sparse Cholesky: right-hand side has " + std::to_string(B.rows()) +
-                      " rows, matrix has " + std::to_string(impl_->A.rows()));
+  check_solve(k, rows(), B);
   if (k == FactorizationKind::Empty)
     return Eigen::MatrixXd(0, B.cols());
   Eigen::MatrixXd X = k == FactorizationKind::CholmodSupernodalLLT ? Eigen::MatrixXd(impl_->llt->solve(B))

@@ -9,7 +9,10 @@
 namespace iarap {
 
 SystemPattern system_pattern(const Eigen::MatrixXi& F, int num_vertices) {
-  const EdgeTopology topo = edge_topology(F, num_vertices);
+  return system_pattern(F, num_vertices, edge_topology(F, num_vertices));
+}
+
+SystemPattern system_pattern(const Eigen::MatrixXi& F, int num_vertices, const EdgeTopology& topo) {
   const int nv = num_vertices, ne = static_cast<int>(topo.E.rows()), nf = static_cast<int>(F.rows());
   // Column j holds j and its edge neighbours. Edges come sorted by (E(e,0), E(e,1)), so filling the
   // columns in edge order and putting the diagonal between the smaller and larger rows keeps rows sorted:
@@ -77,6 +80,23 @@ Eigen::SparseMatrix<double> element_system_matrix(const ArapElements& el, const 
         if (corner[k] >= 0 && corner[l] >= 0) // same products as the triplet assembly: bitwise symmetric
           value[pattern.face_slot(f, 3 * corner[k] + corner[l])] += cw * (el.b_value(e, k) * el.b_value(e, l));
   }
+  return L;
+}
+
+Eigen::SparseMatrix<double> cotan_system_matrix(const Eigen::MatrixXi& F, const Eigen::MatrixXd& C,
+                                                const SystemPattern& pattern) {
+  Eigen::SparseMatrix<double> L = pattern.matrix;
+  double* value = L.valuePtr();
+  for (Eigen::Index f = 0; f < F.rows(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      // The edge (a, b) opposite corner k: C(f, k) (e_a - e_b)(e_a - e_b)^T, i.e. 2 x (cot / 2) per side.
+      const int a = (k + 1) % 3, b = (k + 2) % 3;
+      const double c = C(f, k);
+      value[pattern.face_slot(f, 3 * a + a)] += c;
+      value[pattern.face_slot(f, 3 * b + b)] += c;
+      value[pattern.face_slot(f, 3 * a + b)] -= c;
+      value[pattern.face_slot(f, 3 * b + a)] -= c;
+    }
   return L;
 }
 

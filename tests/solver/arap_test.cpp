@@ -2,6 +2,7 @@
 
 #include "iarap/core/errors.h"
 #include "iarap/core/threads.h"
+#include "intrinsic/mesh_generators.h"
 #include "solver_fixtures.h"
 
 #include <Eigen/Geometry>
@@ -66,6 +67,38 @@ TEST(Arap, RestHasZeroEnergyAndGradient) {
     EXPECT_LT(std::abs(arap_energy(data, m.V)), 1e-24 * scale * scale) << arap_method_name(method);
     EXPECT_LT(arap_gradient(data, m.V).norm(), 1e-12 * scale) << arap_method_name(method);
   }
+}
+
+// arap_precompute factorizes iARAP's L as twice the cotan Laplacian of the input (cotan_system_matrix)
+// before the intrinsic triangulation exists. The checked path: the assembly from iARAP's own elements,
+// 2 B^T D_w B, is the same matrix, on a closed mesh (bunny), on non-Delaunay patches with boundary, with and
+// without boundary refinement (inserted points on the sheared strip). 1e-12 relative: the sums differ in grouping only.
+// On a mesh whose degenerate faces are mollified the identity fails and L comes from the elements.
+TEST(Arap, IarapSystemMatrixIsTheCotanLaplacian) {
+  const SolverMesh bunny = test::bunny();
+  const SolverMesh patch = test::bumpy_patch(14);
+  const test::TestMesh sheared = test::sheared_strip(16, 4, 2.0); // obtuse boundary edges: points inserted
+  const SolverMesh strip{sheared.V, sheared.F};
+  for (const SolverMesh* m : {&bunny, &patch, &strip})
+    for (const bool refine : {false, true}) {
+      ArapOptions options = with_method(ArapMethod::Iarap);
+      options.intrinsic.refine_boundary = refine;
+      const ArapData data = arap_precompute(m->V, m->F, Eigen::VectorXi::Constant(1, 0), options);
+      const Eigen::SparseMatrix<double> BtDwB = element_system_matrix(data.elements);
+      EXPECT_LT((data.L - BtDwB).norm(), 1e-12 * BtDwB.norm()) << "refine " << refine;
+      EXPECT_EQ(data.intrinsic.mollify_delta, 0.0);
+      if (m == &strip && refine) {
+        EXPECT_GT(data.intrinsic.inserted_points, 0) << "the sheared strip should get points";
+      }
+    }
+  // A sliver (zero-area face) is mollified: L is then 2 B^T D_w B of the mollified lengths.
+  Eigen::MatrixXd V(4, 3);
+  V << 0, 0, 0, 1, 0, 0, 0, 1, 0, 2, 0, 0;
+  Eigen::MatrixXi F(2, 3);
+  F << 0, 1, 2, 0, 3, 1;
+  const ArapData sliver = arap_precompute(V, F, Eigen::Vector2i(0, 1), with_method(ArapMethod::Iarap));
+  EXPECT_GT(sliver.intrinsic.mollify_delta, 0.0);
+  EXPECT_LT((sliver.L - element_system_matrix(sliver.elements)).norm(), 1e-12 * sliver.L.norm());
 }
 
 TEST(Arap, OriginalArapHasNonZeroRestGradientOnBunny) {

@@ -40,6 +40,22 @@ TEST(SparseCholesky, PositiveDefiniteUsesCholmod) {
   EXPECT_LT(residual(A, chol.solve(B), B), 1e-12);
 }
 
+// The workspace solve (cholmod_solve2, reused between calls) gives bitwise the allocating solve's X, call
+// after call, for both factorizations and for a change of the right-hand side count.
+TEST(SparseCholesky, WorkspaceSolveEqualsTheAllocatingSolve) {
+  for (const double shift : {0.0, -1.0 + 1e-3}) {
+    const auto A = path_laplacian(120, shift);
+    SparseCholesky chol(A);
+    Eigen::MatrixXd X;
+    for (const int columns : {3, 3, 1, 3}) {
+      const Eigen::MatrixXd B = Eigen::MatrixXd::Random(120, columns);
+      chol.solve(B, X);
+      EXPECT_EQ(X, chol.solve(B)) << iarap::factorization_name(chol.kind()) << ", " << columns << " columns";
+    }
+    EXPECT_THROW(chol.solve(Eigen::MatrixXd::Zero(7, 3), X), iarap::SolverError);
+  }
+}
+
 TEST(SparseCholesky, IndefiniteFallsBackToLdlt) {
   // Eigenvalues of the path Laplacian lie in (0, 4); shifting by -1 makes it indefinite but nonsingular.
   const auto A = path_laplacian(50, -1.0 + 1e-3);

@@ -51,10 +51,12 @@ struct ArapOptions {
 // Wall-clock parts of arap_precompute; they add up to its duration.
 struct ArapPrecomputeTimings {
   double intrinsic_ms = 0; // intrinsic Delaunay flips, tracing and segments (iARAP only)
-  double assembly_ms = 0;  // elements and L
+  double assembly_ms = 0;  // elements (with the layout the iterations stream) and L
   // Components, constraint check, L_ff / L_fc extraction and the numeric factorization, plus any wait for
-  // the pattern of L and the symbolic analysis, which run on their own thread beside the intrinsic and
-  // element steps when there is more than one thread (and are part of factor_ms with one thread).
+  // the pattern of L and the symbolic analysis, which run on their own thread beside the element build when
+  // there is more than one thread (and are part of factor_ms with one thread). For iARAP, whose L is twice
+  // the cotan Laplacian of the input, the numeric factorization runs beside the intrinsic build as well;
+  // factor_ms is what of it that build did not hide.
   double factor_ms = 0;
   // The symbolic analysis alone (CHOLMOD ordering), wherever it ran.
   double analyze_ms = 0;

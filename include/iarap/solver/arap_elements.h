@@ -7,6 +7,7 @@
 // (An element seen from its other end has -b and -s_hat; the sign cancels.)
 #pragma once
 #include "iarap/intrinsic/intrinsic_delaunay.h"
+#include "iarap/mesh/edge_topology.h"
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
@@ -34,6 +35,26 @@ struct ArapElements {
   std::vector<int> vertex_slot_start; // #V + 1: where vertex v is a non-zero of some b_e ...
   std::vector<int> vertex_slot;       // ... as 3 * e + slot; lets the right-hand side be gathered per vertex
 
+  // What the iterations stream (finish_elements fills it from the arrays above; fit_rotations.h, arap_rhs.h):
+  // cell_entry[k] is element cell_element[k] (b, s_hat, w side by side), so that the local step reads
+  // each cell's elements in one forward sweep instead of gathering them through cell_element.
+  struct CellEntry {
+    int index[3];
+    double value[3];
+    double s_hat[3];
+    double w;
+  };
+  std::vector<CellEntry> cell_entry;
+  // The right-hand side as sum_c R_c p_vc per vertex v (Eq. 16 regrouped): one term per (vertex, cell)
+  // pair with p_vc = sum over the elements e of cell c with (b_e)_v != 0 of w_e (b_e)_v s_hat_e (a cell
+  // repeated in cells(e) counts as often). rhs_term_start (#V + 1) delimits each vertex's terms.
+  struct RhsTerm {
+    double p[3];
+    int cell;
+  };
+  std::vector<int> rhs_term_start;
+  std::vector<RhsTerm> rhs_term;
+
   Eigen::Index size() const { return w.size(); }
 };
 
@@ -46,10 +67,15 @@ void check_arap_mesh(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F);
 // Throws TopologyError naming the edge when it has more than two faces, or the face when a face is
 // degenerate (non-finite cotangent); InputError for bad shapes or face indices.
 ArapElements arap_edge_elements(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F);
+// The same from what the caller computed once already (arap_precompute): topology = edge_topology(F, #V)
+// and C = face_cotangents(V, F) of a mesh that passed check_arap_mesh.
+ArapElements arap_edge_elements(const Eigen::MatrixXd& V, const EdgeTopology& topology, const Eigen::MatrixXd& C);
 
 // Spokes-and-rims (Chao et al. 2010, Eq. 2): one element per (face, edge) pair, w = cot(opposite angle) / 2,
 // cells = the face's three vertices. Throws TopologyError naming a degenerate face; InputError for bad input.
 ArapElements spokes_rims_elements(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F);
+// The same from C = face_cotangents(V, F) computed by the caller, for a mesh that passed check_arap_mesh.
+ArapElements spokes_rims_elements(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const Eigen::MatrixXd& C);
 
 // iARAP (Eq. 9, 11): one element per segment of a traced intrinsic Delaunay edge, b and w = w_ij |e|/|s|
 // from the segments, cells = the two endpoints of the segment's intrinsic edge. s_hat is recomputed as

@@ -8,10 +8,9 @@
 namespace iarap {
 
 // rhs (#V x 3) with row v = sum_e w_e (b_e)_v ((sum_{c in cells(e)} R_c) s_hat_e)^T (Eq. 16; the paper's
-// (R_i + R_j) / 2 times the 2 cells of L = 2 B^T D_w B). q (#E x 3) is a workspace holding the rotated,
-// weighted rest vectors. Each vertex gathers its own elements (vertex_slot CSR), so the loop is parallel
-// without atomics. R holds elements.num_cells rotations (from fit_rotations).
-void arap_rhs(const ArapElements& elements, const std::vector<Eigen::Matrix3d>& R, ArapElements::ValueRows& q,
-              Eigen::MatrixXd& rhs);
+// (R_i + R_j) / 2 times the 2 cells of L = 2 B^T D_w B), evaluated as sum_c R_c p_vc over the vertex's
+// (cell, p_vc) terms (ArapElements::rhs_term): one forward sweep, parallel over vertices without atomics,
+// nothing allocated once rhs has its size. R holds elements.num_cells rotations (from fit_rotations).
+void arap_rhs(const ArapElements& elements, const std::vector<Eigen::Matrix3d>& R, Eigen::MatrixXd& rhs);
 
 } // namespace iarap

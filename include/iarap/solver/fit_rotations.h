@@ -7,14 +7,23 @@
 
 namespace iarap {
 
-// For deformed positions U (#V x 3): the element vectors s_e = U^T b_e (#E x 3, written to s), the cell
-// covariances S_c = sum_{e in c} w_e s_e s_hat_e^T (Eq. 15), the rotations R_c = polar_rotation(S_c)
-// (elements.num_cells, written to R) and the cell energies E_c = sum_{e in c} (w_e / 2) ||s_e - R_c
-// s_hat_e||^2 (elements.num_cells, written to cell_energy; cells 0..#V-1 are the vertices). Returns E(U) =
-// sum_c E_c, the variant's energy minimized over the rotations (summed in cell order, so the value does not
-// depend on the thread count). OpenMP-parallel over elements and cells, without atomics. U must be #V x 3
-// with #V = elements.num_vertices (not checked: hot path).
-double fit_rotations(const ArapElements& elements, const Eigen::MatrixXd& U, ArapElements::ValueRows& s,
+// For deformed positions U (#V x 3): the cell covariances S_c = sum_{e in c} w_e s_e s_hat_e^T with
+// s_e = U^T b_e (Eq. 15), the rotations R_c maximizing tr(R_c^T S_c) (polar_rotation; elements.num_cells,
+// written to R) and the cell energies E_c = sum_{e in c} (w_e / 2) ||s_e - R_c s_hat_e||^2
+// (elements.num_cells, written to cell_energy; cells 0..#V-1 are the vertices). Returns E(U) = sum_c E_c,
+// the variant's energy minimized over the rotations (summed in cell order, so the value does not depend on
+// the thread count). When R holds elements.num_cells rotations on entry (the previous iterate's), they
+// start each fit (polar_rotation_near: the same rotations, fewer steps); otherwise each fit starts cold.
+// One sweep per cell over elements.cell_entry; U_rows is a workspace (a row-major copy of U, #V x 3)
+// reused between calls. OpenMP-parallel over cells, without atomics. U must be #V x 3 with
+// #V = elements.num_vertices (not checked: hot path).
+double fit_rotations(const ArapElements& elements, const Eigen::MatrixXd& U, ArapElements::ValueRows& U_rows,
                      std::vector<Eigen::Matrix3d>& R, Eigen::VectorXd& cell_energy);
+
+// The covariances S_c of fit_rotations alone (elements.num_cells, written to S) from row-major positions
+// U_rows (#V x 3), in the same sweep: the memory-bound floor of the local step that `iarap bench` reports
+// (element_pass_ms).
+void cell_covariances(const ArapElements& elements, const ArapElements::ValueRows& U_rows,
+                      std::vector<Eigen::Matrix3d>& S);
 
 } // namespace iarap

@@ -16,4 +16,11 @@ namespace iarap {
 // (Higham); the rest a fixed-size 3x3 JacobiSVD. Non-finite entries give a non-finite result.
 Eigen::Matrix3d polar_rotation(const Eigen::Matrix3d& S);
 
+// polar_rotation(S) (the same rotation to rounding) found from a guess near it, e.g. the cell's rotation
+// of the previous ARAP iteration: Newton steps on the rotation group, two or three when the guess is
+// within a few degrees, against the five to eight of polar_rotation's iteration. Whenever the guess is far
+// (first step over 0.5 rad), the quadratic model is not concave there, or S is one of polar_rotation's
+// special cases (exact rest state, near rank deficiency, S = 0, non-finite), polar_rotation(S) itself.
+Eigen::Matrix3d polar_rotation_near(const Eigen::Matrix3d& S, const Eigen::Matrix3d& guess);
+
 } // namespace iarap

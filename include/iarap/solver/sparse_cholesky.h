@@ -46,6 +46,10 @@ public:
   // X with A X = B for B n x k (all columns in one call). Throws SolverError when nothing is factorized
   // or B has the wrong number of rows.
   Eigen::MatrixXd solve(const Eigen::MatrixXd& B) const;
+  // The same X, written into X (resized only when its shape changes). For the CHOLMOD factorization the
+  // solve's workspaces live in this object and are reused from call to call (cholmod_solve2): repeated
+  // solves of one shape allocate nothing. Not for concurrent use on one object (hence non-const).
+  void solve(const Eigen::MatrixXd& B, Eigen::MatrixXd& X);
 
   FactorizationKind kind() const;
   Eigen::Index rows() const;

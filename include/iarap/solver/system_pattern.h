@@ -5,6 +5,7 @@
 // from F alone lets the global step's symbolic factorization start before the elements exist (for iARAP:
 // while the intrinsic triangulation is built) and lets L be summed in place without a triplet sort.
 #pragma once
+#include "iarap/mesh/edge_topology.h"
 #include "iarap/solver/arap_elements.h"
 
 #include <Eigen/Core>
@@ -21,6 +22,16 @@ struct SystemPattern {
 
 // The pattern of F (#F x 3, indices in 0 .. num_vertices - 1, checked by the caller). O(#F + #V).
 SystemPattern system_pattern(const Eigen::MatrixXi& F, int num_vertices);
+// The same from the edge topology of F (edge_topology(F, num_vertices)) when the caller has it already.
+SystemPattern system_pattern(const Eigen::MatrixXi& F, int num_vertices, const EdgeTopology& topology);
+
+// Twice the cotan Laplacian of the input mesh, summed on the pattern from its face cotangents C (#F x 3,
+// face_cotangents): sum_f sum_k C(f, k) (e_a - e_b)(e_a - e_b)^T over the edges (a, b) opposite corner k.
+// It is original ARAP's L, and iARAP's 2 B^T D_w B as well (the segments of an intrinsic edge through a
+// face, weighted by w_ij |e| / |s|, add up to that face's cotan form; checked in the solver tests), which
+// lets arap_precompute factorize iARAP's L before the intrinsic triangulation exists.
+Eigen::SparseMatrix<double> cotan_system_matrix(const Eigen::MatrixXi& F, const Eigen::MatrixXd& C,
+                                                const SystemPattern& pattern);
 
 // L = sum_e |cells(e)| w_e b_e b_e^T summed on the pattern through the slots of each element's face
 // (elements.face). Same values as element_system_matrix(elements), plus explicit zeros where the pattern
