@@ -12,14 +12,14 @@ import sys
 import time
 import traceback
 
-from . import (section_fig8, section_gallery, section_lion, section_rest_stability, section_symmetry,
-               section_table1, section_table2, section_table3)
+from . import (section_convergence, section_fig8, section_gallery, section_lion, section_rest_stability,
+               section_symmetry, section_table1, section_table2, section_table3)
 from .context import Context, Stopwatch
 from .report_document import Document, Heading, Paragraph, Table, to_html, to_markdown
 
 SECTIONS = [("table1", section_table1), ("table2", section_table2), ("table3", section_table3),
             ("fig8", section_fig8), ("rest_stability", section_rest_stability), ("symmetry", section_symmetry),
-            ("lion", section_lion), ("gallery", section_gallery)]
+            ("lion", section_lion), ("gallery", section_gallery), ("convergence", section_convergence)]
 RENDERER = os.path.join(os.path.dirname(os.path.abspath(__file__)), "render_vtk.py")
 
 

@@ -1,4 +1,5 @@
 # Tests of the solver module, relative to tests/.
 list(APPEND IARAP_TEST_SOURCES
   solver/polar_rotation_test.cpp solver/sparse_cholesky_test.cpp solver/arap_elements_test.cpp
-  solver/arap_test.cpp solver/boundary_refine_test.cpp solver/system_pattern_test.cpp)
+  solver/arap_test.cpp solver/boundary_refine_test.cpp solver/system_pattern_test.cpp
+  solver/accelerated_solve_test.cpp)
