@@ -1,4 +1,5 @@
 // `iarap bench MESH...`: precomputation and per-iteration timings of the three ARAP variants.
+#include "bench_converge.h"
 #include "command_registry.h"
 #include "cpu_name.h"
 #include "json_text.h"
@@ -33,29 +34,16 @@ struct BenchArguments {
   int subdivide = 0;
   bool json = false;
   std::string report;
+  double converge = 0;                    // > 0: the convergence bench (bench_converge.h) with this gap
+  std::vector<std::string> accelerators = ConvergeSettings{}.accelerators;
+  int window = 0;
+  int max_iterations = ConvergeSettings{}.max_iterations;
 };
 
 // The fixed benchmark scene (documented in README.md): the bottom 10% of the bounding box along y is
 // fixed, the top 10% along y moves by 10% of the bounding-box diagonal along +x.
 Scenario bench_scenario() {
-  Scenario scenario;
-  scenario.source = "bench scenario";
-  Region bottom;
-  bottom.kind = RegionKind::Bottom;
-  bottom.axis = 1;
-  bottom.fraction = 0.1;
-  bottom.path = "bench scenario: bottom 10% along y";
-  Region top = bottom;
-  top.kind = RegionKind::Top;
-  top.path = "bench scenario: top 10% along y";
-  Handle handle;
-  handle.vertices = {top};
-  handle.translation = Eigen::Vector3d(0.1, 0, 0);
-  handle.translation_relative = true;
-  handle.path = top.path;
-  scenario.fixed = {bottom};
-  scenario.handles = {handle};
-  return scenario;
+  return band_scenario("bench scenario", Eigen::Vector3d(0.1, 0, 0), 0);
 }
 
 // Median of values[first..]: the entries after the warm-up.
@@ -223,7 +211,10 @@ void run_bench(const BenchArguments& args) {
   j["rounds"] = args.rounds;
   j["warmup_iterations"] = 1;
   j["subdivide"] = args.subdivide;
-  j["scenario"] = "bottom 10% along y fixed; top 10% along y moved by 10% of the bbox diagonal along +x";
+  j["scenario"] = args.converge > 0 ? "bottom 10% along y fixed; top 10% along y turned 60 degrees about z and "
+                                      "moved by (0.3, -0.1, 0) bbox diagonals"
+                                    : "bottom 10% along y fixed; top 10% along y moved by 10% of the bbox diagonal along +x";
+  if (args.converge > 0) j["converge"] = args.converge;
   j["results"] = nlohmann::json::array();
   int failed = 0;
   for (const auto& path : args.meshes) {
@@ -248,6 +239,23 @@ void run_bench(const BenchArguments& args) {
                                 {"threads", thread_count()},
                                 {"error", e.what()}});
       ++failed;
+      continue;
+    }
+    if (args.converge > 0) {
+      const ConvergeSettings settings{args.converge, args.accelerators, args.window, args.max_iterations};
+      for (const std::string& method : args.methods) {
+        if (!args.json) std::cerr << "bench --converge: " << path << " (" << mesh.V.rows() << " vertices), " << method << "\n";
+        try {
+          j["results"].push_back(converge_one(path, mesh.V, mesh.F, method, settings));
+        } catch (const Error& e) { // as below: report it, run the others
+          j["results"].push_back({{"mesh", path},
+                                  {"vertices", mesh.V.rows()},
+                                  {"method", method},
+                                  {"threads", thread_count()},
+                                  {"error", e.what()}});
+          ++failed;
+        }
+      }
       continue;
     }
     // Rounds go round-robin over the methods, so that a burst of other load on a shared machine hits every
@@ -293,6 +301,9 @@ void run_bench(const BenchArguments& args) {
     write_text_file(args.report, text);
   if (args.json) {
     std::cout << text;
+  } else if (args.converge > 0) {
+    std::printf("cpu: %s, threads: %d\n", j["cpu"].get<std::string>().c_str(), thread_count());
+    print_converge_table(j["results"], args.converge);
   } else {
     std::printf("cpu: %s, threads: %d, %d measured iterations after 1 warm-up\n",
                 j["cpu"].get<std::string>().c_str(), thread_count(), args.iterations);
@@ -332,6 +343,19 @@ const bool registered = register_command(
        sub->add_option("--subdivide", args->subdivide,
                        "Apply K midpoint 1-to-4 subdivisions first (4^K x faces)")
            ->check(CLI::Range(0, 6))
+           ->capture_default_str();
+       sub->add_option("--converge", args->converge,
+                       "Instead of timing iterations: iterations and ms of each accelerator to reach an energy within "
+                       "TOL (relative) of a reference minimum, on the scene of data/bend60_scenario.json")
+           ->check(CLI::PositiveNumber);
+       sub->add_option("--accels", args->accelerators, "With --converge: comma-separated subset of none,anderson,lbfgs")
+           ->delimiter(',')
+           ->check(CLI::IsMember({"none", "anderson", "lbfgs"}))
+           ->capture_default_str();
+       sub->add_option("--window", args->window, "With --converge: accelerator history length (0 = the default)")
+           ->check(CLI::Range(0, 1000));
+       sub->add_option("--max-iterations", args->max_iterations, "With --converge: iteration limit of each run")
+           ->check(CLI::Range(1, 10000000))
            ->capture_default_str();
        sub->add_flag("--json", args->json, "Print the results as one JSON object instead of a table");
        sub->add_option("--report", args->report, "Also write the JSON results to this file (atomically)");

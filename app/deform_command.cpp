@@ -34,6 +34,9 @@ struct DeformArguments {
   std::string mesh, constraints, scenario, method = "iarap", boundary = "refine", out, report;
   int iterations = 50;
   double tolerance = 1e-6;
+  std::string accel = arap_accelerator_name(ArapSolveOptions{}.accelerator);
+  int window = ArapSolveOptions{}.window;
+  double grad_tol = ArapSolveOptions{}.gradient_tolerance;
   int threads = 0;
   bool json = false, repair = false, pin_unconstrained = false, quiet = false;
 };
@@ -195,6 +198,9 @@ void run_deform(const DeformArguments& args) {
   ArapSolveOptions solve_options;
   solve_options.max_iterations = args.iterations;
   solve_options.tolerance = args.tolerance;
+  solve_options.accelerator = parse_arap_accelerator(args.accel);
+  solve_options.window = args.window;
+  solve_options.gradient_tolerance = args.grad_tol;
   ArapReport report;
   try {
     report = arap_solve(*data, targets, U, solve_options);
@@ -207,14 +213,17 @@ void run_deform(const DeformArguments& args) {
   }
   const double max_displacement = (U - V).rowwise().norm().maxCoeff() * s; // no overflow at 1e300
   U *= s;
-  const double energy_unit = s * s; // energies scale with length^2
+  const double energy_unit = s * s; // energies scale with length^2, gradients (L U - rhs) with length
   report.initial_energy *= energy_unit;
   for (double& e : report.energies) e *= energy_unit;
+  report.initial_gradient_norm *= s;
+  for (double& g : report.gradient_norms) g *= s;
   if (!args.quiet) {
     std::cerr << "deform: " << arap_method_name(options.method) << ", " << mesh.V.rows() << " vertices, "
               << constraints.fixed.size() << " constrained, initial energy " << report.initial_energy << "\n";
     for (int k = 0; k < report.iterations; ++k) {
       std::cerr << "deform: iteration " << k + 1 << "/" << args.iterations << " energy " << report.energies[k]
+                << " gradient " << report.gradient_norms[k] << (report.accepted[k] ? " accelerated" : "")
                 << " (local " << report.local_ms_per_iteration[k] << " ms, global "
                 << report.global_ms_per_iteration[k] << " ms)\n";
     }
@@ -235,6 +244,13 @@ void run_deform(const DeformArguments& args) {
   j["converged"] = report.converged;
   j["initial_energy"] = report.initial_energy;
   j["energies"] = report.energies;
+  j["accelerator"] = arap_accelerator_name(report.accelerator);
+  j["window"] = args.window;
+  j["initial_gradient_norm"] = report.initial_gradient_norm;
+  j["gradient_norms"] = report.gradient_norms; // per iteration, like energies
+  j["accepted"] = report.accepted;             // 1: the accelerated iterate was kept
+  j["rejected"] = report.rejected;
+  j["elapsed_ms"] = report.elapsed_ms; // per iteration, since the solve began
   j["precompute_ms"] = precompute_ms;
   j["intrinsic_ms"] = arap.timings.intrinsic_ms;
   j["assembly_ms"] = arap.timings.assembly_ms;
@@ -297,6 +313,17 @@ const bool registered = register_command(
        sub->add_option(
               "--tolerance", args->tolerance,
               "Stop when the energy decreases by at most this fraction of itself in one iteration (>= 0)")
+           ->check(finite_non_negative)
+           ->capture_default_str();
+       sub->add_option("--accel", args->accel, "Accelerator of the local/global iteration: anderson, lbfgs or none")
+           ->check(CLI::IsMember({"anderson", "lbfgs", "none"}))
+           ->capture_default_str();
+       sub->add_option("--window", args->window, "History length of the accelerator (0 = plain iteration)")
+           ->check(CLI::Range(0, 1000))
+           ->capture_default_str();
+       sub->add_option("--grad-tol", args->grad_tol,
+                       "Also stop when the gradient norm at the free vertices falls to this fraction of its initial "
+                       "value (0 = off)")
            ->check(finite_non_negative)
            ->capture_default_str();
        sub->add_option("--threads", args->threads, "Threads for the parallel loops; 0 = all hardware threads")

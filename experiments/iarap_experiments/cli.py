@@ -60,7 +60,17 @@ class Cli:
         # (issue 8), which the report runs as its own variant with `--boundary refine`.
         if method == "iarap" and "--boundary" not in extra and self.has_boundary_option():
             extra += ["--boundary", "paper"]
+        # The paper's algorithm is plain local/global; the CLI's default accelerates it (issue 17).
+        if "--accel" not in extra and self.has_option("deform", "--accel"):
+            extra += ["--accel", "none"]
         return self.run_json(args + extra)
+
+    def has_option(self, subcommand: str, option: str) -> bool:
+        if not hasattr(self, "_help"):
+            self._help = {}
+        if subcommand not in self._help:
+            self._help[subcommand] = self.help_text(subcommand)
+        return option in self._help[subcommand]
 
     def has_boundary_option(self) -> bool:
         if not hasattr(self, "_has_boundary"):

@@ -43,6 +43,10 @@ class ARAP:
         U0: npt.ArrayLike | None = None,
         iterations: int = 50,
         tolerance: float = 1e-06,
+        *,
+        accelerator: str = "lbfgs",
+        window: int = 6,
+        gradient_tolerance: float = 0.0,
     ) -> _FloatArray: ...
     @property
     def fixed(self) -> _IndexArray: ...

@@ -87,7 +87,8 @@ std::unique_ptr<ArapSolver> make_solver(const py::object& V, const py::object& F
 }
 
 py::array_t<double> solve_py(ArapSolver& solver, const py::object& targets, const py::object& U0,
-                             int iterations, double tolerance) {
+                             int iterations, double tolerance, const std::string& accelerator, int window,
+                             double gradient_tolerance) {
   const auto [n, fixed_count] =
       without_gil(solver, [](const ArapData& d) { return std::make_pair(d.V.rows(), d.fixed.size()); });
   const Eigen::MatrixXd target_rows = to_points(targets, "targets", true, fixed_count, "#fixed");
@@ -97,6 +98,9 @@ py::array_t<double> solve_py(ArapSolver& solver, const py::object& targets, cons
   ArapSolveOptions options;
   options.max_iterations = iterations;
   options.tolerance = tolerance;
+  options.accelerator = parse_arap_accelerator(accelerator);
+  options.window = window;
+  options.gradient_tolerance = gradient_tolerance;
   {
     py::gil_scoped_release release;
     U = solver.solve(target_rows, std::move(U), options);
@@ -125,6 +129,16 @@ py::object report_py(const ArapSolver& solver) {
   d["global_ms"] = report->global_ms;
   d["local_ms_per_iteration"] = to_numpy(report->local_ms_per_iteration);
   d["global_ms_per_iteration"] = to_numpy(report->global_ms_per_iteration);
+  d["accelerator"] = arap_accelerator_name(report->accelerator);
+  d["initial_gradient_norm"] = report->initial_gradient_norm;
+  d["gradient_norms"] = to_numpy(report->gradient_norms);
+  py::array_t<bool> accepted(static_cast<py::ssize_t>(report->accepted.size()));
+  for (std::size_t k = 0; k < report->accepted.size(); ++k)
+    accepted.mutable_at(static_cast<py::ssize_t>(k)) = report->accepted[k] != 0;
+  d["accepted"] = accepted;
+  d["rejected"] = report->rejected;
+  d["accelerator_ms"] = report->accelerator_ms;
+  d["elapsed_ms"] = to_numpy(report->elapsed_ms);
   d["solve_ms"] = solve_ms;
   d["intrinsic_ms"] = timings.intrinsic_ms;
   d["assembly_ms"] = timings.assembly_ms;
@@ -189,14 +203,20 @@ that no weight is negative; the inserted points get rotation cells of their own 
 Raises ValueError (InputError, TopologyError) for bad arrays, indices or meshes; SolverError (a RuntimeError)
 for an unconstrained component or a failed factorization.)")
       .def("solve", &solve_py, py::arg("targets"), py::arg("U0") = py::none(), py::arg("iterations") = 50,
-           py::arg("tolerance") = 1e-6,
+           py::arg("tolerance") = 1e-6, py::kw_only(),
+           py::arg("accelerator") = arap_accelerator_name(ArapSolveOptions{}.accelerator),
+           py::arg("window") = ArapSolveOptions{}.window, py::arg("gradient_tolerance") = 0.0,
            R"(Deforms the mesh: returns U, float64 (#V, 3), with U[fixed] == targets.
 
 targets: (#fixed, 3) positions of the constrained vertices, in the order of `fixed`.
 U0: (#V, 3) initial guess (None: the rest positions); its constrained rows are replaced by the targets.
 iterations: at most this many local/global iterations (>= 0).
 tolerance: stop when one iteration lowers the energy by at most tolerance * energy; negative: always run
-`iterations` iterations. The run is described by `report`; rotations of U by `rotations`.)")
+`iterations` iterations.
+accelerator: "anderson", "lbfgs" or "none" (plain local/global); window: its history length (0 = plain).
+gradient_tolerance: also stop when the gradient norm at the free vertices is this fraction of its value at
+U0 (0 = off). Warm start: pass the previous solution as U0.
+The run is described by `report`; rotations of U by `rotations`.)")
       .def_property(
           "fixed",
           [](const ArapSolver& s) {
@@ -211,7 +231,9 @@ tolerance: stop when one iteration lowers the energy by at most tolerance * ener
       .def_property_readonly("report", &report_py,
                              R"(The last solve as a dict (None before the first solve): iterations, converged,
 initial_energy, energies (float64 (iterations,), energy after each iteration), local_ms, global_ms,
-local_ms_per_iteration, global_ms_per_iteration, solve_ms (the whole C++ solve), and the precomputation's
+local_ms_per_iteration, global_ms_per_iteration, accelerator, initial_gradient_norm, gradient_norms (per
+iteration), accepted (bool per iteration: the accelerated iterate was kept), rejected, accelerator_ms,
+elapsed_ms (per iteration, since the start), solve_ms (the whole C++ solve), and the precomputation's
 intrinsic_ms, assembly_ms, factor_ms, analyze_ms (the symbolic analysis, on its own thread beside
 intrinsic_ms + assembly_ms when threads > 1). Times in milliseconds.)")
       .def_property_readonly(

@@ -10,6 +10,7 @@
 #include "iarap/solver/system_pattern.h"
 
 #include "../intrinsic/intrinsic_phases.h"
+#include "local_global_loops.h"
 #include "traced_elements.h"
 
 #include <omp.h>
@@ -63,6 +64,28 @@ std::string arap_method_name(ArapMethod method) {
     return "iarap";
   }
   return "unknown";
+}
+
+ArapAccelerator parse_arap_accelerator(const std::string& name) {
+  if (name == "none")
+    return ArapAccelerator::None;
+  if (name == "anderson")
+    return ArapAccelerator::Anderson;
+  if (name == "lbfgs")
+    return ArapAccelerator::Lbfgs;
+  throw InputError("unknown ARAP accelerator '" + name + "'; expected anderson, lbfgs or none");
+}
+
+std::string arap_accelerator_name(ArapAccelerator accelerator) {
+  switch (accelerator) {
+  case ArapAccelerator::None:
+    return "none";
+  case ArapAccelerator::Anderson:
+    return "anderson";
+  case ArapAccelerator::Lbfgs:
+    return "lbfgs";
+  }
+  return "none";
 }
 
 namespace {
@@ -358,70 +381,19 @@ void arap_set_fixed(ArapData& data, const Eigen::VectorXi& fixed) {
 
 ArapReport arap_solve(ArapData& data, const Eigen::MatrixXd& targets, Eigen::MatrixXd& U,
                       const ArapSolveOptions& options) {
+  const auto start = Clock::now();
   if (options.max_iterations < 0)
     throw InputError("ARAP: max_iterations must be >= 0, got " + std::to_string(options.max_iterations));
   if (std::isnan(options.tolerance))
     throw InputError("ARAP: tolerance is NaN");
+  if (!(options.gradient_tolerance >= 0))
+    throw InputError("ARAP: gradient_tolerance must be >= 0, got " + std::to_string(options.gradient_tolerance));
+  if (options.window < 0)
+    throw InputError("ARAP: window must be >= 0, got " + std::to_string(options.window));
   check_positions(targets, data.fixed.size(), "targets");
   check_positions(U, data.V.rows(), "initial guess U");
-  const ArapElements& el = data.elements;
-
-  // Constrained positions in L_fc's column order: targets, then pinned vertices where the guess has them.
-  Eigen::MatrixXd U_c(data.fixed.size() + data.pinned.size(), 3);
-  U_c.topRows(data.fixed.size()) = targets;
-  for (Eigen::Index k = 0; k < data.pinned.size(); ++k)
-    U_c.row(data.fixed.size() + k) = U.row(data.pinned(k));
-  for (Eigen::Index k = 0; k < data.fixed.size(); ++k)
-    U.row(data.fixed(k)) = targets.row(k);
-  const Eigen::MatrixXd Lfc_Uc = data.L_fc * U_c;
-
-  ArapReport report;
-  ArapElements::ValueRows U_rows; // workspaces: nothing is allocated inside the loop
-  Eigen::VectorXd cell_energy;
-  Eigen::MatrixXd rhs, B(data.free.size(), 3), X(data.free.size(), 3);
-
-  // The first fit starts cold (fit_rotations warm-starts from rotations it is given): a solve's result then
-  // depends on its inputs only, bit for bit, not on what earlier solves left in data.R.
-  data.R.clear();
-  auto start = Clock::now();
-  double energy = fit_rotations(el, U, U_rows, data.R, cell_energy);
-  report.local_ms += ms_since(start);
-  report.initial_energy = energy;
-  if (!std::isfinite(energy))
-    throw SolverError("ARAP: the energy of the initial guess is not finite");
-
-  for (int k = 0; k < options.max_iterations; ++k) {
-    start = Clock::now();
-    arap_rhs(el, data.R, rhs); // Eq. 16
-    for (Eigen::Index i = 0; i < data.free.size(); ++i)
-      B.row(i) = rhs.row(data.free(i)) - Lfc_Uc.row(i);
-    data.solver.solve(B, X); // three coordinates at once
-    for (Eigen::Index i = 0; i < data.free.size(); ++i)
-      U.row(data.free(i)) = X.row(i);
-    const double global_ms = ms_since(start);
-
-    start = Clock::now();
-    const double next = fit_rotations(el, U, U_rows, data.R, cell_energy);
-    const double local_ms = ms_since(start);
-
-    report.iterations = k + 1;
-    report.energies.push_back(next);
-    report.global_ms += global_ms;
-    report.local_ms += local_ms;
-    report.global_ms_per_iteration.push_back(global_ms);
-    report.local_ms_per_iteration.push_back(local_ms);
-    if (!std::isfinite(next))
-      throw SolverError("ARAP: the energy became non-finite at iteration " + std::to_string(k + 1) +
-                        " (factorization " + factorization_name(data.solver.kind()) + ")");
-    const double previous = energy;
-    energy = next;
-    if (options.tolerance >= 0 &&
-        (energy == 0.0 || previous - energy <= options.tolerance * std::abs(previous))) {
-      report.converged = true;
-      break;
-    }
-  }
-  return report;
+  detail::LocalGlobalProblem problem(data, targets, U);
+  return detail::run_local_global(problem, options, data.solver.kind(), start);
 }
 
 double arap_energy(const ArapData& data, const Eigen::MatrixXd& U) {

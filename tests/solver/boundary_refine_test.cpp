@@ -45,6 +45,9 @@ RestRun rest_run(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, bool refine
   ArapSolveOptions solve;
   solve.max_iterations = iterations;
   solve.tolerance = -1.0;
+  // The paper's plain iteration: rest stability is a property of the discretization, and at a rest state
+  // (gradient at rounding level) L-BFGS' line search would only add trials.
+  solve.accelerator = ArapAccelerator::None;
   RestRun run;
   run.report = arap_solve(data, iarap::test::rows_of(V, idx), U, solve);
   run.drift = (U - V).rowwise().norm().maxCoeff() / iarap::test::bbox_diagonal(V);

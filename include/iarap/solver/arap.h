@@ -13,6 +13,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -111,31 +112,78 @@ ArapData arap_precompute(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, con
 // pin_unconstrained_components. On a throw, data keeps its previous constrained set.
 void arap_set_fixed(ArapData& data, const Eigen::VectorXi& fixed);
 
+// How arap_solve speeds up the local/global iteration. Every accelerator reuses the one factorization of
+// L_ff and keeps the energy monotone (see ArapSolveOptions::accelerator).
+enum class ArapAccelerator {
+  None,     // plain local/global block descent (Sec. 4.2): U_{k+1,f} = L_ff^{-1} (rhs_f(R*(U_k)) - L_fc U_c)
+  Anderson, // Anderson acceleration of that fixed-point map (Peng et al. 2018) with their energy safeguard
+  Lbfgs,    // L-BFGS on the rotation-minimized energy, initial inverse Hessian L_ff^{-1} (Liu et al. 2017)
+};
+
+// "none" | "anderson" | "lbfgs"; anything else throws InputError naming the value and the choices.
+ArapAccelerator parse_arap_accelerator(const std::string& name);
+// The inverse of parse_arap_accelerator.
+std::string arap_accelerator_name(ArapAccelerator accelerator);
+
+struct ArapReport;
+
+// Called after each iteration with the report so far; returning false stops the solve (converged stays
+// false). For progress display and for stopping on an outside criterion (the bench's energy gap).
+using ArapIterationCallback = std::function<bool(const ArapReport&)>;
+
 struct ArapSolveOptions {
   int max_iterations = 50;
   // Stop when E_prev - E <= tolerance * |E_prev| (relative energy decrease) or E == 0. A negative
   // tolerance disables the rule: exactly max_iterations iterations (benchmarks, stability tests).
   double tolerance = 1e-6;
+  // Stop when ||g_k|| <= gradient_tolerance * ||g_0||, g the gradient of the energy at the free vertices
+  // (Eq. 14 restricted to them; Frobenius norm) and g_0 its value at the initial guess. Unlike the energy
+  // rule it does not stop on a stall. 0 disables the rule.
+  double gradient_tolerance = 0.0;
+  // The accelerator (see ArapAccelerator). Anderson: an accelerated iterate whose energy is above the last
+  // accepted one is replaced by the plain iterate and the history restarts. L-BFGS: Armijo backtracking on
+  // the rotation-minimized energy; when it fails, the plain step (which never increases the energy while
+  // L_ff is positive definite) and a fresh history. Default L-BFGS, measured with `iarap bench --converge
+  // 1e-6` on the bend60 scene (README): bunny, iterations to the 1e-6 energy gap, plain / Anderson / L-BFGS:
+  // spokes-rims 945 / 127 / 97, iARAP 763 / >4000 (Anderson stagnates: 941 rejections) / 97. Original ARAP
+  // (negative weights: a non-smooth, indefinite problem) is the exception: >4000 / 1310 / >4000, so pass
+  // Anderson there.
+  ArapAccelerator accelerator = ArapAccelerator::Lbfgs;
+  // History length m of the accelerator (Anderson: past residual differences; L-BFGS: (s, y) pairs).
+  // 0 runs the plain iteration, bit for bit as ArapAccelerator::None.
+  int window = 6;
+  ArapIterationCallback on_iteration; // optional
 };
 
 struct ArapReport {
-  int iterations = 0;           // global steps taken
+  int iterations = 0;           // accepted iterates (each one global solve at least)
   double initial_energy = 0;    // E of the initial guess once the constrained rows are set to the targets
   std::vector<double> energies; // E(U_k) = min_R energy after each iteration k (size iterations)
   double local_ms = 0;          // all local steps, including the one that evaluates the last iterate
-  double global_ms = 0;         // all global steps (right-hand side and solve)
-  bool converged = false;       // the tolerance rule stopped the iteration (false: max_iterations)
-  std::vector<double> local_ms_per_iteration;  // the local step evaluating U_k (size iterations)
+  double global_ms = 0;         // all global steps (right-hand side, solve and gradient)
+  bool converged = false;       // a tolerance rule stopped the iteration (false: max_iterations or callback)
+  std::vector<double> local_ms_per_iteration;  // the local step(s) evaluating U_k (size iterations)
   std::vector<double> global_ms_per_iteration; // the global step producing U_k (size iterations)
+  ArapAccelerator accelerator = ArapAccelerator::None; // what ran (None also for window 0)
+  double initial_gradient_norm = 0;  // ||g_0|| at the free vertices
+  std::vector<double> gradient_norms; // ||g(U_k)|| at the free vertices (size iterations)
+  // Per iteration: 1 when U_k came from the accelerator (an Anderson combination or an L-BFGS step with
+  // history), 0 when it is the plain local/global iterate (first step, after a rejection, or no accelerator).
+  std::vector<unsigned char> accepted;
+  int rejected = 0;              // accelerated iterates refused by the energy safeguard / line search
+  double accelerator_ms = 0;     // the accelerator's own work (history, least squares, two-loop recursion)
+  std::vector<double> elapsed_ms; // wall time from the start of arap_solve to the end of iteration k
 };
 
 // Runs local/global iterations. targets: #fixed x 3 positions of data.fixed (same order). U: #V x 3,
-// in: the initial guess (its constrained rows are overwritten by the targets first), out: the result.
-// Iteration k: rhs from the rotations fitted to U_{k-1} (Eq. 16), U_k,f = L_ff^{-1}(rhs_f - L_fc U_c),
-// then the local step on U_k gives E(U_k) and the rotations for the next iteration.
-// data.R holds the rotations of the returned U. Throws InputError for a wrong targets / U shape or a
-// non-finite entry (naming the row), negative max_iterations or a NaN tolerance; SolverError when the energy
-// becomes non-finite.
+// in: the initial guess (its constrained rows are overwritten by the targets first; warm starts pass the
+// previous solution), out: the result. Plain iteration k: rhs from the rotations fitted to U_{k-1}
+// (Eq. 16), U_k,f = L_ff^{-1}(rhs_f - L_fc U_c), then the local step on U_k gives E(U_k) and the rotations
+// for the next iteration. Since L_ff (U_k,f - U_{k-1,f}) = -g_{k-1} this is gradient descent preconditioned
+// by L_ff, which options.accelerator speeds up (ArapSolveOptions). data.R holds the rotations of the
+// returned U. Throws InputError for a wrong targets / U shape or a non-finite entry (naming the row),
+// negative max_iterations or window, a NaN tolerance or a negative or NaN gradient_tolerance; SolverError
+// when the energy becomes non-finite.
 ArapReport arap_solve(ArapData& data, const Eigen::MatrixXd& targets, Eigen::MatrixXd& U,
                       const ArapSolveOptions& options = {});
 

@@ -1,0 +1,141 @@
+#include "bench_converge.h"
+
+#include "iarap/core/threads.h"
+#include "iarap/solver/arap.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+namespace iarap::cli {
+
+Scenario band_scenario(const std::string& name, const Eigen::Vector3d& translation_relative, double degrees_about_z) {
+  Scenario scenario;
+  scenario.source = name;
+  Region bottom;
+  bottom.kind = RegionKind::Bottom;
+  bottom.axis = 1;
+  bottom.fraction = 0.1;
+  bottom.path = name + ": bottom 10% along y";
+  Region top = bottom;
+  top.kind = RegionKind::Top;
+  top.path = name + ": top 10% along y";
+  Handle handle;
+  handle.name = "top";
+  handle.vertices = {top};
+  handle.translation = translation_relative;
+  handle.translation_relative = true;
+  handle.rotation_axis = Eigen::Vector3d::UnitZ();
+  handle.rotation_degrees = degrees_about_z;
+  handle.path = top.path;
+  scenario.fixed = {bottom};
+  scenario.handles = {handle};
+  return scenario;
+}
+
+Scenario converge_scenario() {
+  return band_scenario("converge scenario", Eigen::Vector3d(0.3, -0.1, 0.0), 60);
+}
+
+namespace {
+
+ArapSolveOptions run_options(const std::string& accelerator, const ConvergeSettings& settings) {
+  ArapSolveOptions options;
+  options.accelerator = parse_arap_accelerator(accelerator);
+  if (settings.window > 0) options.window = settings.window;
+  options.max_iterations = settings.max_iterations;
+  options.tolerance = -1; // only the gap (or the gradient rule of the reference run) stops
+  return options;
+}
+
+} // namespace
+
+nlohmann::json converge_one(const std::string& path, const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
+                            const std::string& method, const ConvergeSettings& settings) {
+  ArapOptions options;
+  options.method = parse_arap_method(method);
+  options.pin_unconstrained_components = true; // as the timing bench: meshes with unreached pieces
+  const ConstraintSet constraints = resolve_scenario(converge_scenario(), V);
+  ArapData data = arap_precompute(V, F, constraints.fixed, options);
+
+  // Reference minimum: both accelerators run to a tiny gradient; the lower energy wins (they may stop in
+  // different basins of this non-convex energy, and then the lower one is the one all runs can reach).
+  double reference = std::numeric_limits<double>::infinity();
+  nlohmann::json reference_runs = nlohmann::json::array();
+  for (const char* accelerator : {"lbfgs", "anderson"}) {
+    ArapSolveOptions long_run = run_options(accelerator, settings);
+    long_run.gradient_tolerance = settings.reference_gradient;
+    Eigen::MatrixXd U = V;
+    const ArapReport report = arap_solve(data, constraints.targets, U, long_run);
+    const double energy = report.energies.empty() ? report.initial_energy : report.energies.back();
+    reference = std::min(reference, energy);
+    reference_runs.push_back({{"accelerator", accelerator},
+                              {"iterations", report.iterations},
+                              {"energy", energy},
+                              {"relative_gradient", report.gradient_norms.empty()
+                                                        ? 0.0
+                                                        : report.gradient_norms.back() / report.initial_gradient_norm},
+                              {"converged", report.converged}});
+  }
+  const double target = reference + settings.tolerance * std::abs(reference);
+
+  nlohmann::json j;
+  j["mesh"] = path;
+  j["vertices"] = V.rows();
+  j["method"] = method;
+  j["threads"] = thread_count();
+  j["reference_energy"] = reference;
+  j["reference_runs"] = reference_runs;
+  j["runs"] = nlohmann::json::array();
+  for (const std::string& accelerator : settings.accelerators) {
+    ArapSolveOptions run = run_options(accelerator, settings);
+    run.on_iteration = [target](const ArapReport& report) { return report.energies.back() > target; };
+    Eigen::MatrixXd U = V;
+    const ArapReport report = arap_solve(data, constraints.targets, U, run);
+    const bool reached = !report.energies.empty() && report.energies.back() <= target;
+    const double ms = report.elapsed_ms.empty() ? 0.0 : report.elapsed_ms.back();
+    j["runs"].push_back({{"accelerator", accelerator},
+                         {"window", accelerator == "none" ? 0 : run.window},
+                         {"iterations", report.iterations},
+                         {"ms", ms},
+                         {"ms_per_iteration", report.iterations > 0 ? ms / report.iterations : 0.0},
+                         {"accelerator_ms", report.accelerator_ms},
+                         {"rejected", report.rejected},
+                         {"reached", reached},
+                         {"final_gap", (report.energies.empty() ? report.initial_energy : report.energies.back()) -
+                                           reference}});
+  }
+  return j;
+}
+
+void print_converge_table(const nlohmann::json& results, double tolerance) {
+  std::printf("iterations and milliseconds to an energy within %.0e (relative) of the reference minimum\n",
+              tolerance);
+  std::printf("%-28s %-12s %-9s %10s %12s %10s %9s %9s %9s %8s\n", "mesh", "method", "accel", "iterations",
+              "ms", "ms/iter", "x iter", "x time", "overhead", "rejected");
+  for (const auto& r : results) {
+    std::string name = r["mesh"].get<std::string>();
+    if (name.size() > 28) name = "..." + name.substr(name.size() - 25);
+    const nlohmann::json* plain = nullptr;
+    for (const auto& run : r["runs"])
+      if (run["accelerator"] == "none") plain = &run;
+    for (const auto& run : r["runs"]) {
+      std::printf("%-28s %-12s %-9s %9d%s %12.1f %10.3f", name.c_str(), r["method"].get<std::string>().c_str(),
+                  run["accelerator"].get<std::string>().c_str(), run["iterations"].get<int>(),
+                  run["reached"].get<bool>() ? " " : "+", run["ms"].get<double>(),
+                  run["ms_per_iteration"].get<double>());
+      if (plain && run["accelerator"] != "none" && run["iterations"].get<int>() > 0)
+        std::printf(" %9.2f %9.2f %8.1f%%", (*plain)["iterations"].get<double>() / run["iterations"].get<double>(),
+                    (*plain)["ms"].get<double>() / run["ms"].get<double>(),
+                    100.0 * (run["ms_per_iteration"].get<double>() / (*plain)["ms_per_iteration"].get<double>() - 1));
+      else
+        std::printf(" %9s %9s %9s", "", "", "");
+      std::printf(" %8d\n", run["rejected"].get<int>());
+    }
+  }
+  std::printf("(x iter, x time: plain / accelerated; overhead: ms per iteration over plain's; '+': the gap was not "
+              "reached within the iteration limit)\n");
+}
+
+} // namespace iarap::cli

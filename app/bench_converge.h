@@ -1,0 +1,39 @@
+// `iarap bench --converge TOL`: iterations and wall time of the accelerators to reach an energy within TOL
+// (relative) of a reference minimum, on the issue-17 scene.
+#pragma once
+#include "iarap/scene/scenario.h"
+
+#include <Eigen/Core>
+#include <nlohmann/json.hpp>
+
+#include <string>
+#include <vector>
+
+namespace iarap::cli {
+
+// Bottom 10% along y fixed; the top 10% along y turned about z around its centroid, then moved by
+// translation_relative bbox diagonals. `name` is the scenario's source in error messages.
+Scenario band_scenario(const std::string& name, const Eigen::Vector3d& translation_relative, double degrees_about_z);
+
+// The convergence scene: bottom 10% along y fixed; the top 10% along y turned 60 degrees about z around its
+// centroid and moved by (0.3, -0.1, 0) bbox diagonals (data/bend60_scenario.json).
+Scenario converge_scenario();
+
+struct ConvergeSettings {
+  double tolerance = 1e-6;          // energy gap E - E* <= tolerance |E*|
+  std::vector<std::string> accelerators = {"none", "anderson", "lbfgs"};
+  int window = 0;                   // 0: ArapSolveOptions' default
+  int max_iterations = 20000;       // per run, the plain one included
+  double reference_gradient = 1e-9;  // the reference run stops at this relative gradient norm
+};
+
+// One mesh and method: precompute, a long reference run (the lowest energy of L-BFGS and Anderson run to
+// reference_gradient), then one run per accelerator stopped at the gap. Returns a JSON record with a "runs"
+// array (accelerator, iterations, ms, ms_per_iteration, reached, rejected).
+nlohmann::json converge_one(const std::string& path, const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
+                            const std::string& method, const ConvergeSettings& settings);
+
+// The table of converge_one records, with plain / accelerated ratios.
+void print_converge_table(const nlohmann::json& results, double tolerance);
+
+} // namespace iarap::cli

@@ -1,0 +1,37 @@
+// The L-BFGS search direction d = -H g (Nocedal & Wright, Algorithm 7.4, the two-loop recursion) with the
+// initial inverse Hessian H_0 = L_ff^{-1}: the factorized global-step matrix, as in Liu, Bouaziz and Kavan
+// 2017 ("Quasi-Newton methods for real-time simulation of hyperelastic materials"). With no history the
+// direction is -L_ff^{-1} g, i.e. exactly the plain local/global step, so L-BFGS only adds curvature that
+// the fixed L misses (the rotations' response to the positions).
+#pragma once
+#include <Eigen/Core>
+
+#include <vector>
+
+namespace iarap::detail {
+
+class LocalGlobalProblem;
+
+class LbfgsDirection {
+public:
+  explicit LbfgsDirection(int window);
+
+  // Stores the pair s = x_{k+1} - x_k, y = g_{k+1} - g_k unless its curvature s^T y is not clearly positive
+  // (the energy is not convex; such a pair would make H indefinite). Returns whether it was kept.
+  bool push(const Eigen::MatrixXd& s, const Eigen::MatrixXd& y);
+
+  // d = -H g with H_0 r = problem.solve(r).
+  Eigen::MatrixXd direction(const Eigen::MatrixXd& g, const LocalGlobalProblem& problem) const;
+
+  void reset() { pairs_ = 0; }
+  int pairs() const { return pairs_; }
+
+private:
+  int window_;
+  int pairs_ = 0;  // held, <= window_
+  int newest_ = -1; // slot of the newest pair (circular)
+  std::vector<Eigen::MatrixXd> s_, y_;
+  std::vector<double> rho_; // 1 / (s^T y)
+};
+
+} // namespace iarap::detail

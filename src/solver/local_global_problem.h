@@ -1,0 +1,52 @@
+// The local/global ARAP problem on the free vertices' positions x (#free x 3), as the loops of arap_solve
+// (plain, Anderson, L-BFGS) see it: the energy E(x) = min_R energy with its rotations (local step), the
+// right-hand side B(x) = rhs_f(R*(x)) - L_fc U_c (Eq. 16), the plain iterate G(x) = L_ff^{-1} B(x) (global
+// step) and the gradient g(x) = L_ff x - B(x) = L_ff (x - G(x)) (Eq. 14 at the free rows, by the envelope
+// theorem). Internal to the solver; the public contract is arap_solve's.
+#pragma once
+#include "iarap/solver/arap.h"
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+
+namespace iarap::detail {
+
+class LocalGlobalProblem {
+public:
+  // Sets U's constrained rows (targets at data.fixed, U's own rows at data.pinned) and precomputes
+  // L_fc U_c and the free rows of L. data and U must outlive the problem; U is where x lives.
+  LocalGlobalProblem(ArapData& data, const Eigen::MatrixXd& targets, Eigen::MatrixXd& U);
+
+  Eigen::Index free_count() const { return data_.free.size(); }
+  // x = U's free rows.
+  Eigen::MatrixXd positions() const;
+  void set_positions(const Eigen::MatrixXd& x);
+
+  // Local step at U: fits data.R and returns E(U).
+  double local_step();
+  // B(U) from data.R (the rotations of the last local step), kept for plain_step and gradient.
+  void assemble_rhs();
+  // G = L_ff^{-1} B: the plain local/global iterate from the point assemble_rhs last saw (kept in this
+  // object until the next call: the solve reuses its workspaces and allocates nothing).
+  const Eigen::MatrixXd& plain_step();
+  // g = L_ff x - B at the point assemble_rhs last saw (U's free rows must still hold it).
+  Eigen::MatrixXd gradient() const;
+  // L_ff^{-1} r (r #free x 3).
+  Eigen::MatrixXd solve(const Eigen::MatrixXd& r) const;
+
+private:
+  ArapData& data_;
+  Eigen::MatrixXd& U_;
+  Eigen::MatrixXd Lfc_Uc_;                 // #free x 3
+  Eigen::SparseMatrix<double> L_free_cols_; // #V x #free: columns `free` of the symmetric L (its free rows)
+  ArapElements::ValueRows U_rows_;         // fit_rotations' row-major copy of U
+  Eigen::VectorXd cell_energy_;
+  Eigen::MatrixXd rhs_, B_, X_;
+};
+
+// sum_ij a_ij b_ij: the inner product of #free x 3 position-like matrices.
+inline double inner(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
+  return a.cwiseProduct(b).sum();
+}
+
+} // namespace iarap::detail
