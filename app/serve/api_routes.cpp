@@ -155,12 +155,23 @@ json state_json(const ServeConfig& config, const ServeState& state) {
 
 SolveRequest parse_solve_request(const json& body, int max_iterations) {
   require_known_fields(body,
-                       {"method", "iterations", "tolerance", "transform", "handle_targets", "cell_energy"});
+                       {"method", "iterations", "tolerance", "transform", "handle_targets", "cell_energy",
+                        "accelerator", "window", "gradient_tolerance"});
   SolveRequest request;
   request.method = parse_arap_method(string_field(body, "method", "iarap"));
   request.iterations = integer_field(body, "iterations", 5, 1, max_iterations);
   request.tolerance = number_field(body, "tolerance", 1e-6);
   request.cell_energy = bool_field(body, "cell_energy", false);
+  try {
+    request.accelerator =
+        parse_arap_accelerator(string_field(body, "accelerator", arap_accelerator_name(request.accelerator)));
+  } catch (const InputError&) {
+    throw HttpError(400, "accelerator must be \"lbfgs\", \"anderson\" or \"none\"");
+  }
+  request.window = integer_field(body, "window", request.window, 0, 1000);
+  request.gradient_tolerance = number_field(body, "gradient_tolerance", 0.0);
+  if (!(request.gradient_tolerance >= 0) || !std::isfinite(request.gradient_tolerance))
+    throw HttpError(400, "gradient_tolerance must be a finite number >= 0");
   if (body.contains("transform")) {
     const std::vector<double> m = number_array_field(body, "transform");
     if (m.size() != 16)
@@ -187,10 +198,12 @@ std::string solve_frame(const SolveRequest& request, const SolveResult& result) 
   if (request.cell_energy)
     frame.add("cell_energy", result.cell_energy);
   return frame.encode({{"method", arap_method_name(request.method)},
+                       {"accelerator", arap_accelerator_name(report.accelerator)},
                        {"iterations", report.iterations},
                        {"converged", report.converged},
                        {"initial_energy", report.initial_energy},
                        {"energies", report.energies},
+                       {"gradient_norms", report.gradient_norms},
                        {"precompute_ms", result.precompute_ms},
                        {"solve_ms", result.solve_ms},
                        {"local_ms", report.local_ms},

@@ -10,7 +10,7 @@
 //   POST /api/solve            {"method", "iterations", "tolerance", "transform" | "handle_targets",
 //                               "cell_energy"} -> binary frame: energies + positions (+ cell energies)
 //   GET  /api/progress         JSON: the running solve's method, iteration, iterations (no session lock)
-//   POST /api/cancel           stops the running solve after its current chunk of iterations
+//   POST /api/cancel           stops the running solve after its current iteration
 //   POST /api/reset            every method back to the rest shape
 //   POST /api/scenario         {"method", "transform" | "handle_targets"} -> a scenario (JSON) or
 //                              constraints file (text) `iarap deform` replays (scenario_files.h)

@@ -47,11 +47,11 @@ void check_index_set(const Eigen::VectorXi& set, const char* name, int vertex_co
   }
 }
 
-// arap_solve in chunks of ServeState::solve_chunk iterations, publishing the progress after each and
-// stopping early when a cancel is requested. The chunks' reports are joined into one: a chunk starts where
-// the previous one ended, so its initial energy repeats the previous last energy and is dropped.
-ArapReport solve_in_chunks(ArapData& data, const Eigen::MatrixXd& targets, Eigen::MatrixXd& U,
-                           const SolveRequest& request, SolveProgress& progress) {
+// One arap_solve call that publishes its progress after every iteration and stops when a cancel is
+// requested (the callback returns false). One call, not chunks: the accelerators keep their history, so the
+// page's result equals `iarap deform`'s with the same options bit for bit.
+ArapReport solve_with_progress(ArapData& data, const Eigen::MatrixXd& targets, Eigen::MatrixXd& U,
+                               const SolveRequest& request, SolveProgress& progress) {
   progress.cancel_requested = false;
   progress.method = static_cast<int>(request.method);
   progress.iteration = 0;
@@ -61,28 +61,18 @@ ArapReport solve_in_chunks(ArapData& data, const Eigen::MatrixXd& targets, Eigen
     SolveProgress& progress;
     ~Done() { progress.running = false; }
   } done{progress};
-  ArapReport total;
-  for (bool first = true; first || (total.iterations < request.iterations && !total.converged);
-       first = false) {
-    if (progress.cancel_requested)
-      break;
-    ArapSolveOptions options;
-    options.max_iterations = std::min(ServeState::solve_chunk, request.iterations - total.iterations);
-    options.tolerance = request.tolerance;
-    ArapReport chunk = arap_solve(data, targets, U, options);
-    if (first)
-      total.initial_energy = chunk.initial_energy;
-    total.iterations += chunk.iterations;
-    total.converged = chunk.converged;
-    total.local_ms += chunk.local_ms;
-    total.global_ms += chunk.global_ms;
-    total.energies.insert(total.energies.end(), chunk.energies.begin(), chunk.energies.end());
-    progress.iteration = total.iterations;
-    progress.energy = total.energies.empty() ? total.initial_energy : total.energies.back();
-    if (chunk.iterations < options.max_iterations) // the tolerance rule (or E == 0) stopped it
-      break;
-  }
-  return total;
+  ArapSolveOptions options;
+  options.max_iterations = request.iterations;
+  options.tolerance = request.tolerance;
+  options.accelerator = request.accelerator;
+  options.window = request.window;
+  options.gradient_tolerance = request.gradient_tolerance;
+  options.on_iteration = [&progress](const ArapReport& report) {
+    progress.iteration = report.iterations;
+    progress.energy = report.energies.empty() ? report.initial_energy : report.energies.back();
+    return !progress.cancel_requested.load();
+  };
+  return arap_solve(data, targets, U, options);
 }
 
 } // namespace
@@ -306,7 +296,7 @@ SolveResult ServeState::solve(const SolveRequest& request) {
 
   Eigen::MatrixXd U = state.U; // commit only a successful solve
   const auto solve_start = std::chrono::steady_clock::now();
-  result.report = solve_in_chunks(*state.data, targets, U, request, progress_);
+  result.report = solve_with_progress(*state.data, targets, U, request, progress_);
   result.cancelled = !result.report.converged && result.report.iterations < request.iterations;
   result.solve_ms = elapsed_ms(solve_start);
   result.pinned = static_cast<int>(state.data->pinned.size());

@@ -41,6 +41,9 @@ struct SolveRequest {
   ArapMethod method = ArapMethod::Iarap;
   int iterations = 5;
   double tolerance = 1e-6; // ArapSolveOptions::tolerance; negative: exactly `iterations`
+  ArapAccelerator accelerator = ArapSolveOptions{}.accelerator; // as `iarap deform --accel`
+  int window = ArapSolveOptions{}.window;
+  double gradient_tolerance = 0; // ArapSolveOptions::gradient_tolerance (0 = off)
   // Handle targets: anchors moved by transform (4 x 4 affine, last row 0 0 0 1), or given as #handle x 3.
   std::optional<Eigen::Matrix4d> transform;
   std::optional<Eigen::MatrixXd> handle_targets;
@@ -54,7 +57,7 @@ struct SolveResult {
   int pinned = 0;                 // vertices pinned because their component had no constrained vertex
   std::vector<float> positions;   // #V x 3 row-major
   std::vector<float> cell_energy; // #V when requested
-  bool cancelled = false;         // POST /api/cancel stopped it early; positions are the last chunk's
+  bool cancelled = false;         // POST /api/cancel stopped it early; positions are the last iterate's
 };
 
 // The constrained vertices of a method with their targets for a request, for saving them as a file.
@@ -110,11 +113,10 @@ public:
   ConstraintTargets constraint_targets(ArapMethod method, const SolveRequest& request) const;
 
   // Precomputes the method on first use, refactorizes after a constraint change, then runs arap_solve from
-  // the method's current U, in chunks of solve_chunk iterations that report to progress() and stop early
-  // on a cancel. Throws HttpError 409 without constrained vertices, InputError for a target shape or
+  // the method's current U as one call that reports every iteration to progress() and stops early on a
+  // cancel (keeping the last finished iterate). Throws HttpError 409 without constrained vertices, InputError for a target shape or
   // value at fault, TopologyError / SolverError from the solver; the state is unchanged then.
   SolveResult solve(const SolveRequest& request);
-  static constexpr int solve_chunk = 10; // interactive updates (5 iterations) run as one arap_solve call
 
   // Read without the session mutex (see SolveProgress).
   SolveProgress& progress() { return progress_; }

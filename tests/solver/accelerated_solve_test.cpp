@@ -261,7 +261,10 @@ TEST_F(AcceleratedSolve, WarmStartFromTheSolutionStopsAtOnce) {
     const ArapReport warm = arap_solve(data, s.targets, U, options);
     EXPECT_LE(warm.iterations, 2) << arap_accelerator_name(a);
     EXPECT_LT(max_row_distance(U, solution), 1e-7 * diag);
-    EXPECT_LE(warm.initial_energy, cold.energies.back());
+    // The same U, its rotations fitted twice: warm-started Newton steps in the cold run's last local step,
+    // a cold polar decomposition here; both are exact to rounding, so the energies agree to ~1e-15
+    // relative per cell, summed over the cells (1e-12 leaves a wide margin at these sizes).
+    EXPECT_LE(warm.initial_energy, cold.energies.back() + 1e-12 * std::abs(cold.energies.back()));
   }
 }
 

@@ -100,6 +100,7 @@ ArapData solved(const BentBunny& scene, ArapMethod method, int iterations, Eigen
   ArapSolveOptions solve;
   solve.max_iterations = iterations;
   solve.tolerance = -1;
+  solve.accelerator = ArapAccelerator::None; // the paper's plain iteration, which the reference loop writes out
   const ArapReport r = arap_solve(data, scene.targets, U, solve);
   if (report) *report = r;
   return data;

@@ -143,7 +143,7 @@ try {
 
   // 4. Load the saved scenario and replay it with the CLI: the page solves 50 iterations from the rest
   // shape to the file's targets, as `iarap deform` does; both run the same iterations from the same start
-  // (the server in chunks of 10), so they agree to the float32 rounding of the display.
+  // (one arap_solve call with the default accelerator), so they agree to the float32 rounding of the display.
   await page.fill('#iterations', '50');
   await page.setInputFiles('#load-scenario', scenarioPath);
   await page.waitForFunction(() => document.getElementById('status').textContent.startsWith('loaded'), null, { timeout: 30000 });

@@ -14,7 +14,7 @@ const viewer = new Viewer($('viewport'), $('labels'));
 const app = {
   labels: new Uint8Array(0), mesh: null, revision: 0, limits: { max_iterations: 1000 },
   cellEnergy: {}, energyColors: {}, scale: null, curves: {},
-  history: new UndoHistory(), cancelling: false, solves: 0, errors: 0,
+  history: new UndoHistory(), cancelling: false, converge: false, solves: 0, errors: 0,
 };
 
 function setStatus(text) {
@@ -118,12 +118,19 @@ async function solveShown() {
     showError(error.message);
     return;
   }
+  // "Solve to convergence": the server's iteration limit, stopped by the gradient rule instead.
+  const converge = app.converge;
+  app.converge = false;
+  const stopping = converge
+    ? { iterations: app.limits.max_iterations, tolerance: 0, gradient_tolerance: 1e-6 }
+    : { iterations: count };
+  const accelerator = $('accelerator').value;
   const transform = viewer.handleTransform();
   const methods = shownMethods();
   const cellEnergy = $('show-energy').checked;
   const stopWatching = watchProgress();
   const results = await guarded(() =>
-    Promise.all(methods.map((method) => api.solve({ method, iterations: count, transform, cell_energy: cellEnergy }))),
+    Promise.all(methods.map((method) => api.solve({ method, ...stopping, accelerator, transform, cell_energy: cellEnergy }))),
   ).finally(stopWatching);
   if (!results) return;
   const lines = [];
@@ -341,6 +348,10 @@ function setupPanel(state) {
   $('method').addEventListener('change', () => guarded(changeLayout));
   $('side-by-side').addEventListener('change', () => guarded(changeLayout));
   $('step').addEventListener('click', () => solver.request());
+  $('converge').addEventListener('click', () => {
+    app.converge = true;
+    solver.request();
+  });
   $('cancel').addEventListener('click', cancelSolve);
   $('reset').addEventListener('click', () => guarded(async () => {
     await solver.idle();
