@@ -44,9 +44,11 @@ def backticked(text):
 
 
 def sentence(text, start):
-    """From `start` to the next period that ends a sentence."""
-    at = text.index(start)
-    return text[at:text.index(".\n", at) + 1]
+    """From `start` (line breaks in the README may fall anywhere) to the next period that ends a sentence."""
+    found = re.search(r"\s+".join(map(re.escape, start.split())), text)
+    assert found, f"README no longer says {start!r}"
+    end = re.compile(r"\.(\s|$)").search(text, found.end())
+    return text[found.start():end.start() + 1]
 
 
 def test_version_is_the_same_everywhere():
