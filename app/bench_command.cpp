@@ -200,6 +200,13 @@ void print_table(const nlohmann::json& results) {
   }
 }
 
+// The result entry of a mesh and method that could not be benchmarked: the other runs go on.
+nlohmann::json error_entry(const std::string& path, const MeshData& mesh, const std::string& method,
+                           const std::exception& e) {
+  return {{"mesh", path}, {"vertices", mesh.V.rows()}, {"method", method}, {"threads", thread_count()},
+          {"error", e.what()}};
+}
+
 void run_bench(const BenchArguments& args) {
   if (!args.report.empty())
     check_output_path(args.report); // before the runs, which can take minutes
@@ -233,11 +240,7 @@ void run_bench(const BenchArguments& args) {
       if (!args.json)
         std::cerr << "bench: " << path << ": skipped: " << e.what() << "\n";
       for (const auto& method : args.methods)
-        j["results"].push_back({{"mesh", path},
-                                {"vertices", mesh.V.rows()},
-                                {"method", method},
-                                {"threads", thread_count()},
-                                {"error", e.what()}});
+        j["results"].push_back(error_entry(path, mesh, method, e));
       ++failed;
       continue;
     }
@@ -248,11 +251,7 @@ void run_bench(const BenchArguments& args) {
         try {
           j["results"].push_back(converge_one(path, mesh.V, mesh.F, method, settings));
         } catch (const Error& e) { // as below: report it, run the others
-          j["results"].push_back({{"mesh", path},
-                                  {"vertices", mesh.V.rows()},
-                                  {"method", method},
-                                  {"threads", thread_count()},
-                                  {"error", e.what()}});
+          j["results"].push_back(error_entry(path, mesh, method, e));
           ++failed;
         }
       }
@@ -286,11 +285,7 @@ void run_bench(const BenchArguments& args) {
             for (const char* key : {"iteration_ms", "local_ms", "global_ms", "solve_floor_ms", "element_pass_ms"})
               best[m][key] = r[key];
         } catch (const Error& e) { // e.g. original ARAP on zero-area faces: report it, time the others
-          best[m] = {{"mesh", path},
-                     {"vertices", mesh.V.rows()},
-                     {"method", method},
-                     {"threads", thread_count()},
-                     {"error", e.what()}};
+          best[m] = error_entry(path, mesh, method, e);
           ++failed;
         }
       }
