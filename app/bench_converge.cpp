@@ -117,6 +117,11 @@ void print_converge_table(const nlohmann::json& results, double tolerance) {
   for (const auto& r : results) {
     std::string name = r["mesh"].get<std::string>();
     if (name.size() > 28) name = "..." + name.substr(name.size() - 25);
+    if (r.contains("error")) { // a mesh or method that could not be run (bench_command's error_entry)
+      std::printf("%-28s %-12s error: %s\n", name.c_str(), r["method"].get<std::string>().c_str(),
+                  r["error"].get<std::string>().c_str());
+      continue;
+    }
     const nlohmann::json* plain = nullptr;
     for (const auto& run : r["runs"])
       if (run["accelerator"] == "none") plain = &run;
