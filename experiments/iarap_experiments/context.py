@@ -56,6 +56,17 @@ class Context:
     def bundled(self, name: str) -> str:
         return os.path.join(self.repo, "data", name)
 
+    def meshes_present(self, names: list[str]) -> list[tuple[str, str]]:
+        """(name, path) of each shared mesh present (the bunny also from data/); the bunny only when quick."""
+        if self.quick:
+            return [("bunny.off", self.bundled("bunny.off"))]
+        found = []
+        for name in names:
+            path = self.shared(name) or (self.bundled(name) if name == "bunny.off" else None)
+            if path:
+                found.append((name, path))
+        return found
+
     def claim(self, section: str, claim: str, ours: str, paper: str, holds: str) -> None:
         self.claims.append(Claim(section, claim, ours, paper, holds))
 

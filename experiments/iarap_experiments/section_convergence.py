@@ -22,14 +22,7 @@ SHARED = ["bunny.off", "beetle.off", "armadillo.obj"]
 
 
 def meshes(ctx: Context) -> list[tuple[str, str]]:
-    if ctx.quick:
-        return [("bunny.off", ctx.bundled("bunny.off"))]
-    found = []
-    for name in SHARED:
-        path = ctx.shared(name) or (ctx.bundled(name) if name == "bunny.off" else None)
-        if path:
-            found.append((name, path))
-    return found
+    return ctx.meshes_present(SHARED)
 
 
 def first_below(values: np.ndarray, level: float) -> int | None:

@@ -39,14 +39,7 @@ def variants(ctx: Context) -> list[tuple[str, str, list[str]]]:
 
 
 def meshes(ctx: Context) -> list[tuple[str, str]]:
-    if ctx.quick:
-        return [("bunny.off", ctx.bundled("bunny.off"))]
-    found = []
-    for name in SHARED:
-        path = ctx.shared(name) or (ctx.bundled(name) if name == "bunny.off" else None)
-        if path:
-            found.append((name, path))
-    return found
+    return ctx.meshes_present(SHARED)
 
 
 def run(ctx: Context, doc) -> None:
