@@ -24,8 +24,17 @@ struct Node {
   const json& value;
   std::string path; // "source: handles[0].rotate"
 
-  Node key(const std::string& name) const { return {value.at(name), path + "." + name}; }
-  Node item(std::size_t i) const { return {value.at(i), path + "[" + std::to_string(i) + "]"}; }
+  // A missing key or item is an input error that names it, never json's out_of_range.
+  Node key(const std::string& name) const {
+    if (!value.is_object() || !value.contains(name))
+      fail("missing key '" + name + "'");
+    return {value.at(name), path + "." + name};
+  }
+  Node item(std::size_t i) const {
+    if (!value.is_array() || i >= value.size())
+      fail("missing item [" + std::to_string(i) + "]");
+    return {value.at(i), path + "[" + std::to_string(i) + "]"};
+  }
   [[noreturn]] void fail(const std::string& what) const { throw InputError(path + ": " + what); }
 
   void require_object(std::initializer_list<const char*> allowed) const {
