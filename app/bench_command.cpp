@@ -343,9 +343,9 @@ const bool registered = register_command(
                        "Instead of timing iterations: iterations and ms of each accelerator to reach an energy within "
                        "TOL (relative) of a reference minimum, on the scene of data/bend60_scenario.json")
            ->check(CLI::PositiveNumber);
-       sub->add_option("--accels", args->accelerators, "With --converge: comma-separated subset of none,anderson,lbfgs")
+       sub->add_option("--accels", args->accelerators, "With --converge: comma-separated subset of none,anderson,lbfgs,newton")
            ->delimiter(',')
-           ->check(CLI::IsMember({"none", "anderson", "lbfgs"}))
+           ->check(CLI::IsMember({"none", "anderson", "lbfgs", "newton"}))
            ->capture_default_str();
        sub->add_option("--window", args->window, "With --converge: accelerator history length (0 = the default)")
            ->check(CLI::Range(0, 1000));

@@ -21,7 +21,7 @@ Scenario converge_scenario();
 
 struct ConvergeSettings {
   double tolerance = 1e-6;          // energy gap E - E* <= tolerance |E*|
-  std::vector<std::string> accelerators = {"none", "anderson", "lbfgs"};
+  std::vector<std::string> accelerators = {"none", "anderson", "lbfgs", "newton"};
   int window = 0;                   // 0: ArapSolveOptions' default
   int max_iterations = 20000;       // per run, the plain one included
   double reference_gradient = 1e-9;  // the reference run stops at this relative gradient norm

@@ -250,6 +250,7 @@ void run_deform(const DeformArguments& args) {
   j["gradient_norms"] = report.gradient_norms; // per iteration, like energies
   j["accepted"] = report.accepted;             // 1: the accelerated iterate was kept
   j["rejected"] = report.rejected;
+  j["solves"] = report.solves;
   j["elapsed_ms"] = report.elapsed_ms; // per iteration, since the solve began
   j["precompute_ms"] = precompute_ms;
   j["intrinsic_ms"] = arap.timings.intrinsic_ms;
@@ -315,10 +316,10 @@ const bool registered = register_command(
               "Stop when the energy decreases by at most this fraction of itself in one iteration (>= 0)")
            ->check(finite_non_negative)
            ->capture_default_str();
-       sub->add_option("--accel", args->accel, "Accelerator of the local/global iteration: anderson, lbfgs or none")
-           ->check(CLI::IsMember({"anderson", "lbfgs", "none"}))
+       sub->add_option("--accel", args->accel, "Accelerator of the local/global iteration: lbfgs, newton, anderson or none")
+           ->check(CLI::IsMember({"anderson", "lbfgs", "newton", "none"}))
            ->capture_default_str();
-       sub->add_option("--window", args->window, "History length of the accelerator (0 = plain iteration)")
+       sub->add_option("--window", args->window, "History length of the accelerator (newton: conjugate-gradient steps per Newton step; 0 = plain iteration)")
            ->check(CLI::Range(0, 1000))
            ->capture_default_str();
        sub->add_option("--grad-tol", args->grad_tol,

@@ -166,7 +166,7 @@ SolveRequest parse_solve_request(const json& body, int max_iterations) {
     request.accelerator =
         parse_arap_accelerator(string_field(body, "accelerator", arap_accelerator_name(request.accelerator)));
   } catch (const InputError&) {
-    throw HttpError(400, "accelerator must be \"lbfgs\", \"anderson\" or \"none\"");
+    throw HttpError(400, "accelerator must be \"lbfgs\", \"newton\", \"anderson\" or \"none\"");
   }
   request.window = integer_field(body, "window", request.window, 0, 1000);
   request.gradient_tolerance = number_field(body, "gradient_tolerance", 0.0);

@@ -12,8 +12,8 @@ import numpy as np  # noqa: E402
 from .context import METHOD_LABELS, METHODS, Context, fmt, load_note  # noqa: E402
 from .report_document import Heading, Image, Paragraph, Table  # noqa: E402
 
-ACCELERATORS = ["none", "anderson", "lbfgs"]
-ACCELERATOR_LABELS = {"none": "plain", "anderson": "Anderson", "lbfgs": "L-BFGS"}
+ACCELERATORS = ["none", "anderson", "lbfgs", "newton"]
+ACCELERATOR_LABELS = {"none": "plain", "anderson": "Anderson", "lbfgs": "L-BFGS", "newton": "Newton"}
 GAP = 1e-6  # energy within 1e-6 (relative) of the reference minimum: the issue's target
 # Accelerated runs stop at a gradient 1e-10 of the initial one; the lowest energy any run reaches is the
 # reference minimum (the accelerated runs there sit ~1e-20 relative above the minimum: E - E* ~ |g|^2).
@@ -56,7 +56,7 @@ def run(ctx: Context, doc) -> None:
                 gap = (E - reference) / abs(reference)
                 k = first_below(gap, GAP)
                 reached[accelerator] = (k + 1, r["elapsed_ms"][k]) if k is not None else None
-                style = {"none": "-", "anderson": "--", "lbfgs": ":"}[accelerator]
+                style = {"none": "-", "anderson": "--", "lbfgs": ":", "newton": "-."}[accelerator]
                 name = f"{METHOD_LABELS[method]}, {ACCELERATOR_LABELS[accelerator]}"
                 it = np.arange(1, len(E) + 1)
                 axes[0].semilogy(it, np.maximum(gap, 1e-16), style, label=name)
@@ -65,7 +65,7 @@ def run(ctx: Context, doc) -> None:
             for accelerator in ACCELERATORS:
                 hit = reached[accelerator]
                 row.append(f"{hit[0]} / {hit[1]:.0f} ms" if hit else f"> {runs[accelerator]['iterations']}")
-            for accelerator in ("anderson", "lbfgs"):
+            for accelerator in ("anderson", "lbfgs", "newton"):
                 hit, plain = reached[accelerator], reached["none"]
                 if hit and plain:
                     row.append(f"{plain[0] / hit[0]:.1f}x / {plain[1] / hit[1]:.1f}x")
@@ -88,12 +88,13 @@ def run(ctx: Context, doc) -> None:
         plt.close(fig)
     ctx.write_json("convergence.json", results)
     header = ["mesh", "energy"] + [f"{ACCELERATOR_LABELS[a]}: iterations / ms to 1e-6" for a in ACCELERATORS] + \
-             ["plain / Anderson (iterations / time)", "plain / L-BFGS (iterations / time)"]
+             ["plain / Anderson (iterations / time)", "plain / L-BFGS (iterations / time)",
+              "plain / Newton (iterations / time)"]
     ctx.write_csv("convergence.csv", header, rows)
     doc.add(Heading("9. Convergence: plain vs accelerated local/global (not in the paper)"),
             Paragraph("**Not a paper claim** (issue 17). The paper's local/global iteration is block descent, i.e. "
                       "gradient descent preconditioned by L_ff, and has a slow tail on large edits. `iarap deform "
-                      "--accel anderson|lbfgs` speeds it up with the same factorization. Scene: "
+                      "--accel lbfgs|newton|anderson` speeds it up with the same factorization. Scene: "
                       "`data/bend60_scenario.json` (bottom 10% along y fixed, top 10% turned 60 degrees about z and "
                       "moved by (0.3, -0.1, 0) diagonals), 1 thread, iARAP with boundary refinement. Plain runs stop "
                       f"at {plain_limit} iterations, accelerated ones at a gradient {GRADIENT_TOLERANCE:g} of the "

@@ -45,7 +45,7 @@ class ARAP:
         tolerance: float = 1e-06,
         *,
         accelerator: str = "lbfgs",
-        window: int = 6,
+        window: int = 8,
         gradient_tolerance: float = 0.0,
     ) -> _FloatArray: ...
     @property

@@ -137,6 +137,7 @@ py::object report_py(const ArapSolver& solver) {
     accepted.mutable_at(static_cast<py::ssize_t>(k)) = report->accepted[k] != 0;
   d["accepted"] = accepted;
   d["rejected"] = report->rejected;
+  d["solves"] = report->solves;
   d["accelerator_ms"] = report->accelerator_ms;
   d["elapsed_ms"] = to_numpy(report->elapsed_ms);
   d["solve_ms"] = solve_ms;
@@ -213,7 +214,8 @@ U0: (#V, 3) initial guess (None: the rest positions); its constrained rows are r
 iterations: at most this many local/global iterations (>= 0).
 tolerance: stop when one iteration lowers the energy by at most tolerance * energy; negative: always run
 `iterations` iterations.
-accelerator: "anderson", "lbfgs" or "none" (plain local/global); window: its history length (0 = plain).
+accelerator: "lbfgs", "newton", "anderson" or "none" (plain local/global); window: its history length
+(newton: conjugate-gradient steps per Newton step; 0 = plain).
 gradient_tolerance: also stop when the gradient norm at the free vertices is this fraction of its value at
 U0 (0 = off). Warm start: pass the previous solution as U0.
 The run is described by `report`; rotations of U by `rotations`.)")
@@ -232,7 +234,7 @@ The run is described by `report`; rotations of U by `rotations`.)")
                              R"(The last solve as a dict (None before the first solve): iterations, converged,
 initial_energy, energies (float64 (iterations,), energy after each iteration), local_ms, global_ms,
 local_ms_per_iteration, global_ms_per_iteration, accelerator, initial_gradient_norm, gradient_norms (per
-iteration), accepted (bool per iteration: the accelerated iterate was kept), rejected, accelerator_ms,
+iteration), accepted (bool per iteration: the accelerated iterate was kept), rejected, solves, accelerator_ms,
 elapsed_ms (per iteration, since the start), solve_ms (the whole C++ solve), and the precomputation's
 intrinsic_ms, assembly_ms, factor_ms, analyze_ms (the symbolic analysis, on its own thread beside
 intrinsic_ms + assembly_ms when threads > 1). Times in milliseconds.)")

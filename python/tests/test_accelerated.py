@@ -6,7 +6,7 @@ import iarap
 from conftest import bbox_diagonal, handle_scene
 
 
-@pytest.mark.parametrize("accelerator", ["anderson", "lbfgs"])
+@pytest.mark.parametrize("accelerator", ["anderson", "lbfgs", "newton"])
 def test_accelerated_solve_reports_and_matches_plain(sphere, accelerator):
     V, F = sphere  # 642 vertices: the plain run to a 1e-10 gradient stays cheap
     fixed, targets = handle_scene(V, shift=0.3)
@@ -19,6 +19,8 @@ def test_accelerated_solve_reports_and_matches_plain(sphere, accelerator):
     assert report["gradient_norms"].shape == (n,) and report["accepted"].shape == (n,)
     assert report["accepted"].dtype == bool and report["accepted"].any()
     assert report["gradient_norms"][-1] <= 1e-10 * report["initial_gradient_norm"]
+    # At least one back-substitution per iteration; Newton's conjugate-gradient steps add more.
+    assert report["solves"] >= n
     # Monotone energy: accepted iterates never rise (1e-12 relative: rounding of the plain fallback).
     energies = np.concatenate([[report["initial_energy"]], report["energies"]])
     assert np.all(np.diff(energies) <= 1e-12 * np.abs(energies[:-1]))

@@ -73,7 +73,9 @@ ArapAccelerator parse_arap_accelerator(const std::string& name) {
     return ArapAccelerator::Anderson;
   if (name == "lbfgs")
     return ArapAccelerator::Lbfgs;
-  throw InputError("unknown ARAP accelerator '" + name + "'; expected anderson, lbfgs or none");
+  if (name == "newton")
+    return ArapAccelerator::Newton;
+  throw InputError("unknown ARAP accelerator '" + name + "'; expected anderson, lbfgs, newton or none");
 }
 
 std::string arap_accelerator_name(ArapAccelerator accelerator) {
@@ -84,6 +86,8 @@ std::string arap_accelerator_name(ArapAccelerator accelerator) {
     return "anderson";
   case ArapAccelerator::Lbfgs:
     return "lbfgs";
+  case ArapAccelerator::Newton:
+    return "newton";
   }
   return "none";
 }

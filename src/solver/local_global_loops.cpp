@@ -5,6 +5,7 @@
 #include "anderson_acceleration.h"
 #include "lbfgs_direction.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -137,15 +138,49 @@ void run_anderson(LocalGlobalProblem& problem, const ArapSolveOptions& options, 
   }
 }
 
+// Where a step along a descent direction d (slope = g . d < 0) from x ends: Armijo backtracking with lengths
+// 1, 1/2, 1/4 (a quasi-Newton or Newton step that needs more halving has a poor curvature model, and the plain
+// step costs no more than one more trial); when none passes, or d is not a descent direction, the plain
+// local/global step (the rhs still belongs to x). The local step at the returned point is done.
+struct LineStep {
+  Eigen::MatrixXd x;
+  double energy = 0;
+  bool accepted = false; // false: the plain step
+  double local_ms = 0, global_ms = 0;
+};
+
+LineStep armijo_or_plain_step(LocalGlobalProblem& problem, const Eigen::MatrixXd& x, const Eigen::MatrixXd& d,
+                              double slope, double energy, ArapReport& report) {
+  constexpr double kArmijo = 1e-4; // sufficient-decrease constant c_1 (Nocedal & Wright's usual value)
+  constexpr int kTrials = 3;
+  LineStep step;
+  auto start = Clock::now();
+  for (int t = 0; t < kTrials && !step.accepted && slope < 0; ++t) {
+    const double alpha = std::ldexp(1.0, -t); // 1, 1/2, 1/4
+    step.x = x + alpha * d;
+    problem.set_positions(step.x);
+    step.energy = problem.local_step();
+    step.accepted = step.energy <= energy + kArmijo * alpha * slope; // false for NaN as well
+  }
+  step.local_ms += ms_since(start);
+  if (!step.accepted) {
+    ++report.rejected;
+    start = Clock::now();
+    step.x = problem.plain_step();
+    step.global_ms += ms_since(start);
+    start = Clock::now();
+    problem.set_positions(step.x);
+    step.energy = problem.local_step();
+    step.local_ms += ms_since(start);
+  }
+  return step;
+}
+
 // Liu, Bouaziz and Kavan 2017: quasi-Newton on E(x) = min_R energy with H_0 = L_ff^{-1}. The energy is not
 // convex, so each step is checked by Armijo backtracking; when that fails, the plain local/global step
 // (with no history the L-BFGS step itself) is taken and the history restarts.
 void run_lbfgs(LocalGlobalProblem& problem, const ArapSolveOptions& options, double energy, Eigen::MatrixXd g,
                ArapReport& report, Progress& progress) {
-  constexpr double kArmijo = 1e-4; // sufficient-decrease constant c_1 (Nocedal & Wright's usual value)
-  // Trial lengths 1, 1/2, 1/4 before the fallback: a quasi-Newton step that needs more halving has a poor
-  // curvature model, and the plain step costs no more than one more trial.
-  constexpr int kTrials = 3;
   LbfgsDirection lbfgs(options.window);
   Eigen::MatrixXd x = problem.positions();
   for (int k = 0; k < options.max_iterations; ++k) {
@@ -160,41 +195,75 @@ void run_lbfgs(LocalGlobalProblem& problem, const ArapSolveOptions& options, dou
       quasi_newton = false;
     }
     report.accelerator_ms += ms_since(start);
-    double local_ms = 0, global_ms = 0, trial = 0;
-    bool accepted = false;
-    Eigen::MatrixXd x_next;
-    start = Clock::now();
-    for (int t = 0; t < kTrials && !accepted; ++t) {
-      const double alpha = std::ldexp(1.0, -t); // 1, 1/2, 1/4
-      x_next = x + alpha * d;
-      problem.set_positions(x_next);
-      trial = problem.local_step();
-      accepted = trial <= energy + kArmijo * alpha * slope; // false for NaN as well
-    }
-    local_ms += ms_since(start);
-    if (!accepted) {
-      ++report.rejected;
+    LineStep step = armijo_or_plain_step(problem, x, d, slope, energy, report);
+    if (!step.accepted) {
       lbfgs.reset();
       quasi_newton = false;
-      start = Clock::now();
-      x_next = problem.plain_step(); // the rhs still belongs to x
-      global_ms += ms_since(start);
-      start = Clock::now();
-      problem.set_positions(x_next);
-      trial = problem.local_step();
-      local_ms += ms_since(start);
     }
-    energy = trial;
+    Eigen::MatrixXd& x_next = step.x;
+    energy = step.energy;
     start = Clock::now();
     problem.assemble_rhs();
     Eigen::MatrixXd g_next = problem.gradient();
-    global_ms += ms_since(start);
+    step.global_ms += ms_since(start);
     start = Clock::now();
     lbfgs.push(x_next - x, g_next - g);
     x.swap(x_next);
     g.swap(g_next);
     report.accelerator_ms += ms_since(start);
-    if (progress.record(energy, g.norm(), quasi_newton && accepted, local_ms, global_ms)) return;
+    if (progress.record(energy, g.norm(), quasi_newton && step.accepted, step.local_ms, step.global_ms)) return;
+  }
+}
+
+// Truncated Newton (Nocedal & Wright, Algorithm 7.1, "line search Newton-CG") on E(x) = min_R energy with
+// the exact Hessian (LocalGlobalProblem::hessian_product). The Newton system H d = -g is solved by conjugate
+// gradients preconditioned by L_ff (the factorization at hand), stopped at ||r|| <= eta ||g|| with
+// eta = min(0.5, sqrt(||g|| / ||g_0||)) (superlinear convergence near a minimum, cheap steps far from it),
+// after `cg_limit` iterations, or at a direction of non-positive curvature (the energy is not convex): then
+// the CG iterate so far, or the preconditioned steepest descent direction -L_ff^{-1} g (the plain
+// local/global step) when that happens first. Armijo backtracking as in run_lbfgs; when it fails, the plain
+// step.
+void run_newton(LocalGlobalProblem& problem, const ArapSolveOptions& options, double energy, Eigen::MatrixXd g,
+                ArapReport& report, Progress& progress) {
+  const int cg_limit = options.window;
+  const double g0 = g.norm();
+  Eigen::MatrixXd x = problem.positions();
+  for (int k = 0; k < options.max_iterations; ++k) {
+    auto start = Clock::now();
+    problem.prepare_hessian();
+    const double g_norm = g.norm();
+    const double eta = std::min(0.5, std::sqrt(g_norm / g0));
+    Eigen::MatrixXd r = -g;
+    Eigen::MatrixXd p = problem.solve(r);
+    Eigen::MatrixXd d = Eigen::MatrixXd::Zero(g.rows(), 3);
+    double rz = inner(r, p);
+    bool newton = false;
+    for (int j = 0; j < cg_limit; ++j) {
+      const Eigen::MatrixXd Hp = problem.hessian_product(p);
+      const double curvature = inner(p, Hp);
+      if (!(curvature > 0)) {
+        if (j == 0) d = p;
+        break;
+      }
+      const double alpha = rz / curvature;
+      d += alpha * p;
+      r -= alpha * Hp;
+      newton = true;
+      if (r.norm() <= eta * g_norm || j + 1 == cg_limit) break;
+      const Eigen::MatrixXd z = problem.solve(r);
+      const double rz_next = inner(r, z);
+      p = z + (rz_next / rz) * p;
+      rz = rz_next;
+    }
+    report.accelerator_ms += ms_since(start);
+    LineStep step = armijo_or_plain_step(problem, x, d, inner(g, d), energy, report);
+    energy = step.energy;
+    start = Clock::now();
+    problem.assemble_rhs();
+    g = problem.gradient();
+    step.global_ms += ms_since(start);
+    x.swap(step.x);
+    if (progress.record(energy, g.norm(), newton && step.accepted, step.local_ms, step.global_ms)) return;
   }
 }
 
@@ -223,7 +292,11 @@ ArapReport run_local_global(LocalGlobalProblem& problem, const ArapSolveOptions&
   case ArapAccelerator::Lbfgs:
     run_lbfgs(problem, options, energy, std::move(g), report, progress);
     break;
+  case ArapAccelerator::Newton:
+    run_newton(problem, options, energy, std::move(g), report, progress);
+    break;
   }
+  report.solves = problem.solves();
   return report;
 }
 

@@ -3,6 +3,11 @@
 #include "iarap/solver/arap_rhs.h"
 #include "iarap/solver/fit_rotations.h"
 
+#include <Eigen/Eigenvalues>
+
+#include <algorithm>
+#include <cmath>
+
 namespace iarap::detail {
 
 LocalGlobalProblem::LocalGlobalProblem(ArapData& data, const Eigen::MatrixXd& targets, Eigen::MatrixXd& U)
@@ -62,6 +67,7 @@ void LocalGlobalProblem::assemble_rhs() {
 }
 
 const Eigen::MatrixXd& LocalGlobalProblem::plain_step() {
+  ++solves_;
   data_.solver.solve(B_, X_); // three coordinates at once
   return X_;
 }
@@ -72,7 +78,63 @@ Eigen::MatrixXd LocalGlobalProblem::gradient() const {
 }
 
 Eigen::MatrixXd LocalGlobalProblem::solve(const Eigen::MatrixXd& r) const {
+  ++solves_;
   return data_.solver.solve(r);
+}
+
+// Differentiating R^T S = P (symmetric) along dS with dR = R [omega]_x gives
+//   (tr(P) I - P) omega = axial(R^T dS - dS^T R),
+// since [omega]_x P + P [omega]_x = [(tr(P) I - P) omega]_x for symmetric P. At a maximizer of tr(R^T S)
+// M = tr(P) I - P is positive semi-definite; where it is nearly singular the rotation is ill-determined and
+// its derivative unbounded, so M's eigenvalues are floored at kFloor x its largest (a model with less
+// negative curvature there, which the step's line search covers).
+void LocalGlobalProblem::prepare_hessian() {
+  constexpr double kFloor = 1e-6;
+  cell_covariances(data_.elements, U_rows_, S_); // U_rows_ holds the last local step's positions
+  const auto n = S_.size();
+  M_inverse_.resize(n);
+  for (size_t c = 0; c < n; ++c) {
+    const Eigen::Matrix3d& R = data_.R[c];
+    Eigen::Matrix3d P = R.transpose() * S_[c];
+    P = 0.5 * (P + P.transpose()).eval();
+    const Eigen::Matrix3d M = P.trace() * Eigen::Matrix3d::Identity() - P;
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen;
+    eigen.computeDirect(M);
+    const Eigen::Vector3d lambda = eigen.eigenvalues();
+    const double top = lambda.cwiseAbs().maxCoeff();
+    if (!(top > 0) || !std::isfinite(top)) { // a cell without deformation signal: no rotation term
+      M_inverse_[c].setZero();
+      continue;
+    }
+    const Eigen::Vector3d inverse = lambda.cwiseMax(kFloor * top).cwiseInverse();
+    M_inverse_[c] = eigen.eigenvectors() * inverse.asDiagonal() * eigen.eigenvectors().transpose();
+  }
+}
+
+// H v = L v - rhs(dR[v]) at the free rows: g(U) = L U - rhs(R(U)) (Eq. 14, 16) differentiated, with dR_c from
+// dS_c = sum_e w_e (v^T b_e) s_hat_e^T (the covariance sweep run on v) through the relation above.
+Eigen::MatrixXd LocalGlobalProblem::hessian_product(const Eigen::MatrixXd& v) {
+  const Eigen::Index nv = U_.rows();
+  v_rows_.setZero(nv, 3);
+  for (Eigen::Index i = 0; i < free_count(); ++i)
+    v_rows_.row(data_.free(i)) = v.row(i);
+  cell_covariances(data_.elements, v_rows_, S_); // dS_c, in the Hessian's workspace
+  const auto n = S_.size();
+  dR_.resize(n);
+  for (size_t c = 0; c < n; ++c) {
+    const Eigen::Matrix3d& R = data_.R[c];
+    const Eigen::Matrix3d A = R.transpose() * S_[c];
+    const Eigen::Vector3d a(A(2, 1) - A(1, 2), A(0, 2) - A(2, 0), A(1, 0) - A(0, 1));
+    const Eigen::Vector3d w = M_inverse_[c] * a;
+    Eigen::Matrix3d W;
+    W << 0, -w.z(), w.y(), w.z(), 0, -w.x(), -w.y(), w.x(), 0;
+    dR_[c] = R * W;
+  }
+  arap_rhs(data_.elements, dR_, d_rhs_);
+  Eigen::MatrixXd Hv = L_free_cols_.transpose() * v_rows_;
+  for (Eigen::Index i = 0; i < free_count(); ++i)
+    Hv.row(i) -= d_rhs_.row(data_.free(i));
+  return Hv;
 }
 
 } // namespace iarap::detail

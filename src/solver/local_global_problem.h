@@ -9,6 +9,8 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 
+#include <vector>
+
 namespace iarap::detail {
 
 class LocalGlobalProblem {
@@ -34,6 +36,14 @@ public:
   // L_ff^{-1} r (r #free x 3).
   Eigen::MatrixXd solve(const Eigen::MatrixXd& r) const;
 
+  // The Hessian of E(x) = min_R energy at the point of the last local step, for Newton-type steps:
+  // prepare_hessian() keeps per cell M_c^{-1} = (tr(P_c) I - P_c)^{-1} with P_c = R_c^T S_c (what the
+  // derivative of the polar rotation needs); hessian_product(v) then returns H v (v #free x 3).
+  void prepare_hessian();
+  // Back-substitutions with the factor so far (plain_step and solve).
+  int solves() const { return solves_; }
+  Eigen::MatrixXd hessian_product(const Eigen::MatrixXd& v);
+
 private:
   ArapData& data_;
   Eigen::MatrixXd& U_;
@@ -42,6 +52,10 @@ private:
   ArapElements::ValueRows U_rows_;         // fit_rotations' row-major copy of U
   Eigen::VectorXd cell_energy_;
   Eigen::MatrixXd rhs_, B_, X_;
+  std::vector<Eigen::Matrix3d> S_, M_inverse_, dR_; // Hessian workspaces (per cell)
+  ArapElements::ValueRows v_rows_;                 // a direction v on all vertices, 0 at constrained ones
+  Eigen::MatrixXd d_rhs_;
+  mutable int solves_ = 0;
 };
 
 // sum_ij a_ij b_ij: the inner product of #free x 3 position-like matrices.

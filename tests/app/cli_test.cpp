@@ -158,6 +158,31 @@ TEST(Cli, DeformWithScenarioWritesReport) {
   fs::remove_all(dir);
 }
 
+// The accelerators from the command line: the report says which ran, how many back-substitutions it made
+// (Newton: one per conjugate-gradient step, so more than one per iteration) and stops on the gradient rule.
+TEST(Cli, DeformAcceleratorsReportTheirWork) {
+  const auto dir = iarap::test::temp_dir("cli_accel");
+  const std::string scenario = iarap::test::data_path("bunny_scenario.json");
+  for (const std::string accel : {"none", "anderson", "lbfgs", "newton"}) {
+    const fs::path out = dir / (accel + ".off");
+    const std::string limit = accel == "none" ? "20" : "400"; // plain needs thousands for 1e-8
+    const CliRun run = iarap_cli("deform '" + bunny + "' --scenario '" + scenario + "' --method spokes-rims --accel " +
+                                 accel + " --iterations " + limit + " --tolerance 0 --grad-tol 1e-8 --json --out '" +
+                                 out.string() + "'");
+    ASSERT_EQ(run.code, 0) << run.out;
+    const json j = parse_json(run);
+    EXPECT_EQ(j["accelerator"], accel);
+    const int iterations = j["iterations"].get<int>();
+    EXPECT_GE(j["solves"].get<int>(), iterations) << accel;
+    if (accel == "newton") EXPECT_GT(j["solves"].get<int>(), iterations);
+    if (accel != "none") {
+      EXPECT_TRUE(j["converged"].get<bool>()) << accel;
+      EXPECT_LE(j["gradient_norms"].back().get<double>(), 1e-8 * j["initial_gradient_norm"].get<double>());
+    }
+  }
+  fs::remove_all(dir);
+}
+
 TEST(Cli, DeformRefusesToOverwriteItsInput) {
   const auto dir = iarap::test::temp_dir("cli_overwrite");
   fs::copy_file(bunny, dir / "bunny.off");
@@ -185,6 +210,9 @@ TEST(Cli, BadArgumentsAreUsageErrors) {
            "deform" + mesh + scenario + out + " --threads -2",
            "deform" + mesh + scenario + out + " --tolerance -1",
            "deform" + mesh + scenario + out + " --iterations many",
+           "deform" + mesh + scenario + out + " --accel fast",
+           "deform" + mesh + scenario + out + " --window -1",
+           "deform" + mesh + scenario + out + " --grad-tol nan",
            "deform '/nonexistent/mesh.off'" + scenario + out,
            "deform" + mesh + " --scenario /nonexistent/s.json" + out,
            "deform" + mesh + out,

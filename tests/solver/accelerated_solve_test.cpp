@@ -8,6 +8,8 @@
 #include "intrinsic/mesh_generators.h"
 #include "solver_fixtures.h"
 
+#include "../../src/solver/local_global_problem.h"
+
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
@@ -19,7 +21,9 @@ namespace {
 using namespace iarap;
 using test::SolverMesh;
 
-const ArapAccelerator kAccelerators[] = {ArapAccelerator::Anderson, ArapAccelerator::Lbfgs};
+const ArapAccelerator kAccelerators[] = {ArapAccelerator::Anderson, ArapAccelerator::Lbfgs, ArapAccelerator::Newton};
+const ArapAccelerator kAll[] = {ArapAccelerator::None, ArapAccelerator::Anderson, ArapAccelerator::Lbfgs,
+                                 ArapAccelerator::Newton};
 
 // A problem: mesh, energy, constrained set and targets.
 struct Scene {
@@ -116,7 +120,7 @@ protected:
 };
 
 TEST_F(AcceleratedSolve, AcceleratorNamesRoundTrip) {
-  for (ArapAccelerator a : {ArapAccelerator::None, ArapAccelerator::Anderson, ArapAccelerator::Lbfgs})
+  for (ArapAccelerator a : kAll)
     EXPECT_EQ(parse_arap_accelerator(arap_accelerator_name(a)), a);
   try {
     parse_arap_accelerator("fast");
@@ -209,7 +213,7 @@ TEST_F(AcceleratedSolve, AcceleratedAndPlainReachTheSameFixedPoint) {
 TEST_F(AcceleratedSolve, ReportedGradientNormIsTheGradientAtTheResult) {
   const Scene s = small_scenes()[3];
   ArapData data = arap_precompute(s.mesh.V, s.mesh.F, s.fixed, s.options);
-  for (ArapAccelerator a : {ArapAccelerator::None, ArapAccelerator::Anderson, ArapAccelerator::Lbfgs}) {
+  for (ArapAccelerator a : kAll) {
     Eigen::MatrixXd U = s.mesh.V;
     const ArapReport report = arap_solve(data, s.targets, U, accelerated(a, 7));
     const Eigen::MatrixXd g = arap_gradient(data, U);
@@ -228,19 +232,70 @@ TEST_F(AcceleratedSolve, ReportedGradientNormIsTheGradientAtTheResult) {
 // (bbox diagonals) after 30 / 60 iterations: plain 1.9e-2 / -, Anderson (window 6) 4.7e-5 / 3.3e-8
 // (spokes-rims) and 1.6e-4 / 4.6e-8 (iARAP); L-BFGS 2.1e-4 / 1.2e-6. Issue 17 asks for 1e-7 within 30
 // iterations; Anderson gets there within 60 (plain needs over 300 for 1e-5), which this test holds.
-TEST_F(AcceleratedSolve, RigidMotionWithinSixtyIterations) {
+// After `iterations` iterations of `accelerator` on the bunny whose bottom and top 10% are moved rigidly:
+// the distance to the rigidly moved bunny, in bbox diagonals.
+double rigid_motion_distance(ArapMethod method, ArapAccelerator accelerator, int iterations) {
   const SolverMesh m = test::bunny();
   const double diag = test::bbox_diagonal(m.V);
   const Eigen::Matrix3d Q = Eigen::AngleAxisd(0.7, Eigen::Vector3d::UnitZ()).toRotationMatrix();
   const Eigen::MatrixXd moved = (m.V * Q.transpose()).rowwise() + Eigen::RowVector3d(0.3, -0.2, 0.1) * diag;
-  for (ArapMethod method : {ArapMethod::SpokesRims, ArapMethod::Iarap}) {
-    const Scene s = band_scene("rigid", m, method, 1, 0, Eigen::RowVector3d::Zero());
-    ArapData data = arap_precompute(m.V, m.F, s.fixed, s.options);
-    Eigen::MatrixXd U = m.V;
-    const ArapReport report = arap_solve(data, test::rows_of(moved, s.fixed), U, accelerated(ArapAccelerator::Anderson, 60));
-    EXPECT_EQ(report.iterations, 60);
-    EXPECT_LT(max_row_distance(U, moved), 1e-7 * diag) << arap_method_name(method);
+  const Scene s = band_scene("rigid", m, method, 1, 0, Eigen::RowVector3d::Zero());
+  ArapData data = arap_precompute(m.V, m.F, s.fixed, s.options);
+  Eigen::MatrixXd U = m.V;
+  const ArapReport report = arap_solve(data, test::rows_of(moved, s.fixed), U, accelerated(accelerator, iterations));
+  EXPECT_LE(report.iterations, iterations);
+  return max_row_distance(U, moved) / diag;
+}
+
+TEST_F(AcceleratedSolve, RigidMotionWithinSixtyIterations) {
+  for (ArapMethod method : {ArapMethod::SpokesRims, ArapMethod::Iarap})
+    EXPECT_LT(rigid_motion_distance(method, ArapAccelerator::Anderson, 60), 1e-7) << arap_method_name(method);
+}
+
+// Newton's Hessian product is the derivative of the gradient g(x) = L_ff x - B(R*(x)): central differences
+// of g along a random v at a deformed state (all energies, the refined strip's extra cells included). Their
+// error is O(h^2 |g'''|) + O(eps |g| / h): measured to fall 100x per 10x smaller h down to h = 1e-6 of the
+// diagonal, where it is 1e-8 (original ARAP's patch, a nearly degenerate cell) to 1e-10 of |H v|; 1e-6 is a
+// wide margin that a wrong sign, factor or transpose (errors of order 1) cannot pass.
+TEST_F(AcceleratedSolve, HessianProductIsTheDerivativeOfTheGradient) {
+  for (const Scene& s : small_scenes()) {
+    ArapData data = arap_precompute(s.mesh.V, s.mesh.F, s.fixed, s.options);
+    Eigen::MatrixXd U = s.mesh.V;
+    arap_solve(data, s.targets, U, accelerated(ArapAccelerator::None, 5)); // a deformed, unconverged state
+    detail::LocalGlobalProblem problem(data, s.targets, U);
+    const Eigen::MatrixXd x = problem.positions();
+    const auto gradient_at = [&](const Eigen::MatrixXd& y) {
+      problem.set_positions(y);
+      problem.local_step();
+      problem.assemble_rhs();
+      return problem.gradient();
+    };
+    gradient_at(x);
+    problem.prepare_hessian();
+    std::srand(7);
+    const Eigen::MatrixXd v = Eigen::MatrixXd::Random(x.rows(), 3);
+    const Eigen::MatrixXd Hv = problem.hessian_product(v);
+    const double h = 1e-6 * test::bbox_diagonal(s.mesh.V); // |v_ij| <= 1
+    const Eigen::MatrixXd fd = (gradient_at(x + h * v) - gradient_at(x - h * v)) / (2 * h);
+    EXPECT_LT((Hv - fd).norm(), 1e-6 * Hv.norm()) << s.name;
+    // The rotation term matters: L_ff v alone (the gradient's change with the rotations frozen) is off by
+    // far more than that margin.
+    const Eigen::MatrixXd g0 = gradient_at(x);
+    problem.set_positions(x + v);
+    const Eigen::MatrixXd Lv = problem.gradient() - g0;
+    EXPECT_GT((Hv - Lv).norm(), 1e-3 * Hv.norm()) << s.name;
   }
+}
+
+// Truncated Newton reaches the rigidly moved bunny of the test below to 1e-7 of the diagonal within the 30
+// iterations the issue asks for. Measured distances after 10 / 15 / 20 / 30 iterations (each with up to
+// `window` CG inner iterations, one solve each): spokes-rims 8.8e-6 / 4.1e-9 / 1.4e-12 / 1.1e-14, iARAP
+// 5.1e-5 / 3.4e-8 / 5.3e-11 / 1.3e-14, against L-BFGS's 2.0e-4 and Anderson's 3.4e-5 after 30. (Original
+// ARAP is left out: with negative weights its energy goes below zero, so the rigid motion, E = 0, is a
+// stationary point but not its minimizer; every accelerator ends 3.6e-2 of the diagonal away from it.)
+TEST_F(AcceleratedSolve, NewtonReachesARigidMotionWithinThirtyIterations) {
+  for (ArapMethod method : {ArapMethod::SpokesRims, ArapMethod::Iarap})
+    EXPECT_LT(rigid_motion_distance(method, ArapAccelerator::Newton, 30), 1e-7) << arap_method_name(method);
 }
 
 // Warm start: from a converged solution the gradient rule holds within one iteration and U stays put

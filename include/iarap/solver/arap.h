@@ -118,9 +118,10 @@ enum class ArapAccelerator {
   None,     // plain local/global block descent (Sec. 4.2): U_{k+1,f} = L_ff^{-1} (rhs_f(R*(U_k)) - L_fc U_c)
   Anderson, // Anderson acceleration of that fixed-point map (Peng et al. 2018) with their energy safeguard
   Lbfgs,    // L-BFGS on the rotation-minimized energy, initial inverse Hessian L_ff^{-1} (Liu et al. 2017)
+  Newton,   // truncated Newton with the exact Hessian of that energy, CG preconditioned by L_ff
 };
 
-// "none" | "anderson" | "lbfgs"; anything else throws InputError naming the value and the choices.
+// "none" | "anderson" | "lbfgs" | "newton"; anything else throws InputError naming the value and the choices.
 ArapAccelerator parse_arap_accelerator(const std::string& name);
 // The inverse of parse_arap_accelerator.
 std::string arap_accelerator_name(ArapAccelerator accelerator);
@@ -151,7 +152,7 @@ struct ArapSolveOptions {
   ArapAccelerator accelerator = ArapAccelerator::Lbfgs;
   // History length m of the accelerator (Anderson: past residual differences; L-BFGS: (s, y) pairs).
   // 0 runs the plain iteration, bit for bit as ArapAccelerator::None.
-  int window = 6;
+  int window = 8;
   ArapIterationCallback on_iteration; // optional
 };
 
@@ -171,6 +172,8 @@ struct ArapReport {
   // history), 0 when it is the plain local/global iterate (first step, after a rejection, or no accelerator).
   std::vector<unsigned char> accepted;
   int rejected = 0;              // accelerated iterates refused by the energy safeguard / line search
+  int solves = 0;                // back-substitutions with the factor of L_ff: one per plain step, plus
+                                 // L-BFGS's one per direction and Newton's one per conjugate-gradient step
   double accelerator_ms = 0;     // the accelerator's own work (history, least squares, two-loop recursion)
   std::vector<double> elapsed_ms; // wall time from the start of arap_solve to the end of iteration k
 };
