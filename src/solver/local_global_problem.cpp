@@ -91,9 +91,11 @@ Eigen::MatrixXd LocalGlobalProblem::solve(const Eigen::MatrixXd& r) const {
 void LocalGlobalProblem::prepare_hessian() {
   constexpr double kFloor = 1e-6;
   cell_covariances(data_.elements, U_rows_, S_); // U_rows_ holds the last local step's positions
-  const auto n = S_.size();
-  M_inverse_.resize(n);
-  for (size_t c = 0; c < n; ++c) {
+  const auto n = static_cast<int>(S_.size());
+  M_inverse_.resize(S_.size());
+#pragma omp parallel for schedule(static)
+  for (int k = 0; k < n; ++k) {
+    const auto c = static_cast<size_t>(k);
     const Eigen::Matrix3d& R = data_.R[c];
     Eigen::Matrix3d P = R.transpose() * S_[c];
     P = 0.5 * (P + P.transpose()).eval();
@@ -119,9 +121,11 @@ Eigen::MatrixXd LocalGlobalProblem::hessian_product(const Eigen::MatrixXd& v) {
   for (Eigen::Index i = 0; i < free_count(); ++i)
     v_rows_.row(data_.free(i)) = v.row(i);
   cell_covariances(data_.elements, v_rows_, S_); // dS_c, in the Hessian's workspace
-  const auto n = S_.size();
-  dR_.resize(n);
-  for (size_t c = 0; c < n; ++c) {
+  const auto n = static_cast<int>(S_.size());
+  dR_.resize(S_.size());
+#pragma omp parallel for schedule(static)
+  for (int k = 0; k < n; ++k) {
+    const auto c = static_cast<size_t>(k);
     const Eigen::Matrix3d& R = data_.R[c];
     const Eigen::Matrix3d A = R.transpose() * S_[c];
     const Eigen::Vector3d a(A(2, 1) - A(1, 2), A(0, 2) - A(2, 0), A(1, 0) - A(0, 1));

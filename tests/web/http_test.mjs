@@ -150,7 +150,7 @@ describe('api', () => {
     const { fixed, handle, height } = await bottomAndTop();
     await postJson('/api/constraints', { fixed, handle });
     const transform = [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0.2 * height, 0, 0, 1];
-    for (const accelerator of ['none', 'anderson', 'lbfgs']) {
+    for (const accelerator of ['none', 'anderson', 'lbfgs', 'newton']) {
       await postJson('/api/reset', {});
       const response = await postJson('/api/solve', { method: 'spokes-rims', iterations: 8, tolerance: -1, accelerator, transform });
       assert.equal(response.status, 200, await response.clone().text());
@@ -163,7 +163,7 @@ describe('api', () => {
     }
     const bad = await postJson('/api/solve', { method: 'iarap', accelerator: 'fast', transform });
     assert.equal(bad.status, 400);
-    assert.match((await bad.json()).error, /lbfgs.*anderson.*none/);
+    assert.match((await bad.json()).error, /lbfgs.*newton.*anderson.*none/);
     const negative = await postJson('/api/solve', { method: 'iarap', gradient_tolerance: -1, transform });
     assert.equal(negative.status, 400);
   });
