@@ -111,6 +111,7 @@ nlohmann::json bench_one(const std::string& path, const Eigen::MatrixXd& V, cons
   ArapSolveOptions solve_options;
   solve_options.max_iterations = iterations + 1; // the first is the warm-up
   solve_options.tolerance = -1;                  // run them all
+  solve_options.accelerator = ArapAccelerator::None; // the plain local/global iteration (issue 18's figure)
   const ArapReport report = arap_solve(data, constraints.targets, U, solve_options);
   const IterationFloor floor = iteration_floor(data, U, 11);
   std::vector<double> iteration_ms(report.local_ms_per_iteration.size());
