@@ -168,7 +168,8 @@ void print_table(const nlohmann::json& results) {
                 r["local_ms"].get<double>(), r["global_ms"].get<double>(), r["solve_floor_ms"].get<double>(),
                 r["element_pass_ms"].get<double>());
   }
-  std::printf("(milliseconds; iteration, local and global are medians over the measured iterations; with more "
+  std::printf("(milliseconds; iteration, local and global are medians over the measured plain local/global "
+              "iterations (no accelerator; `--converge` times the accelerated loops); with more "
               "than one thread the symbolic analysis runs beside the intrinsic flips (iarap) or the element build "
               "(the others), and factor counts only the part of it they did not hide; solve_fl (solve_floor_ms): "
               "one CHOLMOD solve of the 3 right-hand sides, elem_pass (element_pass_ms): one streaming pass over "
