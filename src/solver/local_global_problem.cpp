@@ -57,6 +57,7 @@ double LocalGlobalProblem::local_step() {
 
 void LocalGlobalProblem::assemble_rhs() {
   arap_rhs(data_.elements, data_.R, rhs_); // Eq. 16
+#pragma omp parallel for schedule(static)
   for (Eigen::Index i = 0; i < free_count(); ++i)
     B_.row(i) = rhs_.row(data_.free(i)) - Lfc_Uc_.row(i);
 }
@@ -68,13 +69,14 @@ const Eigen::MatrixXd& LocalGlobalProblem::plain_step() {
 
 Eigen::MatrixXd LocalGlobalProblem::gradient() const {
   // (L U)_f - rhs_f = L_ff x + L_fc U_c - rhs_f = L_ff x - B, in one pass over the free rows of L (Eigen's
-  // product made a pass per coordinate and two temporaries).
+  // product made a pass per coordinate and two temporaries), parallel over rows as Eigen's was.
   const Eigen::Index nf = free_count();
   Eigen::MatrixXd g(nf, 3);
   const int* outer = L_free_cols_.outerIndexPtr();
   const int* row = L_free_cols_.innerIndexPtr();
   const double* value = L_free_cols_.valuePtr();
   const double *u0 = U_.col(0).data(), *u1 = U_.col(1).data(), *u2 = U_.col(2).data();
+#pragma omp parallel for schedule(static)
   for (Eigen::Index i = 0; i < nf; ++i) {
     double a0 = 0.0, a1 = 0.0, a2 = 0.0;
     for (int k = outer[i]; k < outer[i + 1]; ++k) {
