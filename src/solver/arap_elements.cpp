@@ -147,7 +147,9 @@ void fill_streamed_layout(ArapElements& el) {
         int& at = where[static_cast<size_t>(c)];
         if (at < 0) {
           at = end++;
-          el.rhs_term[static_cast<size_t>(at)] = ArapElements::RhsTerm{{0.0, 0.0, 0.0}, c};
+          ArapElements::RhsTerm& term = el.rhs_term[static_cast<size_t>(at)];
+          term.p[0] = term.p[1] = term.p[2] = 0.0;
+          term.cell = c;
         }
         for (int d = 0; d < 3; ++d) el.rhs_term[static_cast<size_t>(at)].p[d] += wb * el.s_hat(e, d);
       });

@@ -139,13 +139,12 @@ Eigen::Matrix3d polar_rotation_near(const Eigen::Matrix3d& S, const Eigen::Matri
   if (scale == 0.0)
     return Eigen::Matrix3d::Identity();
   const Eigen::Matrix3d S0 = S / scale;
-  const double n = S0.norm();
-  const double det = S0.determinant();
-  // The cases where polar_rotation does not take its Newton iteration (the exact identity at rest, the
-  // SVD near rank deficiency) go to it, so that the answer is the same rotation.
-  if (!(det > kNewtonDeterminant * n * n * n) ||
-      (S0(0, 1) == S0(1, 0) && S0(0, 2) == S0(2, 0) && S0(1, 2) == S0(2, 1) && S0(0, 0) > 0 &&
-       S0(0, 0) * S0(1, 1) - S0(0, 1) * S0(1, 0) > 0))
+  // The exact rest state (bitwise symmetric S) goes to polar_rotation, which returns exactly I when S is
+  // positive definite. Nothing else does: a negative det S (a reflection, frequent with negative weights)
+  // or a near rank deficiency have a unique optimal rotation whenever G below is safely positive definite
+  // (its eigenvalues at the optimum are sigma_i + sigma_j with sigma_3 signed like det S), and Newton on the
+  // rotation group finds it as it does for det S > 0; where G is not, polar_rotation's SVD decides.
+  if (S0(0, 1) == S0(1, 0) && S0(0, 2) == S0(2, 0) && S0(1, 2) == S0(2, 1))
     return polar_rotation(S);
   Eigen::Vector4d start = quaternion_of(guess);
   const double start_norm = start.norm();

@@ -1,6 +1,7 @@
 #include "iarap/solver/polar_rotation.h"
 
 #include <Eigen/Dense>
+#include <Eigen/Geometry>
 #include <gtest/gtest.h>
 #include <random>
 
@@ -135,6 +136,28 @@ TEST(PolarRotation, NearlySymmetricGivesTheExactPolarFactor) {
     const Matrix3d R = polar_rotation(S);
     expect_rotation(R);
     EXPECT_LT((R - svd_rotation(S)).norm(), 1e-14) << "trial " << t;
+  }
+}
+
+// polar_rotation_near from a guess a few degrees off (what the iterations hand it) on the covariances
+// polar_rotation sends to its SVD: reflections (det S < 0, frequent with original ARAP's negative weights)
+// and rank 2 up to rounding (flat one-rings). The optimum is unique with sigma_2 + sigma_3 >= 0.1 here
+// (sigma_3 signed like det S), so both answers are the one rotation to rounding: eps / (sigma_2 + sigma_3)
+// ~ 1e-15, hence 1e-13.
+TEST(PolarRotation, NearGuessMatchesSvdOnReflectionsAndRankDeficiency) {
+  std::mt19937 rng(13);
+  std::uniform_real_distribution<double> second(0.3, 1.0), third(-0.2, 0.2), angle(-0.05, 0.05);
+  for (int t = 0; t < 2000; ++t) {
+    const Matrix3d P = random_rotation(rng), Q = random_rotation(rng);
+    const double sigma3 = t % 4 == 0 ? 0.0 : t % 4 == 1 ? 1e-14 * third(rng) : third(rng);
+    const Matrix3d S = P * Eigen::Vector3d(1.0, second(rng), sigma3).asDiagonal() * Q.transpose();
+    const Matrix3d optimum = svd_rotation(S);
+    const Matrix3d guess =
+        optimum * Eigen::AngleAxisd(angle(rng), random_matrix(rng).col(0).normalized()).toRotationMatrix();
+    const Matrix3d R = iarap::polar_rotation_near(S, guess);
+    expect_rotation(R);
+    EXPECT_LT((R - optimum).norm(), 1e-13) << "trial " << t;
+    EXPECT_LT((R - polar_rotation(S)).norm(), 1e-13) << "trial " << t;
   }
 }
 

@@ -38,7 +38,10 @@ struct ArapElements {
   // What the iterations stream (finish_elements fills it from the arrays above; fit_rotations.h, arap_rhs.h):
   // cell_entry[k] is element cell_element[k] (b, s_hat, w side by side), so that the local step reads
   // each cell's elements in one forward sweep instead of gathering them through cell_element.
+  // CellEntry and RhsTerm leave their members uninitialized when constructed (the builder writes each
+  // one): resizing the vectors then does not zero tens of megabytes that are overwritten at once.
   struct CellEntry {
+    CellEntry() {}
     int index[3];
     double value[3];
     double s_hat[3];
@@ -49,6 +52,7 @@ struct ArapElements {
   // pair with p_vc = sum over the elements e of cell c with (b_e)_v != 0 of w_e (b_e)_v s_hat_e (a cell
   // repeated in cells(e) counts as often). rhs_term_start (#V + 1) delimits each vertex's terms.
   struct RhsTerm {
+    RhsTerm() {}
     double p[3];
     int cell;
   };

@@ -18,9 +18,11 @@ Eigen::Matrix3d polar_rotation(const Eigen::Matrix3d& S);
 
 // polar_rotation(S) (the same rotation to rounding) found from a guess near it, e.g. the cell's rotation
 // of the previous ARAP iteration: Newton steps on the rotation group, two or three when the guess is
-// within a few degrees, against the five to eight of polar_rotation's iteration. Whenever the guess is far
-// (first step over 0.5 rad), the quadratic model is not concave there, or S is one of polar_rotation's
-// special cases (exact rest state, near rank deficiency, S = 0, non-finite), polar_rotation(S) itself.
+// within a few degrees, against the five to eight of polar_rotation's iteration. It covers det S <= 0 and
+// near rank deficiency as well (polar_rotation takes its SVD there) as long as the optimum is unique with
+// a margin (sigma_2 + sigma_3 > 1e-6 |S|, sigma_3 signed like det S). Whenever the guess is far (first
+// step over 0.5 rad), the quadratic model is not safely concave there, or S is bitwise symmetric (the
+// exact rest state), S = 0 or non-finite: polar_rotation(S) itself.
 Eigen::Matrix3d polar_rotation_near(const Eigen::Matrix3d& S, const Eigen::Matrix3d& guess);
 
 } // namespace iarap
