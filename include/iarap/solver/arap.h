@@ -142,16 +142,17 @@ struct ArapSolveOptions {
   // rule it does not stop on a stall. 0 disables the rule.
   double gradient_tolerance = 0.0;
   // The accelerator (see ArapAccelerator). Anderson: an accelerated iterate whose energy is above the last
-  // accepted one is replaced by the plain iterate and the history restarts. L-BFGS: Armijo backtracking on
-  // the rotation-minimized energy; when it fails, the plain step (which never increases the energy while
-  // L_ff is positive definite) and a fresh history. Default L-BFGS, measured with `iarap bench --converge
-  // 1e-6` on the bend60 scene (README): bunny, iterations to the 1e-6 energy gap, plain / Anderson / L-BFGS:
-  // spokes-rims 945 / 127 / 97, iARAP 763 / >4000 (Anderson stagnates: 941 rejections) / 97. Original ARAP
-  // (negative weights: a non-smooth, indefinite problem) is the exception: >4000 / 1310 / >4000, so pass
-  // Anderson there.
+  // accepted one is replaced by the plain iterate and the history restarts. L-BFGS and Newton: Armijo
+  // backtracking on the rotation-minimized energy; when it fails, the plain step (which never increases the
+  // energy while L_ff is positive definite) and (L-BFGS) a fresh history. Default L-BFGS, measured with
+  // `iarap bench --converge 1e-6` on the bend60 scene (README "Accelerated solves"): on spokes-rims and iARAP
+  // it reaches the gap 8-16x sooner than plain in iterations, at the plain iteration's cost per iteration;
+  // Newton needs 30-87x fewer iterations but each runs up to `window` CG steps (one solve each), so its time
+  // is about L-BFGS's; it is the choice for high accuracy in few iterations. Original ARAP (negative weights)
+  // has several nearby minima on large edits and the accelerators may end in another one than plain.
   ArapAccelerator accelerator = ArapAccelerator::Lbfgs;
-  // History length m of the accelerator (Anderson: past residual differences; L-BFGS: (s, y) pairs).
-  // 0 runs the plain iteration, bit for bit as ArapAccelerator::None.
+  // History length m of the accelerator (Anderson: past residual differences; L-BFGS: (s, y) pairs; Newton:
+  // the CG steps per Newton step). 0 runs the plain iteration, bit for bit as ArapAccelerator::None.
   int window = 8;
   ArapIterationCallback on_iteration; // optional
 };
