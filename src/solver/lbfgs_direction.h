@@ -16,9 +16,11 @@ class LbfgsDirection {
 public:
   explicit LbfgsDirection(int window);
 
-  // Stores the pair s = x_{k+1} - x_k, y = g_{k+1} - g_k unless its curvature s^T y is not clearly positive
-  // (the energy is not convex; such a pair would make H indefinite). Returns whether it was kept.
-  bool push(const Eigen::MatrixXd& s, const Eigen::MatrixXd& y);
+  // Stores the pair s = x_next - x, y = g_next - g unless its curvature s^T y is not clearly positive
+  // (the energy is not convex; such a pair would make H indefinite). Returns whether it was kept. One pass
+  // over the four inputs writes s and y and sums s^T y, |s|^2 and |y|^2 (this runs every iteration).
+  bool push(const Eigen::MatrixXd& x_next, const Eigen::MatrixXd& x, const Eigen::MatrixXd& g_next,
+            const Eigen::MatrixXd& g);
 
   // d = -H g with H_0 r = problem.solve(r).
   Eigen::MatrixXd direction(const Eigen::MatrixXd& g, const LocalGlobalProblem& problem) const;
@@ -31,6 +33,7 @@ private:
   int pairs_ = 0;  // held, <= window_
   int newest_ = -1; // slot of the newest pair (circular)
   std::vector<Eigen::MatrixXd> s_, y_;
+  Eigen::MatrixXd spare_s_, spare_y_; // the candidate pair; swapped into the ring when kept
   std::vector<double> rho_; // 1 / (s^T y)
 };
 

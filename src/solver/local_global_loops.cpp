@@ -207,7 +207,7 @@ void run_lbfgs(LocalGlobalProblem& problem, const ArapSolveOptions& options, dou
     Eigen::MatrixXd g_next = problem.gradient();
     step.global_ms += ms_since(start);
     start = Clock::now();
-    lbfgs.push(x_next - x, g_next - g);
+    lbfgs.push(x_next, x, g_next, g);
     x.swap(x_next);
     g.swap(g_next);
     report.accelerator_ms += ms_since(start);
