@@ -200,15 +200,14 @@ void run_lbfgs(LocalGlobalProblem& problem, const ArapSolveOptions& options, dou
       lbfgs.reset();
       quasi_newton = false;
     }
-    Eigen::MatrixXd& x_next = step.x;
     energy = step.energy;
     start = Clock::now();
     problem.assemble_rhs();
     Eigen::MatrixXd g_next = problem.gradient();
     step.global_ms += ms_since(start);
     start = Clock::now();
-    lbfgs.push(x_next, x, g_next, g);
-    x.swap(x_next);
+    lbfgs.push(step.x, x, g_next, g);
+    x.swap(step.x);
     g.swap(g_next);
     report.accelerator_ms += ms_since(start);
     if (progress.record(energy, g.norm(), quasi_newton && step.accepted, step.local_ms, step.global_ms)) return;

@@ -136,8 +136,9 @@ void LocalGlobalProblem::prepare_hessian() {
 // H v = L v - rhs(dR[v]) at the free rows: g(U) = L U - rhs(R(U)) (Eq. 14, 16) differentiated, with dR_c from
 // dS_c = sum_e w_e (v^T b_e) s_hat_e^T (the covariance sweep run on v) through the relation above.
 Eigen::MatrixXd LocalGlobalProblem::hessian_product(const Eigen::MatrixXd& v) {
-  const Eigen::Index nv = U_.rows();
-  v_rows_.setZero(nv, 3);
+  // Only the free rows are written, so the constrained ones stay at the zero they got once.
+  if (v_rows_.rows() != U_.rows())
+    v_rows_.setZero(U_.rows(), 3);
   for (Eigen::Index i = 0; i < free_count(); ++i)
     v_rows_.row(data_.free(i)) = v.row(i);
   cell_covariances(data_.elements, v_rows_, S_); // dS_c, in the Hessian's workspace

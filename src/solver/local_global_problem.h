@@ -40,9 +40,10 @@ public:
   // prepare_hessian() keeps per cell M_c^{-1} = (tr(P_c) I - P_c)^{-1} with P_c = R_c^T S_c (what the
   // derivative of the polar rotation needs); hessian_product(v) then returns H v (v #free x 3).
   void prepare_hessian();
+  Eigen::MatrixXd hessian_product(const Eigen::MatrixXd& v);
+
   // Back-substitutions with the factor so far (plain_step and solve).
   int solves() const { return solves_; }
-  Eigen::MatrixXd hessian_product(const Eigen::MatrixXd& v);
 
 private:
   ArapData& data_;
