@@ -8,7 +8,7 @@ namespace iarap::detail {
 
 AndersonAcceleration::AndersonAcceleration(int window, Eigen::Index size)
     : window_(window), size_(size), dF_(size, window), dG_(size, window), gram_(window, window),
-      f_prev_(size), G_prev_(size), f_(size), df_(size) {}
+      dF_f_(window), f_prev_(size), G_prev_(size), f_(size), df_(size) {}
 
 void AndersonAcceleration::reset() {
   columns_ = 0;
@@ -30,10 +30,15 @@ bool AndersonAcceleration::step(const double* x, const double* Gx, double* next)
       dG_.col(j) = (G - G_prev_) / norm;
       newest_ = j;
       columns_ = std::min(columns_ + 1, window_);
-      for (int i = 0; i < columns_; ++i) {
-        const int c = (j - i + window_) % window_;
-        gram_(j, c) = gram_(c, j) = dF_.col(j).dot(dF_.col(c));
-      }
+      // The new Gram column in one pass over dF (columns are used in storage order: the least-squares
+      // problem does not depend on the order of its columns).
+      gram_.col(j).head(columns_).noalias() = dF_.leftCols(columns_).transpose() * dF_.col(j);
+      gram_.row(j).head(columns_) = gram_.col(j).head(columns_).transpose();
+      // dF_c . f_k = dF_c . f_{k-1} + dF_c . (norm dF_j) for the columns kept: the right-hand side follows
+      // from the Gram column without another pass over dF; only the new column needs its own product.
+      for (int c = 0; c < columns_; ++c)
+        if (c != j) dF_f_(c) += norm * gram_(c, j);
+      dF_f_(j) = dF_.col(j).dot(f_);
     }
   }
   f_prev_ = f_;
@@ -45,18 +50,9 @@ bool AndersonAcceleration::step(const double* x, const double* Gx, double* next)
   }
   // theta = argmin ||f - dF theta|| through the m x m normal equations; the complete orthogonal
   // decomposition gives the minimum-norm theta when two differences are (nearly) parallel.
-  Eigen::VectorXd rhs(columns_);
-  Eigen::MatrixXd M(columns_, columns_);
-  for (int a = 0; a < columns_; ++a) {
-    const int ca = (newest_ - a + window_) % window_;
-    rhs(a) = dF_.col(ca).dot(f_);
-    for (int b = 0; b < columns_; ++b)
-      M(a, b) = gram_(ca, (newest_ - b + window_) % window_);
-  }
-  const Eigen::VectorXd theta = M.completeOrthogonalDecomposition().solve(rhs);
-  out = G;
-  for (int a = 0; a < columns_; ++a)
-    out.noalias() -= theta(a) * dG_.col((newest_ - a + window_) % window_);
+  const Eigen::VectorXd theta =
+      gram_.topLeftCorner(columns_, columns_).completeOrthogonalDecomposition().solve(dF_f_.head(columns_));
+  out.noalias() = G - dG_.leftCols(columns_) * theta; // one pass over dG
   return true;
 }
 

@@ -28,6 +28,7 @@ private:
   bool has_previous_ = false;
   Eigen::MatrixXd dF_, dG_;   // size x window: differences, each pair scaled so that ||dF_j|| = 1
   Eigen::MatrixXd gram_;      // window x window: dF^T dF
+  Eigen::VectorXd dF_f_;      // dF^T f_k, kept up to date from the Gram columns
   Eigen::VectorXd f_prev_, G_prev_, f_, df_;
 };
 

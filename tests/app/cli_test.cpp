@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -325,6 +326,44 @@ TEST(Cli, BenchSubdivideAndTable) {
   EXPECT_NE(run.out.find(" 13934 "), std::string::npos) << run.out;
   EXPECT_NE(run.out.find("spokes-rims"), std::string::npos) << run.out;
   EXPECT_NE(run.out.find("cpu: "), std::string::npos) << run.out;
+}
+
+// bench --converge: every run either reaches the gap (its last energy within TOL of the reference, the lowest
+// energy of the reference runs, so never below it by more than rounding), stops at another stationary point
+// (the gradient rule of the reference runs), or hits the iteration limit; the table marks which.
+TEST(Cli, BenchConvergeReportsReachedOrStationaryRuns) {
+  const double tolerance = 1e-3; // a loose gap: the test measures the bench's bookkeeping, not the solvers
+  const auto dir = iarap::test::temp_dir("cli_bench_converge");
+  const auto report = dir / "converge.json";
+  const CliRun run = iarap_cli("bench '" + bunny + "' --converge 1e-3 --methods spokes-rims --accels none,lbfgs "
+                               "--max-iterations 2000 --threads 1 --report '" + report.string() + "'");
+  ASSERT_EQ(run.code, 0) << run.out;
+  EXPECT_NE(run.out.find("within 1e-03 (relative) of the reference minimum"), std::string::npos) << run.out;
+  std::ifstream in(report);
+  const json j = json::parse(in);
+  fs::remove_all(dir);
+  ASSERT_EQ(j["results"].size(), 1u);
+  const json& r = j["results"][0];
+  const double reference = r["reference_energy"].get<double>();
+  ASSERT_TRUE(std::isfinite(reference));
+  ASSERT_EQ(r["reference_runs"].size(), 3u);
+  for (const auto& ref : r["reference_runs"]) // the reference is the lowest of them
+    EXPECT_GE(ref["energy"].get<double>(), reference) << ref;
+  ASSERT_EQ(r["runs"].size(), 2u);
+  for (const auto& x : r["runs"]) {
+    const double gap = x["final_energy"].get<double>() - reference;
+    EXPECT_DOUBLE_EQ(x["final_gap"].get<double>(), gap) << x;
+    EXPECT_LT(x["iterations"].get<int>(), 2000) << x; // spokes-rims on the bunny converges well before
+    if (x["reached"].get<bool>()) {
+      EXPECT_FALSE(x["stationary"].get<bool>()) << x;
+      EXPECT_LE(gap, tolerance * std::abs(reference)) << x;
+      EXPECT_GE(gap, -1e-12 * std::abs(reference)) << x; // not below the lowest minimum found
+    } else {
+      EXPECT_TRUE(x["stationary"].get<bool>()) << x;
+      EXPECT_GT(gap, tolerance * std::abs(reference)) << x;
+    }
+    EXPECT_GE(x["solves"].get<int>(), x["iterations"].get<int>()) << x; // at least one solve an iteration
+  }
 }
 
 // A bunny with one zero-area face: original ARAP refuses it (infinite cotangents), iARAP mollifies it.
