@@ -149,6 +149,18 @@ struct LineStep {
   double local_ms = 0, global_ms = 0;
 };
 
+// Replaces a rejected trial by the plain local/global step from x (the rhs is still the one assembled at x);
+// the trial's time stays in the step's.
+void take_plain_step(LocalGlobalProblem& problem, LineStep& step) {
+  auto start = Clock::now();
+  step.x = problem.plain_step();
+  step.global_ms += ms_since(start);
+  start = Clock::now();
+  problem.set_positions(step.x);
+  step.energy = problem.local_step();
+  step.local_ms += ms_since(start);
+}
+
 LineStep armijo_or_plain_step(LocalGlobalProblem& problem, const Eigen::MatrixXd& x, const Eigen::MatrixXd& d,
                               double slope, double energy, ArapReport& report) {
   constexpr double kArmijo = 1e-4; // sufficient-decrease constant c_1 (Nocedal & Wright's usual value)
@@ -165,13 +177,7 @@ LineStep armijo_or_plain_step(LocalGlobalProblem& problem, const Eigen::MatrixXd
   step.local_ms += ms_since(start);
   if (!step.accepted) {
     ++report.rejected;
-    start = Clock::now();
-    step.x = problem.plain_step();
-    step.global_ms += ms_since(start);
-    start = Clock::now();
-    problem.set_positions(step.x);
-    step.energy = problem.local_step();
-    step.local_ms += ms_since(start);
+    take_plain_step(problem, step);
   }
   return step;
 }
@@ -214,55 +220,94 @@ void run_lbfgs(LocalGlobalProblem& problem, const ArapSolveOptions& options, dou
   }
 }
 
-// Truncated Newton (Nocedal & Wright, Algorithm 7.1, "line search Newton-CG") on E(x) = min_R energy with
-// the exact Hessian (LocalGlobalProblem::hessian_product). The Newton system H d = -g is solved by conjugate
-// gradients preconditioned by L_ff (the factorization at hand), stopped at ||r|| <= eta ||g|| with
-// eta = min(0.5, sqrt(||g|| / ||g_0||)) (superlinear convergence near a minimum, cheap steps far from it),
-// after `cg_limit` iterations, or at a direction of non-positive curvature (the energy is not convex): then
-// the CG iterate so far, or the preconditioned steepest descent direction -L_ff^{-1} g (the plain
-// local/global step) when that happens first. Armijo backtracking as in run_lbfgs; when it fails, the plain
-// step.
+// Where the step of length tau along p from d meets the trust region's boundary ||d + tau p||_L = radius:
+// the positive root of dLd + 2 tau dLp + tau^2 pLp = radius^2 (dLd <= radius^2, so it exists).
+double to_boundary(double dLd, double dLp, double pLp, double radius) {
+  const double slack = std::max(0.0, radius * radius - dLd);
+  return (std::sqrt(dLp * dLp + pLp * slack) - dLp) / pLp;
+}
+
+// Truncated Newton in a trust region (Steihaug-Toint CG, Nocedal & Wright Algorithm 7.2 and Section 4.1) on
+// E(x) = min_R energy with the exact Hessian (LocalGlobalProblem::hessian_product). The model
+// m(d) = g.d + d.H d / 2 is minimized by conjugate gradients preconditioned by L_ff (the factorization at
+// hand) inside ||d||_L <= radius, stopped at ||r|| <= eta ||g|| with eta = min(0.5, sqrt(||g|| / ||g_0||))
+// (superlinear convergence near a minimum), after `cg_limit` steps, at the boundary, or at a direction of
+// non-positive curvature, which is followed to the boundary. The energy is not convex: on large edits the
+// plain step's own direction often has negative curvature, and a line search there either throws away a CG
+// iterate blown up by near-zero curvature or creeps with the plain step; the trust region instead starts at
+// the plain step's length and doubles while the model predicts the energy well, which walks out of such
+// regions at a growing pace. A step that achieves less than kAccept of the predicted decrease is replaced by
+// the plain local/global step (never an energy increase), and the radius shrinks.
 void run_newton(LocalGlobalProblem& problem, const ArapSolveOptions& options, double energy, Eigen::MatrixXd g,
                 ArapReport& report, Progress& progress) {
+  constexpr double kAccept = 0.1;            // rho above this: the step is taken
+  constexpr double kShrink = 0.25, kGrow = 0.75; // rho below / above: radius shrinks / grows (N&W Alg. 4.1)
   const int cg_limit = options.window;
   const double g0 = g.norm();
   Eigen::MatrixXd x = problem.positions();
+  double radius = 0; // in the L_ff norm; set from the first plain step's length
   for (int k = 0; k < options.max_iterations; ++k) {
     auto start = Clock::now();
     problem.prepare_hessian();
     const double g_norm = g.norm();
     const double eta = std::min(0.5, std::sqrt(g_norm / g0));
     Eigen::MatrixXd r = -g;
-    Eigen::MatrixXd p = problem.solve(r);
-    Eigen::MatrixXd d = Eigen::MatrixXd::Zero(g.rows(), 3);
+    Eigen::MatrixXd p = problem.solve(r); // z_0 = L^-1 r_0: the plain step
     double rz = inner(r, p);
-    bool newton = false;
+    if (radius == 0) radius = std::sqrt(rz); // ||L^-1 g||_L
+    Eigen::MatrixXd d = Eigen::MatrixXd::Zero(g.rows(), 3);
+    // ||d||_L^2, d.L p, p.L p by the preconditioned CG recurrences (no product with L); the model value.
+    double dLd = 0, dLp = 0, pLp = rz, model = 0;
+    bool boundary = false;
     for (int j = 0; j < cg_limit; ++j) {
       const Eigen::MatrixXd Hp = problem.hessian_product(p);
       const double curvature = inner(p, Hp);
-      if (!(curvature > 0)) {
-        if (j == 0) d = p;
+      const double alpha = rz / curvature;
+      if (!(curvature > 0) || dLd + 2 * alpha * dLp + alpha * alpha * pLp >= radius * radius) {
+        const double tau = to_boundary(dLd, dLp, pLp, radius);
+        d += tau * p;
+        model += -tau * rz + 0.5 * tau * tau * curvature; // m(d + tau p) - m(d), with r.p = r.z
+        dLd = radius * radius;
+        boundary = true;
         break;
       }
-      const double alpha = rz / curvature;
       d += alpha * p;
+      model -= 0.5 * alpha * rz;
+      dLd += 2 * alpha * dLp + alpha * alpha * pLp;
       r -= alpha * Hp;
-      newton = true;
       if (r.norm() <= eta * g_norm || j + 1 == cg_limit) break;
       const Eigen::MatrixXd z = problem.solve(r);
       const double rz_next = inner(r, z);
-      p = z + (rz_next / rz) * p;
+      const double beta = rz_next / rz;
+      dLp = beta * (dLp + alpha * pLp);
+      pLp = rz_next + beta * beta * pLp;
+      p = z + beta * p;
       rz = rz_next;
     }
     report.accelerator_ms += ms_since(start);
-    LineStep step = armijo_or_plain_step(problem, x, d, inner(g, d), energy, report);
+    LineStep step;
+    start = Clock::now();
+    step.x = x + d;
+    problem.set_positions(step.x);
+    step.energy = problem.local_step();
+    step.local_ms = ms_since(start);
+    const double rho = (step.energy - energy) / model; // model < 0; NaN (a non-finite trial) fails below
+    step.accepted = model < 0 && rho >= kAccept;
+    if (!(rho >= kShrink))
+      radius = kShrink * std::sqrt(dLd);
+    else if (rho > kGrow && boundary)
+      radius *= 2;
+    if (!step.accepted) {
+      ++report.rejected;
+      take_plain_step(problem, step);
+    }
     energy = step.energy;
     start = Clock::now();
     problem.assemble_rhs();
     g = problem.gradient();
     step.global_ms += ms_since(start);
     x.swap(step.x);
-    if (progress.record(energy, g.norm(), newton && step.accepted, step.local_ms, step.global_ms)) return;
+    if (progress.record(energy, g.norm(), step.accepted, step.local_ms, step.global_ms)) return;
   }
 }
 

@@ -289,8 +289,8 @@ TEST_F(AcceleratedSolve, HessianProductIsTheDerivativeOfTheGradient) {
 
 // Truncated Newton reaches the rigidly moved bunny of the test above to 1e-7 of the diagonal within the 30
 // iterations the issue asks for. Measured distances after 10 / 15 / 20 / 30 iterations (window 8: up to 8 CG
-// steps per iteration, one solve each): spokes-rims 6.2e-7 / 1.3e-11 / 1.1e-14 / 1.0e-14, iARAP
-// 6.5e-6 / 3.0e-10 / 1.9e-14 / 1.8e-14, against L-BFGS's 1.1e-4 / 2.4e-4 and Anderson's 2.4e-5 / 9.7e-5
+// steps per iteration, one solve each; trust region): spokes-rims 9.2e-6 / 1.7e-10 / 1.4e-14 / 1.2e-14, iARAP
+// 3.6e-4 / 1.1e-8 / 1.0e-12 / 1.7e-14, against L-BFGS's 1.1e-4 / 2.4e-4 and Anderson's 2.4e-5 / 9.7e-5
 // after 30. (Original ARAP is left out: with negative weights its energy goes below zero, so the rigid
 // motion, E = 0, is a stationary point but not its minimizer; every accelerator ends 3.6e-2 of the diagonal
 // away from it.)
