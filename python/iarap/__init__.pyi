@@ -44,7 +44,7 @@ class ARAP:
         iterations: int = 50,
         tolerance: float = 1e-06,
         *,
-        accelerator: str = "lbfgs",
+        accelerator: str = "newton",
         window: int = 8,
         gradient_tolerance: float = 0.0,
     ) -> _FloatArray: ...

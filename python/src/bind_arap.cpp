@@ -214,7 +214,7 @@ U0: (#V, 3) initial guess (None: the rest positions); its constrained rows are r
 iterations: at most this many local/global iterations (>= 0).
 tolerance: stop when one iteration lowers the energy by at most tolerance * energy; negative: always run
 `iterations` iterations.
-accelerator: "lbfgs", "newton", "anderson" or "none" (plain local/global); window: its history length
+accelerator: "newton" (default), "lbfgs", "anderson" or "none" (plain local/global); window: its history length
 (newton: conjugate-gradient steps per Newton step; 0 = plain).
 gradient_tolerance: also stop when the gradient norm at the free vertices is this fraction of its value at
 U0 (0 = off). Warm start: pass the previous solution as U0.

@@ -143,14 +143,15 @@ try {
 
   // 4. Load the saved scenario and replay it with the CLI: the page solves 50 iterations from the rest
   // shape to the file's targets, as `iarap deform` does; both run the same iterations from the same start
-  // (one arap_solve call with the default accelerator), so they agree to the float32 rounding of the display.
+  // (one arap_solve call with the page's accelerator, L-BFGS), so they agree to the float32 rounding of the
+  // display.
   await page.fill('#iterations', '50');
   await page.setInputFiles('#load-scenario', scenarioPath);
   await page.waitForFunction(() => document.getElementById('status').textContent.startsWith('loaded'), null, { timeout: 30000 });
   await settle();
   const replayed = await viewer('displayedPositions');
   const outPath = path.join(userDataDir, 'replay.obj');
-  execFileSync(cliPath, ['deform', path.join(repoRoot, 'data', 'bunny.off'), '--scenario', scenarioPath, '--method', 'iarap', '--iterations', '50', '--out', outPath, '--quiet']);
+  execFileSync(cliPath, ['deform', path.join(repoRoot, 'data', 'bunny.off'), '--scenario', scenarioPath, '--method', 'iarap', '--iterations', '50', '--accel', 'lbfgs', '--out', outPath, '--quiet']);
   const cli = fs.readFileSync(outPath, 'utf8').split('\n').filter((l) => l.startsWith('v ')).map((l) => l.split(/\s+/).slice(1, 4).map(Number));
   const replayGap = maxDistance(cli, rowsOf(replayed, cli.map((_, i) => i)));
   console.log(`page vs CLI replay of the saved scenario (50 iterations): largest gap ${(replayGap / height).toExponential(2)} x height`);
