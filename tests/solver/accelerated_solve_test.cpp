@@ -2,6 +2,8 @@
 // energies including iARAP's boundary-refined cells.
 #include "iarap/core/errors.h"
 #include "iarap/core/threads.h"
+#include "iarap/io/read_mesh.h"
+#include "iarap/scene/read_scenario.h"
 #include "iarap/solver/arap.h"
 #include "iarap/solver/arap_rhs.h"
 #include "iarap/solver/fit_rotations.h"
@@ -205,6 +207,36 @@ TEST_F(AcceleratedSolve, AcceleratedAndPlainReachTheSameFixedPoint) {
       EXPECT_LT(report.iterations, plain_report.iterations) << s.name << " " << arap_accelerator_name(a);
       EXPECT_LE(report.gradient_norms.back(), 1e-10 * report.initial_gradient_norm);
     }
+  }
+}
+
+// The default accelerator on the repo's bunny under the issue-17 edit (bend60: top 10% turned 60 degrees and
+// moved by 0.3 diagonals), where the energies have several local minima and L-BFGS, for one, can end in
+// another (README "Several minima"): Newton must end where the plain iteration does. Both run to a 1e-9
+// relative gradient; at a non-degenerate minimum the distance left is ~ |H^-1| |g|, measured 2.9e-7
+// (spokes-rims) and 3.0e-7 (iARAP) of the diagonal, while the other minimum Anderson ends in on iARAP here lies
+// 3.4e-2 of the diagonal away: 1e-5 separates the two cases with wide margins. (Release only: under the
+// sanitizers plain's 2400-2800 iterations take a minute.)
+TEST_F(AcceleratedSolve, DefaultAcceleratorEndsWherePlainDoesOnTheBentBunny) {
+  const MeshData m = read_mesh(test::data_path("bunny.off"));
+  const ConstraintSet c = resolve_scenario(read_scenario(test::data_path("bend60_scenario.json")), m.V);
+  const double diag = test::bbox_diagonal(m.V);
+  for (ArapMethod method : {ArapMethod::SpokesRims, ArapMethod::Iarap}) {
+    ArapOptions arap_options;
+    arap_options.method = method;
+    ArapData data = arap_precompute(m.V, m.F, c.fixed, arap_options);
+    ArapSolveOptions plain = accelerated(ArapAccelerator::None, 20000);
+    plain.gradient_tolerance = 1e-9;
+    Eigen::MatrixXd U_plain = m.V;
+    ASSERT_TRUE(arap_solve(data, c.targets, U_plain, plain).converged) << arap_method_name(method);
+    ArapSolveOptions options; // the defaults, Newton
+    options.max_iterations = 200;
+    options.tolerance = -1;
+    options.gradient_tolerance = 1e-9;
+    Eigen::MatrixXd U = m.V;
+    const ArapReport report = arap_solve(data, c.targets, U, options);
+    ASSERT_TRUE(report.converged) << arap_method_name(method);
+    EXPECT_LT(max_row_distance(U, U_plain), 1e-5 * diag) << arap_method_name(method);
   }
 }
 
