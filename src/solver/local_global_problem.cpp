@@ -120,6 +120,22 @@ void LocalGlobalProblem::prepare_hessian() {
     Eigen::Matrix3d P = R.transpose() * S_[c];
     P = 0.5 * (P + P.transpose()).eval();
     const Eigen::Matrix3d M = P.trace() * Eigen::Matrix3d::Identity() - P;
+    // Usually M is safely positive definite and the floor inactive: positive leading minors (Sylvester) and
+    // det M >= kFloor tr(M)^3 give lambda_min >= det / lambda_max^2 >= kFloor lambda_max (lambda_max <= tr M),
+    // so the adjugate inverts it exactly, far cheaper than the eigendecomposition below (which took 6% of the
+    // instructions of a Newton solve on the bunny).
+    Eigen::Matrix3d adjugate;
+    adjugate << M(1, 1) * M(2, 2) - M(1, 2) * M(2, 1), M(0, 2) * M(2, 1) - M(0, 1) * M(2, 2),
+        M(0, 1) * M(1, 2) - M(0, 2) * M(1, 1), M(1, 2) * M(2, 0) - M(1, 0) * M(2, 2),
+        M(0, 0) * M(2, 2) - M(0, 2) * M(2, 0), M(0, 2) * M(1, 0) - M(0, 0) * M(1, 2),
+        M(1, 0) * M(2, 1) - M(1, 1) * M(2, 0), M(0, 1) * M(2, 0) - M(0, 0) * M(2, 1),
+        M(0, 0) * M(1, 1) - M(0, 1) * M(1, 0);
+    const double det = M(0, 0) * adjugate(0, 0) + M(0, 1) * adjugate(1, 0) + M(0, 2) * adjugate(2, 0);
+    const double trace = M.trace();
+    if (M(0, 0) > 0 && adjugate(2, 2) > 0 && det > 0 && det >= kFloor * trace * trace * trace) {
+      M_inverse_[c] = adjugate / det;
+      continue;
+    }
     Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen;
     eigen.computeDirect(M);
     const Eigen::Vector3d lambda = eigen.eigenvalues();
