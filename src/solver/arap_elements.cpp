@@ -103,6 +103,11 @@ void for_each_vertex_cell(const ArapElements& el, int v, const Visit& visit) {
 void fill_streamed_layout(const Eigen::MatrixXd& V, ArapElements& el) {
   el.visit_order = detail::breadth_first_cell_order(el, V);
   const std::vector<int>& order = el.visit_order;
+  // The streamed arrays index cells and vertices by their positions in visit_order. They are filled in the
+  // file's cell order, each cell's run written where its position puts it: the element arrays are then read
+  // about as they lie in memory, and the scattering is one block per cell.
+  std::vector<int> position(static_cast<size_t>(el.num_cells));
+  for (int p = 0; p < el.num_cells; ++p) position[static_cast<size_t>(order[static_cast<size_t>(p)])] = p;
   el.cell_entry_start.assign(static_cast<size_t>(el.num_cells) + 1, 0);
   for (int p = 0; p < el.num_cells; ++p) {
     const auto c = static_cast<size_t>(order[static_cast<size_t>(p)]);
@@ -110,14 +115,10 @@ void fill_streamed_layout(const Eigen::MatrixXd& V, ArapElements& el) {
         el.cell_entry_start[static_cast<size_t>(p)] + el.cell_element_start[c + 1] - el.cell_element_start[c];
   }
   el.cell_entry.resize(el.cell_element.size());
-  // The streamed arrays index cells and vertices by their positions in visit_order.
-  std::vector<int> position(static_cast<size_t>(el.num_cells));
-  for (int p = 0; p < el.num_cells; ++p) position[static_cast<size_t>(order[static_cast<size_t>(p)])] = p;
 #pragma omp parallel for num_threads(loop_thread_count()) schedule(static)
-  for (int p = 0; p < el.num_cells; ++p) {
-    const auto c = static_cast<size_t>(order[static_cast<size_t>(p)]);
-    ArapElements::CellEntry* entry = el.cell_entry.data() + el.cell_entry_start[static_cast<size_t>(p)];
-    for (int k = el.cell_element_start[c]; k < el.cell_element_start[c + 1]; ++k, ++entry) {
+  for (int c = 0; c < el.num_cells; ++c) {
+    ArapElements::CellEntry* entry = el.cell_entry.data() + el.cell_entry_start[static_cast<size_t>(position[static_cast<size_t>(c)])];
+    for (int k = el.cell_element_start[static_cast<size_t>(c)]; k < el.cell_element_start[static_cast<size_t>(c) + 1]; ++k, ++entry) {
       const int e = el.cell_element[static_cast<size_t>(k)];
       for (int j = 0; j < 3; ++j) {
         entry->index[j] = position[static_cast<size_t>(el.b_index(e, j))];
@@ -127,9 +128,9 @@ void fill_streamed_layout(const Eigen::MatrixXd& V, ArapElements& el) {
       entry->w = el.w(e);
     }
   }
-  // Two sweeps over the vertices (in visit order), one counting their distinct cells and one summing the
-  // terms in place, so that no pair list of the size of the slots is stored. where[c] is the position of
-  // cell c among the current vertex's terms (-1: none yet), reset after each vertex.
+  // Two sweeps over the vertices, one counting their distinct cells and one summing the terms in place, so
+  // that no pair list of the size of the slots is stored. where[c] is the position of cell c among the
+  // current vertex's terms (-1: none yet), reset after each vertex.
   const int n = el.num_vertices;
   el.rhs_term_start.assign(static_cast<size_t>(n) + 1, 0);
 #pragma omp parallel num_threads(loop_thread_count())
@@ -137,14 +138,14 @@ void fill_streamed_layout(const Eigen::MatrixXd& V, ArapElements& el) {
     std::vector<int> where(static_cast<size_t>(el.num_cells), -1);
     std::vector<int> seen;
 #pragma omp for schedule(dynamic, 1024)
-    for (int p = 0; p < n; ++p) {
-      for_each_vertex_cell(el, order[static_cast<size_t>(p)], [&](int c, double, int) {
+    for (int v = 0; v < n; ++v) {
+      for_each_vertex_cell(el, v, [&](int c, double, int) {
         if (where[static_cast<size_t>(c)] < 0) {
           where[static_cast<size_t>(c)] = 0;
           seen.push_back(c);
         }
       });
-      el.rhs_term_start[static_cast<size_t>(p) + 1] = static_cast<int>(seen.size());
+      el.rhs_term_start[static_cast<size_t>(position[static_cast<size_t>(v)]) + 1] = static_cast<int>(seen.size());
       for (const int c : seen) where[static_cast<size_t>(c)] = -1;
       seen.clear();
     }
@@ -154,9 +155,8 @@ void fill_streamed_layout(const Eigen::MatrixXd& V, ArapElements& el) {
       el.rhs_term.resize(static_cast<size_t>(el.rhs_term_start[static_cast<size_t>(n)]));
     }
 #pragma omp for schedule(dynamic, 1024)
-    for (int p = 0; p < n; ++p) {
-      const int v = order[static_cast<size_t>(p)];
-      const int begin = el.rhs_term_start[static_cast<size_t>(p)];
+    for (int v = 0; v < n; ++v) {
+      const int begin = el.rhs_term_start[static_cast<size_t>(position[static_cast<size_t>(v)])];
       int end = begin;
       for_each_vertex_cell(el, v, [&](int c, double wb, int e) {
         int& at = where[static_cast<size_t>(c)];
