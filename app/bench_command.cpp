@@ -75,7 +75,8 @@ struct IterationFloor {
 
 IterationFloor iteration_floor(ArapData& data, const Eigen::MatrixXd& U, int repeats) {
   const ArapElements& el = data.elements;
-  const ArapElements::ValueRows U_rows = U;
+  ArapElements::ValueRows U_rows;
+  visit_rows(el, U, U_rows); // in the order the iterations keep them
   std::vector<Eigen::Matrix3d> S(static_cast<size_t>(el.num_cells));
   std::vector<double> pass_ms, solve_ms;
   for (int r = 0; r < repeats; ++r) {

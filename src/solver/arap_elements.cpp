@@ -7,6 +7,7 @@
 
 #include "../intrinsic/segments.h"
 #include "traced_elements.h"
+#include "visit_order.h"
 
 #include <algorithm>
 #include <cmath>
@@ -99,22 +100,36 @@ void for_each_vertex_cell(const ArapElements& el, int v, const Visit& visit) {
 }
 
 // ArapElements::cell_entry and rhs_term from the per-element arrays and their incidences.
-void fill_streamed_layout(ArapElements& el) {
-  el.cell_entry.resize(el.cell_element.size());
-  const int entries = static_cast<int>(el.cell_entry.size());
-#pragma omp parallel for num_threads(loop_thread_count()) schedule(static)
-  for (int k = 0; k < entries; ++k) {
-    const int e = el.cell_element[static_cast<size_t>(k)];
-    ArapElements::CellEntry& entry = el.cell_entry[static_cast<size_t>(k)];
-    for (int j = 0; j < 3; ++j) {
-      entry.index[j] = el.b_index(e, j);
-      entry.value[j] = el.b_value(e, j);
-      entry.s_hat[j] = el.s_hat(e, j);
-    }
-    entry.w = el.w(e);
+void fill_streamed_layout(const Eigen::MatrixXd& V, ArapElements& el) {
+  el.visit_order = detail::breadth_first_cell_order(el, V);
+  const std::vector<int>& order = el.visit_order;
+  // The streamed arrays index cells and vertices by their positions in visit_order. They are filled in the
+  // file's cell order, each cell's run written where its position puts it: the element arrays are then read
+  // about as they lie in memory, and the scattering is one block per cell.
+  std::vector<int> position(static_cast<size_t>(el.num_cells));
+  for (int p = 0; p < el.num_cells; ++p) position[static_cast<size_t>(order[static_cast<size_t>(p)])] = p;
+  el.cell_entry_start.assign(static_cast<size_t>(el.num_cells) + 1, 0);
+  for (int p = 0; p < el.num_cells; ++p) {
+    const auto c = static_cast<size_t>(order[static_cast<size_t>(p)]);
+    el.cell_entry_start[static_cast<size_t>(p) + 1] =
+        el.cell_entry_start[static_cast<size_t>(p)] + el.cell_element_start[c + 1] - el.cell_element_start[c];
   }
-  // Two sweeps over the vertices, one counting their distinct cells and one summing the terms in place,
-  // so that no pair list of the size of the slots is stored. where[c] is the position of cell c among the
+  el.cell_entry.resize(el.cell_element.size());
+#pragma omp parallel for num_threads(loop_thread_count()) schedule(static)
+  for (int c = 0; c < el.num_cells; ++c) {
+    ArapElements::CellEntry* entry = el.cell_entry.data() + el.cell_entry_start[static_cast<size_t>(position[static_cast<size_t>(c)])];
+    for (int k = el.cell_element_start[static_cast<size_t>(c)]; k < el.cell_element_start[static_cast<size_t>(c) + 1]; ++k, ++entry) {
+      const int e = el.cell_element[static_cast<size_t>(k)];
+      for (int j = 0; j < 3; ++j) {
+        entry->index[j] = position[static_cast<size_t>(el.b_index(e, j))];
+        entry->value[j] = el.b_value(e, j);
+        entry->s_hat[j] = el.s_hat(e, j);
+      }
+      entry->w = el.w(e);
+    }
+  }
+  // Two sweeps over the vertices, one counting their distinct cells and one summing the terms in place, so
+  // that no pair list of the size of the slots is stored. where[c] is the position of cell c among the
   // current vertex's terms (-1: none yet), reset after each vertex.
   const int n = el.num_vertices;
   el.rhs_term_start.assign(static_cast<size_t>(n) + 1, 0);
@@ -130,18 +145,18 @@ void fill_streamed_layout(ArapElements& el) {
           seen.push_back(c);
         }
       });
-      el.rhs_term_start[static_cast<size_t>(v) + 1] = static_cast<int>(seen.size());
+      el.rhs_term_start[static_cast<size_t>(position[static_cast<size_t>(v)]) + 1] = static_cast<int>(seen.size());
       for (const int c : seen) where[static_cast<size_t>(c)] = -1;
       seen.clear();
     }
 #pragma omp single
     {
-      for (int v = 0; v < n; ++v) el.rhs_term_start[static_cast<size_t>(v) + 1] += el.rhs_term_start[static_cast<size_t>(v)];
+      for (int p = 0; p < n; ++p) el.rhs_term_start[static_cast<size_t>(p) + 1] += el.rhs_term_start[static_cast<size_t>(p)];
       el.rhs_term.resize(static_cast<size_t>(el.rhs_term_start[static_cast<size_t>(n)]));
     }
 #pragma omp for schedule(dynamic, 1024)
     for (int v = 0; v < n; ++v) {
-      const int begin = el.rhs_term_start[static_cast<size_t>(v)];
+      const int begin = el.rhs_term_start[static_cast<size_t>(position[static_cast<size_t>(v)])];
       int end = begin;
       for_each_vertex_cell(el, v, [&](int c, double wb, int e) {
         int& at = where[static_cast<size_t>(c)];
@@ -153,7 +168,11 @@ void fill_streamed_layout(ArapElements& el) {
         }
         for (int d = 0; d < 3; ++d) el.rhs_term[static_cast<size_t>(at)].p[d] += wb * el.s_hat(e, d);
       });
-      for (int k = begin; k < end; ++k) where[static_cast<size_t>(el.rhs_term[static_cast<size_t>(k)].cell)] = -1;
+      for (int k = begin; k < end; ++k) {
+        int& cell = el.rhs_term[static_cast<size_t>(k)].cell;
+        where[static_cast<size_t>(cell)] = -1;
+        cell = position[static_cast<size_t>(cell)];
+      }
     }
   }
 }
@@ -322,7 +341,7 @@ void finish_elements(const Eigen::MatrixXd& V, ArapElements& el) {
             if (el.b_value(e, k) != 0.0) emit(el.b_index(e, k), static_cast<int>(3 * e + k));
       },
       el.vertex_slot_start, el.vertex_slot);
-  fill_streamed_layout(el);
+  fill_streamed_layout(V, el);
 }
 
 ArapElements traced_iarap_elements(const Eigen::MatrixXd& V, const IntrinsicTriangulation& tri,

@@ -2,7 +2,7 @@
 
 namespace iarap {
 
-void arap_rhs(const ArapElements& el, const std::vector<Eigen::Matrix3d>& R, Eigen::MatrixXd& rhs) {
+void arap_rhs_in_visit_order(const ArapElements& el, const std::vector<Eigen::Matrix3d>& R, Eigen::MatrixXd& rhs) {
   const int n = el.num_vertices;
   rhs.resize(n, 3);
   const ArapElements::RhsTerm* term = el.rhs_term.data();
@@ -17,6 +17,15 @@ void arap_rhs(const ArapElements& el, const std::vector<Eigen::Matrix3d>& R, Eig
     }
     for (int d = 0; d < 3; ++d) rhs(v, d) = acc[d];
   }
+}
+
+void arap_rhs(const ArapElements& el, const std::vector<Eigen::Matrix3d>& R, Eigen::MatrixXd& rhs) {
+  std::vector<Eigen::Matrix3d> R_visit(static_cast<size_t>(el.num_cells));
+  for (size_t p = 0; p < R_visit.size(); ++p) R_visit[p] = R[static_cast<size_t>(el.visit_order[p])];
+  Eigen::MatrixXd rhs_visit;
+  arap_rhs_in_visit_order(el, R_visit, rhs_visit);
+  rhs.resize(rhs_visit.rows(), 3);
+  for (Eigen::Index p = 0; p < rhs_visit.rows(); ++p) rhs.row(el.visit_order[static_cast<size_t>(p)]) = rhs_visit.row(p);
 }
 
 } // namespace iarap

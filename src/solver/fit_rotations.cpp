@@ -28,7 +28,7 @@ void cell_covariances(const ArapElements& el, const ArapElements::ValueRows& U_r
 #pragma omp parallel for schedule(dynamic, 256)
   for (int c = 0; c < el.num_cells; ++c) {
     Eigen::Matrix3d Sc = Eigen::Matrix3d::Zero();
-    for (int k = el.cell_element_start[static_cast<size_t>(c)]; k < el.cell_element_start[static_cast<size_t>(c) + 1]; ++k) {
+    for (int k = el.cell_entry_start[static_cast<size_t>(c)]; k < el.cell_entry_start[static_cast<size_t>(c) + 1]; ++k) {
       double s[3];
       element_vector(el.cell_entry[static_cast<size_t>(k)], u, s);
       add_covariance(el.cell_entry[static_cast<size_t>(k)], s, Sc);
@@ -37,26 +37,46 @@ void cell_covariances(const ArapElements& el, const ArapElements::ValueRows& U_r
   }
 }
 
+void visit_rows(const ArapElements& el, const Eigen::MatrixXd& U, ArapElements::ValueRows& U_rows) {
+  const Eigen::Index nv = U.rows();
+  U_rows.resize(nv, 3);
+#pragma omp parallel for schedule(static)
+  for (Eigen::Index p = 0; p < nv; ++p) {
+    const Eigen::Index v = el.visit_order[static_cast<size_t>(p)];
+    for (int d = 0; d < 3; ++d) U_rows(p, d) = U(v, d);
+  }
+}
+
 double fit_rotations(const ArapElements& el, const Eigen::MatrixXd& U, ArapElements::ValueRows& U_rows,
                      std::vector<Eigen::Matrix3d>& R, Eigen::VectorXd& cell_energy) {
+  const auto n = static_cast<size_t>(el.num_cells);
+  visit_rows(el, U, U_rows);
+  std::vector<Eigen::Matrix3d> R_visit;
+  if (R.size() == n) {
+    R_visit.resize(n);
+    for (size_t p = 0; p < n; ++p) R_visit[p] = R[static_cast<size_t>(el.visit_order[p])];
+  }
+  const double energy = fit_rotations_in_visit_order(el, U_rows, R_visit, cell_energy);
+  R.resize(n);
+  for (size_t p = 0; p < n; ++p) R[static_cast<size_t>(el.visit_order[p])] = R_visit[p];
+  return energy;
+}
+
+double fit_rotations_in_visit_order(const ArapElements& el, const ArapElements::ValueRows& U_rows,
+                                    std::vector<Eigen::Matrix3d>& R, Eigen::VectorXd& cell_energy) {
   const int n = el.num_cells;
-  const Eigen::Index nv = U.rows();
   // The previous rotations are a start for the fit only when there is one per cell.
   const bool warm = R.size() == static_cast<size_t>(n);
   R.resize(static_cast<size_t>(n));
   cell_energy.resize(n);
-  // Row-major positions: an element's three gathers then touch three rows instead of nine column entries.
-  U_rows.resize(nv, 3);
-#pragma omp parallel for schedule(static)
-  for (Eigen::Index v = 0; v < nv; ++v)
-    for (int d = 0; d < 3; ++d) U_rows(v, d) = U(v, d);
   const double* u = U_rows.data();
   const ArapElements::CellEntry* entry = el.cell_entry.data();
 
 #pragma omp parallel for schedule(dynamic, 256)
-  for (int c = 0; c < n; ++c) {
-    const int begin = el.cell_element_start[static_cast<size_t>(c)];
-    const int end = el.cell_element_start[static_cast<size_t>(c) + 1];
+  for (int p = 0; p < n; ++p) { // the cell at position p (ArapElements::visit_order)
+    const auto c = static_cast<size_t>(p);
+    const int begin = el.cell_entry_start[c];
+    const int end = el.cell_entry_start[c + 1];
     // The first kKeep element vectors are kept for the energy sweep; longer cells recompute the rest.
     constexpr int kKeep = 32;
     double kept[kKeep][3];
@@ -69,7 +89,7 @@ double fit_rotations(const ArapElements& el, const Eigen::MatrixXd& U, ArapEleme
       if (k - begin < kKeep)
         for (int d = 0; d < 3; ++d) kept[k - begin][d] = s[d];
     }
-    const Eigen::Matrix3d Rc = warm ? polar_rotation_near(S, R[static_cast<size_t>(c)]) : polar_rotation(S);
+    const Eigen::Matrix3d Rc = warm ? polar_rotation_near(S, R[c]) : polar_rotation(S);
     // The energy from the residuals themselves (not from tr(R^T S)): it stays accurate as it goes to zero,
     // which the stopping rule needs. The cell's entries are still in L1 from the sweep above.
     double energy = 0.0;
@@ -87,8 +107,8 @@ double fit_rotations(const ArapElements& el, const Eigen::MatrixXd& U, ArapEleme
       }
       energy += 0.5 * x.w * r2;
     }
-    R[static_cast<size_t>(c)] = Rc;
-    cell_energy(c) = energy;
+    R[c] = Rc;
+    cell_energy(el.visit_order[c]) = energy;
   }
   return cell_energy.sum();
 }

@@ -20,6 +20,13 @@ LocalGlobalProblem::LocalGlobalProblem(ArapData& data, const Eigen::MatrixXd& ta
   for (Eigen::Index k = 0; k < data.fixed.size(); ++k)
     U.row(data.fixed(k)) = targets.row(k);
   Lfc_Uc_ = data.L_fc * U_c;
+  const ArapElements& el = data.elements;
+  visit_rows(el, U, U_rows_);
+  std::vector<int> position(el.visit_order.size());
+  for (size_t p = 0; p < position.size(); ++p) position[static_cast<size_t>(el.visit_order[p])] = static_cast<int>(p);
+  free_row_.resize(data.free.size());
+  for (Eigen::Index i = 0; i < data.free.size(); ++i) free_row_(i) = position[static_cast<size_t>(data.free(i))];
+  R_spare_.resize(static_cast<size_t>(el.num_cells));
 
   // Column j of the symmetric L is its row j: copying the free columns gives the free rows, transposed.
   const Eigen::Index n = data.L.rows(), nf = data.free.size();
@@ -32,7 +39,7 @@ LocalGlobalProblem::LocalGlobalProblem(ArapData& data, const Eigen::MatrixXd& ta
   L_free_cols_.outerIndexPtr()[0] = 0;
   for (Eigen::Index i = 0; i < nf; ++i) {
     for (Eigen::SparseMatrix<double>::InnerIterator it(data.L, data.free(i)); it; ++it) {
-      L_free_cols_.innerIndexPtr()[k] = static_cast<int>(it.row());
+      L_free_cols_.innerIndexPtr()[k] = position[static_cast<size_t>(it.row())];
       L_free_cols_.valuePtr()[k++] = it.value();
     }
     L_free_cols_.outerIndexPtr()[i + 1] = static_cast<int>(k);
@@ -44,27 +51,36 @@ LocalGlobalProblem::LocalGlobalProblem(ArapData& data, const Eigen::MatrixXd& ta
   data.R.clear();
 }
 
+LocalGlobalProblem::~LocalGlobalProblem() {
+  for (Eigen::Index i = 0; i < free_count(); ++i)
+    U_.row(data_.free(i)) = U_rows_.row(free_row_(i));
+  if (data_.R.size() != R_spare_.size()) return; // no local step ran
+  for (size_t p = 0; p < R_spare_.size(); ++p)
+    R_spare_[static_cast<size_t>(data_.elements.visit_order[p])] = data_.R[p];
+  data_.R.swap(R_spare_);
+}
+
 Eigen::MatrixXd LocalGlobalProblem::positions() const {
   Eigen::MatrixXd x(free_count(), 3);
   for (Eigen::Index i = 0; i < free_count(); ++i)
-    x.row(i) = U_.row(data_.free(i));
+    x.row(i) = U_rows_.row(free_row_(i));
   return x;
 }
 
 void LocalGlobalProblem::set_positions(const Eigen::MatrixXd& x) {
   for (Eigen::Index i = 0; i < free_count(); ++i)
-    U_.row(data_.free(i)) = x.row(i);
+    U_rows_.row(free_row_(i)) = x.row(i);
 }
 
 double LocalGlobalProblem::local_step() {
-  return fit_rotations(data_.elements, U_, U_rows_, data_.R, cell_energy_);
+  return fit_rotations_in_visit_order(data_.elements, U_rows_, data_.R, cell_energy_);
 }
 
 void LocalGlobalProblem::assemble_rhs() {
-  arap_rhs(data_.elements, data_.R, rhs_); // Eq. 16
+  arap_rhs_in_visit_order(data_.elements, data_.R, rhs_); // Eq. 16
 #pragma omp parallel for schedule(static)
   for (Eigen::Index i = 0; i < free_count(); ++i)
-    B_.row(i) = rhs_.row(data_.free(i)) - Lfc_Uc_.row(i);
+    B_.row(i) = rhs_.row(free_row_(i)) - Lfc_Uc_.row(i);
 }
 
 const Eigen::MatrixXd& LocalGlobalProblem::plain_step() {
@@ -81,14 +97,15 @@ Eigen::MatrixXd LocalGlobalProblem::gradient() const {
   const int* outer = L_free_cols_.outerIndexPtr();
   const int* row = L_free_cols_.innerIndexPtr();
   const double* value = L_free_cols_.valuePtr();
-  const double *u0 = U_.col(0).data(), *u1 = U_.col(1).data(), *u2 = U_.col(2).data();
+  const double* u = U_rows_.data();
 #pragma omp parallel for schedule(static)
   for (Eigen::Index i = 0; i < nf; ++i) {
     double a0 = 0.0, a1 = 0.0, a2 = 0.0;
     for (int k = outer[i]; k < outer[i + 1]; ++k) {
-      a0 += value[k] * u0[row[k]];
-      a1 += value[k] * u1[row[k]];
-      a2 += value[k] * u2[row[k]];
+      const double* ur = u + 3 * row[k];
+      a0 += value[k] * ur[0];
+      a1 += value[k] * ur[1];
+      a2 += value[k] * ur[2];
     }
     g(i, 0) = a0 - Lfc_Uc_(i, 0) - B_(i, 0);
     g(i, 1) = a1 - Lfc_Uc_(i, 1) - B_(i, 1);
@@ -156,7 +173,7 @@ Eigen::MatrixXd LocalGlobalProblem::hessian_product(const Eigen::MatrixXd& v) {
   if (v_rows_.rows() != U_.rows())
     v_rows_.setZero(U_.rows(), 3);
   for (Eigen::Index i = 0; i < free_count(); ++i)
-    v_rows_.row(data_.free(i)) = v.row(i);
+    v_rows_.row(free_row_(i)) = v.row(i);
   cell_covariances(data_.elements, v_rows_, S_); // dS_c, in the Hessian's workspace
   const auto n = static_cast<int>(S_.size());
   dR_.resize(S_.size());
@@ -171,10 +188,10 @@ Eigen::MatrixXd LocalGlobalProblem::hessian_product(const Eigen::MatrixXd& v) {
     W << 0, -w.z(), w.y(), w.z(), 0, -w.x(), -w.y(), w.x(), 0;
     dR_[c] = R * W;
   }
-  arap_rhs(data_.elements, dR_, d_rhs_);
+  arap_rhs_in_visit_order(data_.elements, dR_, d_rhs_);
   Eigen::MatrixXd Hv = L_free_cols_.transpose() * v_rows_;
   for (Eigen::Index i = 0; i < free_count(); ++i)
-    Hv.row(i) -= d_rhs_.row(data_.free(i));
+    Hv.row(i) -= d_rhs_.row(free_row_(i));
   return Hv;
 }
 

@@ -16,8 +16,13 @@ namespace iarap::detail {
 class LocalGlobalProblem {
 public:
   // Sets U's constrained rows (targets at data.fixed, U's own rows at data.pinned) and precomputes
-  // L_fc U_c and the free rows of L. data and U must outlive the problem; U is where x lives.
+  // L_fc U_c and the free rows of L. data and U must outlive the problem. While it lives the positions and
+  // data.R are kept in the elements' visit order (ArapElements::visit_order; x itself follows data.free);
+  // the destructor writes them back to U and data.R in the file's order.
   LocalGlobalProblem(ArapData& data, const Eigen::MatrixXd& targets, Eigen::MatrixXd& U);
+  ~LocalGlobalProblem();
+  LocalGlobalProblem(const LocalGlobalProblem&) = delete;
+  LocalGlobalProblem& operator=(const LocalGlobalProblem&) = delete;
 
   Eigen::Index free_count() const { return data_.free.size(); }
   // x = U's free rows.
@@ -49,8 +54,11 @@ private:
   ArapData& data_;
   Eigen::MatrixXd& U_;
   Eigen::MatrixXd Lfc_Uc_;                 // #free x 3
-  Eigen::SparseMatrix<double> L_free_cols_; // #V x #free: columns `free` of the symmetric L (its free rows)
-  ArapElements::ValueRows U_rows_;         // fit_rotations' row-major copy of U
+  Eigen::SparseMatrix<double> L_free_cols_; // #V x #free: columns `free` of the symmetric L (its free rows),
+                                            // rows numbered in visit order
+  ArapElements::ValueRows U_rows_;         // the positions in visit order (U's are written back at the end)
+  Eigen::VectorXi free_row_;               // #free: the row of U_rows_ of free vertex data.free(i)
+  std::vector<Eigen::Matrix3d> R_spare_;   // num_cells: where data.R goes back to the file's order
   Eigen::VectorXd cell_energy_;
   Eigen::MatrixXd rhs_, B_, X_;
   std::vector<Eigen::Matrix3d> S_, M_inverse_, dR_; // Hessian workspaces (per cell)

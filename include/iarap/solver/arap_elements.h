@@ -35,9 +35,15 @@ struct ArapElements {
   std::vector<int> vertex_slot_start; // #V + 1: where vertex v is a non-zero of some b_e ...
   std::vector<int> vertex_slot;       // ... as 3 * e + slot; lets the right-hand side be gathered per vertex
 
-  // What the iterations stream (finish_elements fills it from the arrays above; fit_rotations.h, arap_rhs.h):
-  // cell_entry[k] is element cell_element[k] (b, s_hat, w side by side), so that the local step reads
-  // each cell's elements in one forward sweep instead of gathering them through cell_element.
+  // What the iterations stream (finish_elements fills it from the arrays above; fit_rotations.h, arap_rhs.h).
+  // They number cells and vertices in visit_order (num_cells: position -> cell; the #V vertices first, in a
+  // breadth-first order of the mesh, then the inserted boundary cells) and keep positions, rotations and
+  // the right-hand side in that order while they iterate: neighbours then sit side by side in memory and
+  // are read while in cache, whatever the file's vertex order (1-to-4 subdivision, for one, numbers the
+  // midpoints far from their corners). No sum changes with it: each cell's and each vertex's terms keep
+  // their order. The elements of the cell at position p are cell_entry[cell_entry_start[p] ..
+  // cell_entry_start[p + 1]), in cell_element's order, each with its b (vertex positions in visit_order),
+  // s_hat and w side by side, so that the local step reads them in one forward sweep.
   // CellEntry and RhsTerm leave their members uninitialized when constructed (the builder writes each
   // one): resizing the vectors then does not zero tens of megabytes that are overwritten at once.
   struct CellEntry {
@@ -47,10 +53,13 @@ struct ArapElements {
     double s_hat[3];
     double w;
   };
+  std::vector<int> visit_order;
+  std::vector<int> cell_entry_start;
   std::vector<CellEntry> cell_entry;
   // The right-hand side as sum_c R_c p_vc per vertex v (Eq. 16 regrouped): one term per (vertex, cell)
   // pair with p_vc = sum over the elements e of cell c with (b_e)_v != 0 of w_e (b_e)_v s_hat_e (a cell
-  // repeated in cells(e) counts as often). rhs_term_start (#V + 1) delimits each vertex's terms.
+  // repeated in cells(e) counts as often). rhs_term_start (#V + 1) delimits the terms of the vertex at
+  // each position of visit_order; RhsTerm::cell is a position too.
   struct RhsTerm {
     RhsTerm() {}
     double p[3];

@@ -9,8 +9,14 @@ namespace iarap {
 
 // rhs (#V x 3) with row v = sum_e w_e (b_e)_v ((sum_{c in cells(e)} R_c) s_hat_e)^T (Eq. 16; the paper's
 // (R_i + R_j) / 2 times the 2 cells of L = 2 B^T D_w B), evaluated as sum_c R_c p_vc over the vertex's
-// (cell, p_vc) terms (ArapElements::rhs_term): one forward sweep, parallel over vertices without atomics,
-// nothing allocated once rhs has its size. R holds elements.num_cells rotations (from fit_rotations).
+// (cell, p_vc) terms (ArapElements::rhs_term). R holds elements.num_cells rotations (from fit_rotations).
+// R and rhs in the file's order; the iterations keep theirs in visit order and call arap_rhs_in_visit_order,
+// which this wraps.
 void arap_rhs(const ArapElements& elements, const std::vector<Eigen::Matrix3d>& R, Eigen::MatrixXd& rhs);
+
+// arap_rhs in visit order (ArapElements::visit_order): R[p] is the rotation of cell visit_order[p], row p of
+// rhs belongs to vertex visit_order[p]. One forward sweep, parallel over vertices without atomics, nothing
+// allocated once rhs has its size.
+void arap_rhs_in_visit_order(const ArapElements& elements, const std::vector<Eigen::Matrix3d>& R, Eigen::MatrixXd& rhs);
 
 } // namespace iarap
