@@ -175,7 +175,9 @@ TEST(Cli, DeformAcceleratorsReportTheirWork) {
     EXPECT_EQ(j["accelerator"], accel);
     const int iterations = j["iterations"].get<int>();
     EXPECT_GE(j["solves"].get<int>(), iterations) << accel;
-    if (accel == "newton") EXPECT_GT(j["solves"].get<int>(), iterations);
+    if (accel == "newton") {
+      EXPECT_GT(j["solves"].get<int>(), iterations);
+    }
     if (accel != "none") {
       EXPECT_TRUE(j["converged"].get<bool>()) << accel;
       EXPECT_LE(j["gradient_norms"].back().get<double>(), 1e-8 * j["initial_gradient_norm"].get<double>());
