@@ -148,8 +148,8 @@ struct ArapSolveOptions {
   // 10% of the predicted decrease is replaced by the plain step. Default Newton, measured with
   // `iarap bench --converge 1e-6` on the bend60 scene (README "Accelerated solves"): on bunny, beetle and
   // armadillo it ended at the lowest minimum found for all three energies (these large edits have several),
-  // with over 30x fewer iterations and over 6x less time than plain on spokes-rims and iARAP; L-BFGS is up to
-  // 1.8x faster where it ends at the same minimum but ended higher on armadillo iARAP (2.5e-2 of the diagonal
+  // with over 30x fewer iterations and over 5.5x less time than plain on spokes-rims and iARAP; L-BFGS is up to
+  // 1.7x faster where it ends at the same minimum but ended higher on armadillo iARAP (2.5e-2 of the diagonal
   // away) and on original ARAP.
   // Each Newton iteration runs up to `window` CG steps (one solve each): for a bounded cost per iteration
   // (interactive updates, as the viewer does) choose L-BFGS.
