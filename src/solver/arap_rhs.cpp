@@ -1,5 +1,7 @@
 #include "iarap/solver/arap_rhs.h"
 
+#include "visit_order.h"
+
 namespace iarap {
 
 void arap_rhs_in_visit_order(const ArapElements& el, const std::vector<Eigen::Matrix3d>& R, Eigen::MatrixXd& rhs) {
@@ -20,8 +22,8 @@ void arap_rhs_in_visit_order(const ArapElements& el, const std::vector<Eigen::Ma
 }
 
 void arap_rhs(const ArapElements& el, const std::vector<Eigen::Matrix3d>& R, Eigen::MatrixXd& rhs) {
-  std::vector<Eigen::Matrix3d> R_visit(static_cast<size_t>(el.num_cells));
-  for (size_t p = 0; p < R_visit.size(); ++p) R_visit[p] = R[static_cast<size_t>(el.visit_order[p])];
+  std::vector<Eigen::Matrix3d> R_visit;
+  detail::rotations_to_visit_order(el, R, R_visit);
   Eigen::MatrixXd rhs_visit;
   arap_rhs_in_visit_order(el, R_visit, rhs_visit);
   rhs.resize(rhs_visit.rows(), 3);

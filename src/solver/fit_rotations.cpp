@@ -2,6 +2,8 @@
 
 #include "iarap/solver/polar_rotation.h"
 
+#include "visit_order.h"
+
 namespace iarap {
 
 namespace {
@@ -52,13 +54,10 @@ double fit_rotations(const ArapElements& el, const Eigen::MatrixXd& U, ArapEleme
   const auto n = static_cast<size_t>(el.num_cells);
   visit_rows(el, U, U_rows);
   std::vector<Eigen::Matrix3d> R_visit;
-  if (R.size() == n) {
-    R_visit.resize(n);
-    for (size_t p = 0; p < n; ++p) R_visit[p] = R[static_cast<size_t>(el.visit_order[p])];
-  }
+  if (R.size() == n) // a warm start only when there is one rotation per cell
+    detail::rotations_to_visit_order(el, R, R_visit);
   const double energy = fit_rotations_in_visit_order(el, U_rows, R_visit, cell_energy);
-  R.resize(n);
-  for (size_t p = 0; p < n; ++p) R[static_cast<size_t>(el.visit_order[p])] = R_visit[p];
+  detail::rotations_from_visit_order(el, R_visit, R);
   return energy;
 }
 

@@ -1,5 +1,7 @@
 #include "local_global_problem.h"
 
+#include "visit_order.h"
+
 #include "iarap/solver/arap_rhs.h"
 #include "iarap/solver/fit_rotations.h"
 
@@ -55,8 +57,7 @@ LocalGlobalProblem::~LocalGlobalProblem() {
   for (Eigen::Index i = 0; i < free_count(); ++i)
     U_.row(data_.free(i)) = U_rows_.row(free_row_(i));
   if (data_.R.size() != R_spare_.size()) return; // no local step ran
-  for (size_t p = 0; p < R_spare_.size(); ++p)
-    R_spare_[static_cast<size_t>(data_.elements.visit_order[p])] = data_.R[p];
+  rotations_from_visit_order(data_.elements, data_.R, R_spare_);
   data_.R.swap(R_spare_);
 }
 

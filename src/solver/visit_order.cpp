@@ -54,4 +54,16 @@ std::vector<int> breadth_first_cell_order(const ArapElements& el, const Eigen::M
   return order;
 }
 
+void rotations_to_visit_order(const ArapElements& el, const std::vector<Eigen::Matrix3d>& R,
+                              std::vector<Eigen::Matrix3d>& out) {
+  out.resize(static_cast<size_t>(el.num_cells));
+  for (size_t p = 0; p < out.size(); ++p) out[p] = R[static_cast<size_t>(el.visit_order[p])];
+}
+
+void rotations_from_visit_order(const ArapElements& el, const std::vector<Eigen::Matrix3d>& R,
+                                std::vector<Eigen::Matrix3d>& out) {
+  out.resize(static_cast<size_t>(el.num_cells));
+  for (size_t p = 0; p < out.size(); ++p) out[static_cast<size_t>(el.visit_order[p])] = R[p];
+}
+
 } // namespace iarap::detail

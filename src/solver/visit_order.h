@@ -21,4 +21,11 @@ namespace iarap::detail {
 // orders reduce fill and are no locality order).
 std::vector<int> breadth_first_cell_order(const ArapElements& el, const Eigen::MatrixXd& V);
 
+// Per-cell rotations between the file's cell order and el.visit_order (num_cells each; out is resized):
+// to: out[p] = R[visit_order[p]]; from: out[visit_order[p]] = R[p].
+void rotations_to_visit_order(const ArapElements& el, const std::vector<Eigen::Matrix3d>& R,
+                              std::vector<Eigen::Matrix3d>& out);
+void rotations_from_visit_order(const ArapElements& el, const std::vector<Eigen::Matrix3d>& R,
+                                std::vector<Eigen::Matrix3d>& out);
+
 } // namespace iarap::detail

@@ -113,13 +113,7 @@ std::vector<double> reference_plain_loop(ArapData& data, const Eigen::MatrixXd& 
   return energies;
 }
 
-// One thread: these meshes have ~100 vertices, where a thread team costs more than it saves (and on a loaded
-// machine its barriers cost whole time slices, hundreds of times per solve).
-class AcceleratedSolve : public ::testing::Test {
-protected:
-  void SetUp() override { set_thread_count(1); }
-  void TearDown() override { set_thread_count(0); }
-};
+class AcceleratedSolve : public test::SingleThreadTest {}; // meshes of ~100 vertices
 
 TEST_F(AcceleratedSolve, AcceleratorNamesRoundTrip) {
   for (ArapAccelerator a : kAll)

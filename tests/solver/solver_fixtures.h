@@ -1,15 +1,25 @@
 // Meshes for the solver tests: the bundled bunny, a small bumpy patch built in code, a mesh doubled
 // into two disjoint components, and axis-band constraint sets.
 #pragma once
+#include "iarap/core/threads.h"
 #include "iarap/io/read_mesh.h"
 #include "test_support.h"
 
 #include <Eigen/Core>
+#include <gtest/gtest.h>
 #include <cmath>
 #include <random>
 #include <vector>
 
 namespace iarap::test {
+
+// Tests on meshes of a few thousand vertices or fewer run with one thread: there a thread team costs more
+// than it saves (and on a loaded machine its barriers cost whole time slices, many times per solve).
+class SingleThreadTest : public ::testing::Test {
+protected:
+  void SetUp() override { set_thread_count(1); }
+  void TearDown() override { set_thread_count(0); }
+};
 
 struct SolverMesh {
   Eigen::MatrixXd V;

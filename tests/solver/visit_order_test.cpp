@@ -56,13 +56,7 @@ std::vector<int> shuffled_indices(int n, unsigned seed) {
   return index;
 }
 
-// One thread: on ~3500 vertices a thread team costs more than it saves (and on a loaded machine its barriers
-// cost whole time slices).
-class VisitOrder : public ::testing::Test {
-protected:
-  void SetUp() override { set_thread_count(1); }
-  void TearDown() override { set_thread_count(0); }
-};
+class VisitOrder : public test::SingleThreadTest {}; // the bunny, ~3500 vertices
 
 TEST_F(VisitOrder, PermutesTheCellsWithTheVerticesFirst) {
   const SolverMesh m = test::bunny();
