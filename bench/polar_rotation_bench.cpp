@@ -57,10 +57,9 @@ void BM_PolarRotation(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations());
 }
 
-// polar_rotation_near from the optimal rotation of S turned by 0.02 rad about a random axis: the guess a
-// local step has in the middle of an ARAP solve (its rotations move by about that much per iteration).
-void BM_PolarRotationNear(benchmark::State& state) {
-  const auto S = matrices(static_cast<Kind>(state.range(0)));
+// Guesses for polar_rotation_near: the optimal rotation of S turned by 0.02 rad about a random axis, the
+// guess a local step has in the middle of an ARAP solve (its rotations move by about that much per iteration).
+std::vector<Eigen::Matrix3d> nearby_guesses(const std::vector<Eigen::Matrix3d>& S) {
   std::mt19937 rng(7);
   std::normal_distribution<double> n;
   std::vector<Eigen::Matrix3d> guess(S.size());
@@ -68,12 +67,30 @@ void BM_PolarRotationNear(benchmark::State& state) {
     const Eigen::Vector3d axis = Eigen::Vector3d(n(rng), n(rng), n(rng)).normalized();
     guess[i] = iarap::polar_rotation(S[i]) * Eigen::AngleAxisd(0.02, axis).toRotationMatrix();
   }
+  return guess;
+}
+
+void BM_PolarRotationNear(benchmark::State& state) {
+  const auto S = matrices(static_cast<Kind>(state.range(0)));
+  const auto guess = nearby_guesses(S);
   size_t i = 0;
   for (auto _ : state) {
     const size_t k = i++ & 1023;
     benchmark::DoNotOptimize(iarap::polar_rotation_near(S[k], guess[k]));
   }
   state.SetItemsProcessed(state.iterations());
+}
+
+// The same fits through the batched overload (four in lockstep), as the local step calls it; per fit.
+void BM_PolarRotationNearBatch(benchmark::State& state) {
+  const auto S = matrices(static_cast<Kind>(state.range(0)));
+  const auto guess = nearby_guesses(S);
+  std::vector<Eigen::Matrix3d> R(S.size());
+  for (auto _ : state) {
+    iarap::polar_rotation_near(S.data(), guess.data(), R.data(), static_cast<int>(S.size()));
+    benchmark::DoNotOptimize(R.data());
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(S.size()));
 }
 
 void BM_JacobiSvdRotation(benchmark::State& state) {
@@ -99,5 +116,6 @@ void kinds(benchmark::internal::Benchmark* b) {
 
 BENCHMARK(BM_PolarRotation)->Apply(kinds);
 BENCHMARK(BM_PolarRotationNear)->Apply(kinds);
+BENCHMARK(BM_PolarRotationNearBatch)->Apply(kinds);
 BENCHMARK(BM_JacobiSvdRotation)->Apply(kinds);
 BENCHMARK_MAIN();

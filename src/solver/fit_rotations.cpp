@@ -4,6 +4,8 @@
 
 #include "visit_order.h"
 
+#include <algorithm>
+
 namespace iarap {
 
 namespace {
@@ -71,43 +73,60 @@ double fit_rotations_in_visit_order(const ArapElements& el, const ArapElements::
   const double* u = U_rows.data();
   const ArapElements::CellEntry* entry = el.cell_entry.data();
 
-#pragma omp parallel for schedule(dynamic, 256)
-  for (int p = 0; p < n; ++p) { // the cell at position p (ArapElements::visit_order)
-    const auto c = static_cast<size_t>(p);
-    const int begin = el.cell_entry_start[c];
-    const int end = el.cell_entry_start[c + 1];
-    // The first kKeep element vectors are kept for the energy sweep; longer cells recompute the rest.
+  // Cells go in blocks of kBlock: their covariances first, then their rotations in one batched call
+  // (polar_rotation_near fits four side by side), then their energies.
+  constexpr int kBlock = 4;
+  const int blocks = (n + kBlock - 1) / kBlock;
+#pragma omp parallel for schedule(dynamic, 64)
+  for (int block = 0; block < blocks; ++block) {
+    const int first = block * kBlock, count = std::min(kBlock, n - first);
+    // The first kKeep element vectors of each cell are kept for the energy sweep; longer cells recompute
+    // the rest.
     constexpr int kKeep = 32;
-    double kept[kKeep][3];
-    Eigen::Matrix3d S = Eigen::Matrix3d::Zero(); // Eq. 15
-    for (int k = begin; k < end; ++k) {
-      const ArapElements::CellEntry& x = entry[k];
-      double s[3];
-      element_vector(x, u, s);
-      add_covariance(x, s, S);
-      if (k - begin < kKeep)
-        for (int d = 0; d < 3; ++d) kept[k - begin][d] = s[d];
-    }
-    const Eigen::Matrix3d Rc = warm ? polar_rotation_near(S, R[c]) : polar_rotation(S);
-    // The energy from the residuals themselves (not from tr(R^T S)): it stays accurate as it goes to zero,
-    // which the stopping rule needs. The cell's entries are still in L1 from the sweep above.
-    double energy = 0.0;
-    for (int k = begin; k < end; ++k) {
-      const ArapElements::CellEntry& x = entry[k];
-      double s[3];
-      if (k - begin < kKeep)
-        for (int d = 0; d < 3; ++d) s[d] = kept[k - begin][d];
-      else
+    double kept[kBlock][kKeep][3];
+    Eigen::Matrix3d S[kBlock], Rc[kBlock];
+    for (int l = 0; l < count; ++l) {
+      const auto c = static_cast<size_t>(first + l); // the cell at position c (ArapElements::visit_order)
+      const int begin = el.cell_entry_start[c];
+      const int end = el.cell_entry_start[c + 1];
+      S[l].setZero(); // Eq. 15
+      for (int k = begin; k < end; ++k) {
+        const ArapElements::CellEntry& x = entry[k];
+        double s[3];
         element_vector(x, u, s);
-      double r2 = 0.0;
-      for (int i = 0; i < 3; ++i) {
-        const double r = s[i] - (Rc(i, 0) * x.s_hat[0] + Rc(i, 1) * x.s_hat[1] + Rc(i, 2) * x.s_hat[2]);
-        r2 += r * r;
+        add_covariance(x, s, S[l]);
+        if (k - begin < kKeep)
+          for (int d = 0; d < 3; ++d) kept[l][k - begin][d] = s[d];
       }
-      energy += 0.5 * x.w * r2;
     }
-    R[c] = Rc;
-    cell_energy(el.visit_order[c]) = energy;
+    if (warm)
+      polar_rotation_near(S, &R[static_cast<size_t>(first)], Rc, count);
+    else
+      for (int l = 0; l < count; ++l) Rc[l] = polar_rotation(S[l]);
+    // The energy from the residuals themselves (not from tr(R^T S)): it stays accurate as it goes to zero,
+    // which the stopping rule needs. The cells' entries are still in L1 from the sweep above.
+    for (int l = 0; l < count; ++l) {
+      const auto c = static_cast<size_t>(first + l);
+      const int begin = el.cell_entry_start[c];
+      const int end = el.cell_entry_start[c + 1];
+      double energy = 0.0;
+      for (int k = begin; k < end; ++k) {
+        const ArapElements::CellEntry& x = entry[k];
+        double s[3];
+        if (k - begin < kKeep)
+          for (int d = 0; d < 3; ++d) s[d] = kept[l][k - begin][d];
+        else
+          element_vector(x, u, s);
+        double r2 = 0.0;
+        for (int i = 0; i < 3; ++i) {
+          const double r = s[i] - (Rc[l](i, 0) * x.s_hat[0] + Rc[l](i, 1) * x.s_hat[1] + Rc[l](i, 2) * x.s_hat[2]);
+          r2 += r * r;
+        }
+        energy += 0.5 * x.w * r2;
+      }
+      R[c] = Rc[l];
+      cell_energy(el.visit_order[c]) = energy;
+    }
   }
   return cell_energy.sum();
 }

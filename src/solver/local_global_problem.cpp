@@ -90,11 +90,12 @@ const Eigen::MatrixXd& LocalGlobalProblem::plain_step() {
   return X_;
 }
 
-Eigen::MatrixXd LocalGlobalProblem::gradient() const {
+const Eigen::MatrixXd& LocalGlobalProblem::gradient() {
   // (L U)_f - rhs_f = L_ff x + L_fc U_c - rhs_f = L_ff x - B, in one pass over the free rows of L (Eigen's
   // product made a pass per coordinate and two temporaries), parallel over rows as Eigen's was.
   const Eigen::Index nf = free_count();
-  Eigen::MatrixXd g(nf, 3);
+  Eigen::MatrixXd& g = g_;
+  g.resize(nf, 3);
   const int* outer = L_free_cols_.outerIndexPtr();
   const int* row = L_free_cols_.innerIndexPtr();
   const double* value = L_free_cols_.valuePtr();
@@ -112,7 +113,7 @@ Eigen::MatrixXd LocalGlobalProblem::gradient() const {
     g(i, 1) = a1 - Lfc_Uc_(i, 1) - B_(i, 1);
     g(i, 2) = a2 - Lfc_Uc_(i, 2) - B_(i, 2);
   }
-  return g;
+  return g_;
 }
 
 Eigen::MatrixXd LocalGlobalProblem::solve(const Eigen::MatrixXd& r) const {

@@ -36,8 +36,9 @@ public:
   // G = L_ff^{-1} B: the plain local/global iterate from the point assemble_rhs last saw (kept in this
   // object until the next call: the solve reuses its workspaces and allocates nothing).
   const Eigen::MatrixXd& plain_step();
-  // g = L_ff x - B at the point assemble_rhs last saw (U's free rows must still hold it).
-  Eigen::MatrixXd gradient() const;
+  // g = L_ff x - B at the point assemble_rhs last saw (U's free rows must still hold it). Kept in this
+  // object until the next call (no allocation per iteration).
+  const Eigen::MatrixXd& gradient();
   // L_ff^{-1} r (r #free x 3).
   Eigen::MatrixXd solve(const Eigen::MatrixXd& r) const;
 
@@ -60,7 +61,7 @@ private:
   Eigen::VectorXi free_row_;               // #free: the row of U_rows_ of free vertex data.free(i)
   std::vector<Eigen::Matrix3d> R_spare_;   // num_cells: where data.R goes back to the file's order
   Eigen::VectorXd cell_energy_;
-  Eigen::MatrixXd rhs_, B_, X_;
+  Eigen::MatrixXd rhs_, B_, X_, g_;
   std::vector<Eigen::Matrix3d> S_, M_inverse_, dR_; // Hessian workspaces (per cell)
   ArapElements::ValueRows v_rows_;                 // a direction v on all vertices, 0 at constrained ones
   Eigen::MatrixXd d_rhs_;

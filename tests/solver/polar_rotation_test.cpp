@@ -3,7 +3,9 @@
 #include <Eigen/Dense>
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
+#include <limits>
 #include <random>
+#include <vector>
 
 namespace {
 
@@ -165,6 +167,52 @@ TEST(PolarRotation, NonFiniteInputGivesNonFiniteOutput) {
   Matrix3d S = Matrix3d::Identity();
   S(1, 2) = std::numeric_limits<double>::quiet_NaN();
   EXPECT_FALSE(polar_rotation(S).allFinite());
+  // The warm-started fit has no finiteness test of its own: NaN or infinity must reach polar_rotation.
+  const Matrix3d guess = Eigen::AngleAxisd(0.1, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  EXPECT_FALSE(iarap::polar_rotation_near(S, guess).allFinite());
+  S(1, 2) = std::numeric_limits<double>::infinity();
+  EXPECT_FALSE(iarap::polar_rotation_near(S, guess).allFinite());
+  Matrix3d bad_guess = guess;
+  bad_guess(0, 1) = std::numeric_limits<double>::quiet_NaN();
+  S(1, 2) = 0.3;
+  EXPECT_LT((iarap::polar_rotation_near(S, bad_guess) - polar_rotation(S)).norm(), 1e-15);
+}
+
+// The batched fit (four in lockstep, what the local step calls) returns exactly the single fits, whatever
+// path each lane takes: Newton from a near guess (most), the cold iteration for a far guess, a bitwise
+// symmetric S (rest state) or a rank-1 S where the model is not concave, S = 0, NaN. Exact equality: each
+// lane does the same IEEE operations as a fit on its own. 4k + 3 fits, so the last block is partial.
+TEST(PolarRotation, BatchedNearFitsEqualSingleFits) {
+  std::mt19937 rng(21);
+  std::uniform_real_distribution<double> angle(-0.05, 0.05);
+  std::vector<Matrix3d> S, guess;
+  for (int t = 0; t < 203; ++t) {
+    Matrix3d St = random_matrix(rng);
+    const Eigen::Vector3d axis = random_matrix(rng).col(0).normalized();
+    double turn = angle(rng);
+    switch (t % 9) {
+    case 3: turn = 2.0; break;                                                           // far guess
+    case 5: St = St * St.transpose(); break;                                             // symmetric
+    case 6: St = random_matrix(rng).col(0) * random_matrix(rng).col(0).transpose(); break; // rank 1
+    case 7: St.setZero(); break;
+    case 8: St(2, 0) = t % 2 ? std::numeric_limits<double>::quiet_NaN() : St(2, 0); break;
+    default: break;
+    }
+    S.push_back(St);
+    guess.push_back(svd_rotation(St.allFinite() ? St : Matrix3d::Identity()) *
+                    Eigen::AngleAxisd(turn, axis).toRotationMatrix());
+  }
+  std::vector<Matrix3d> batched(S.size());
+  iarap::polar_rotation_near(S.data(), guess.data(), batched.data(), static_cast<int>(S.size()));
+  for (size_t t = 0; t < S.size(); ++t) {
+    const Matrix3d single = iarap::polar_rotation_near(S[t], guess[t]);
+    if (!single.allFinite()) {
+      EXPECT_FALSE(batched[t].allFinite()) << "fit " << t;
+      continue;
+    }
+    EXPECT_TRUE(batched[t] == single) << "fit " << t << "\n" << batched[t] << "\nvs\n" << single;
+    expect_rotation(batched[t]);
+  }
 }
 
 } // namespace
