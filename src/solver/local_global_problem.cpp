@@ -21,31 +21,32 @@ LocalGlobalProblem::LocalGlobalProblem(ArapData& data, const Eigen::MatrixXd& ta
     U_c.row(data.fixed.size() + k) = U.row(data.pinned(k));
   for (Eigen::Index k = 0; k < data.fixed.size(); ++k)
     U.row(data.fixed(k)) = targets.row(k);
-  Lfc_Uc_ = data.L_fc * U_c;
   const ArapElements& el = data.elements;
   visit_rows(el, U, U_rows_);
   std::vector<int> position(el.visit_order.size());
   for (size_t p = 0; p < position.size(); ++p) position[static_cast<size_t>(el.visit_order[p])] = static_cast<int>(p);
-  free_row_.resize(data.free.size());
-  for (Eigen::Index i = 0; i < data.free.size(); ++i) free_row_(i) = position[static_cast<size_t>(data.free(i))];
   R_spare_.resize(static_cast<size_t>(el.num_cells));
 
-  // Column j of the symmetric L is its row j: copying the free columns gives the free rows, transposed.
-  const Eigen::Index n = data.L.rows(), nf = data.free.size();
-  Eigen::Index nnz = 0;
+  // The free vertices in visit order (x's rows), and for each its row of the symmetric L (= its column).
+  const Eigen::Index nf = data.free.size();
+  std::vector<int> free_of_position(position.size(), -1);
   for (Eigen::Index i = 0; i < nf; ++i)
-    nnz += data.L.outerIndexPtr()[data.free(i) + 1] - data.L.outerIndexPtr()[data.free(i)];
-  L_free_cols_.resize(n, nf);
-  L_free_cols_.resizeNonZeros(nnz);
-  Eigen::Index k = 0;
-  L_free_cols_.outerIndexPtr()[0] = 0;
-  for (Eigen::Index i = 0; i < nf; ++i) {
+    free_of_position[static_cast<size_t>(position[static_cast<size_t>(data.free(i))])] = static_cast<int>(i);
+  L_row_start_.assign(1, 0);
+  for (size_t p = 0; p < free_of_position.size(); ++p) {
+    const int i = free_of_position[p];
+    if (i < 0) continue;
+    free_position_.push_back(static_cast<int>(p));
+    free_index_.push_back(i);
     for (Eigen::SparseMatrix<double>::InnerIterator it(data.L, data.free(i)); it; ++it) {
-      L_free_cols_.innerIndexPtr()[k] = position[static_cast<size_t>(it.row())];
-      L_free_cols_.valuePtr()[k++] = it.value();
+      L_column_.push_back(position[static_cast<size_t>(it.row())]);
+      L_value_.push_back(it.value());
     }
-    L_free_cols_.outerIndexPtr()[i + 1] = static_cast<int>(k);
+    L_row_start_.push_back(static_cast<int>(L_column_.size()));
   }
+  const Eigen::MatrixXd Lfc_Uc = data.L_fc * U_c; // rows in data.free's order
+  Lfc_Uc_.resize(nf, 3);
+  for (Eigen::Index r = 0; r < nf; ++r) Lfc_Uc_.row(r) = Lfc_Uc.row(free_index_[static_cast<size_t>(r)]);
   B_.resize(nf, 3);
   X_.resize(nf, 3);
   // The first fit starts cold (fit_rotations warm-starts from rotations it is given): a solve's result then
@@ -54,8 +55,8 @@ LocalGlobalProblem::LocalGlobalProblem(ArapData& data, const Eigen::MatrixXd& ta
 }
 
 LocalGlobalProblem::~LocalGlobalProblem() {
-  for (Eigen::Index i = 0; i < free_count(); ++i)
-    U_.row(data_.free(i)) = U_rows_.row(free_row_(i));
+  for (size_t r = 0; r < free_index_.size(); ++r)
+    U_.row(data_.free(free_index_[r])) = U_rows_.row(free_position_[r]);
   if (data_.R.size() != R_spare_.size()) return; // no local step ran
   rotations_from_visit_order(data_.elements, data_.R, R_spare_);
   data_.R.swap(R_spare_);
@@ -63,62 +64,80 @@ LocalGlobalProblem::~LocalGlobalProblem() {
 
 Eigen::MatrixXd LocalGlobalProblem::positions() const {
   Eigen::MatrixXd x(free_count(), 3);
-  for (Eigen::Index i = 0; i < free_count(); ++i)
-    x.row(i) = U_rows_.row(free_row_(i));
+  for (Eigen::Index r = 0; r < free_count(); ++r)
+    x.row(r) = U_rows_.row(free_position_[static_cast<size_t>(r)]);
   return x;
 }
 
 void LocalGlobalProblem::set_positions(const Eigen::MatrixXd& x) {
-  for (Eigen::Index i = 0; i < free_count(); ++i)
-    U_rows_.row(free_row_(i)) = x.row(i);
+#pragma omp parallel for schedule(static)
+  for (Eigen::Index r = 0; r < free_count(); ++r)
+    U_rows_.row(free_position_[static_cast<size_t>(r)]) = x.row(r);
 }
 
 double LocalGlobalProblem::local_step() {
   return fit_rotations_in_visit_order(data_.elements, U_rows_, data_.R, cell_energy_);
 }
 
+namespace {
+// Row r of L (the flat CSR of LocalGlobalProblem) times the rows of u (#V x 3, row-major, visit order).
+inline void L_row_times(const int* start, const int* column, const double* value, int r, const double* u,
+                        double (&out)[3]) {
+  double a0 = 0.0, a1 = 0.0, a2 = 0.0;
+  for (int k = start[r]; k < start[r + 1]; ++k) {
+    const double* ur = u + 3 * column[k];
+    a0 += value[k] * ur[0];
+    a1 += value[k] * ur[1];
+    a2 += value[k] * ur[2];
+  }
+  out[0] = a0, out[1] = a1, out[2] = a2;
+}
+} // namespace
+
 void LocalGlobalProblem::assemble_rhs() {
-  arap_rhs_in_visit_order(data_.elements, data_.R, rhs_); // Eq. 16
+  // B = rhs_f - L_fc U_c (Eq. 16) and g = (L U)_f - rhs_f = L_ff x - B (Eq. 14 at the free rows), streamed
+  // over the free vertices in visit order: the rotations' terms and L's rows are read once, in order.
+  const auto rows = static_cast<int>(free_position_.size());
+  B_.resize(free_count(), 3);
+  g_.resize(free_count(), 3);
+  const double* u = U_rows_.data();
 #pragma omp parallel for schedule(static)
-  for (Eigen::Index i = 0; i < free_count(); ++i)
-    B_.row(i) = rhs_.row(free_row_(i)) - Lfc_Uc_.row(i);
+  for (int r = 0; r < rows; ++r) {
+    double rhs[3], LU[3];
+    arap_rhs_row(data_.elements, data_.R, free_position_[static_cast<size_t>(r)], rhs);
+    L_row_times(L_row_start_.data(), L_column_.data(), L_value_.data(), r, u, LU);
+    for (int d = 0; d < 3; ++d) {
+      B_(r, d) = rhs[d] - Lfc_Uc_(r, d);
+      g_(r, d) = LU[d] - Lfc_Uc_(r, d) - B_(r, d);
+    }
+  }
 }
 
 const Eigen::MatrixXd& LocalGlobalProblem::plain_step() {
-  ++solves_;
-  data_.solver.solve(B_, X_); // three coordinates at once
+  solve_into(B_, X_);
   return X_;
 }
 
-const Eigen::MatrixXd& LocalGlobalProblem::gradient() {
-  // (L U)_f - rhs_f = L_ff x + L_fc U_c - rhs_f = L_ff x - B, in one pass over the free rows of L (Eigen's
-  // product made a pass per coordinate and two temporaries), parallel over rows as Eigen's was.
-  const Eigen::Index nf = free_count();
-  Eigen::MatrixXd& g = g_;
-  g.resize(nf, 3);
-  const int* outer = L_free_cols_.outerIndexPtr();
-  const int* row = L_free_cols_.innerIndexPtr();
-  const double* value = L_free_cols_.valuePtr();
-  const double* u = U_rows_.data();
-#pragma omp parallel for schedule(static)
-  for (Eigen::Index i = 0; i < nf; ++i) {
-    double a0 = 0.0, a1 = 0.0, a2 = 0.0;
-    for (int k = outer[i]; k < outer[i + 1]; ++k) {
-      const double* ur = u + 3 * row[k];
-      a0 += value[k] * ur[0];
-      a1 += value[k] * ur[1];
-      a2 += value[k] * ur[2];
-    }
-    g(i, 0) = a0 - Lfc_Uc_(i, 0) - B_(i, 0);
-    g(i, 1) = a1 - Lfc_Uc_(i, 1) - B_(i, 1);
-    g(i, 2) = a2 - Lfc_Uc_(i, 2) - B_(i, 2);
-  }
-  return g_;
+Eigen::MatrixXd LocalGlobalProblem::solve(const Eigen::MatrixXd& r) const {
+  Eigen::MatrixXd x;
+  solve_into(r, x);
+  return x;
 }
 
-Eigen::MatrixXd LocalGlobalProblem::solve(const Eigen::MatrixXd& r) const {
+// The factor's rows follow data.free; x's follow the visit order: rows are permuted on the way in and out.
+void LocalGlobalProblem::solve_into(const Eigen::MatrixXd& b, Eigen::MatrixXd& x) const {
   ++solves_;
-  return data_.solver.solve(r);
+  const Eigen::Index nf = free_count();
+  const Eigen::Index columns = b.cols();
+  b_free_.resize(nf, columns);
+#pragma omp parallel for schedule(static)
+  for (Eigen::Index r = 0; r < nf; ++r)
+    for (Eigen::Index d = 0; d < columns; ++d) b_free_(free_index_[static_cast<size_t>(r)], d) = b(r, d);
+  data_.solver.solve(b_free_, x_free_); // all columns at once
+  x.resize(nf, columns);
+#pragma omp parallel for schedule(static)
+  for (Eigen::Index r = 0; r < nf; ++r)
+    for (Eigen::Index d = 0; d < columns; ++d) x(r, d) = x_free_(free_index_[static_cast<size_t>(r)], d);
 }
 
 // Differentiating R^T S = P (symmetric) along dS with dR = R [omega]_x gives
@@ -174,8 +193,8 @@ Eigen::MatrixXd LocalGlobalProblem::hessian_product(const Eigen::MatrixXd& v) {
   // Only the free rows are written, so the constrained ones stay at the zero they got once.
   if (v_rows_.rows() != U_.rows())
     v_rows_.setZero(U_.rows(), 3);
-  for (Eigen::Index i = 0; i < free_count(); ++i)
-    v_rows_.row(free_row_(i)) = v.row(i);
+  for (Eigen::Index r = 0; r < free_count(); ++r)
+    v_rows_.row(free_position_[static_cast<size_t>(r)]) = v.row(r);
   cell_covariances(data_.elements, v_rows_, S_); // dS_c, in the Hessian's workspace
   const auto n = static_cast<int>(S_.size());
   dR_.resize(S_.size());
@@ -190,10 +209,16 @@ Eigen::MatrixXd LocalGlobalProblem::hessian_product(const Eigen::MatrixXd& v) {
     W << 0, -w.z(), w.y(), w.z(), 0, -w.x(), -w.y(), w.x(), 0;
     dR_[c] = R * W;
   }
-  arap_rhs_in_visit_order(data_.elements, dR_, d_rhs_);
-  Eigen::MatrixXd Hv = L_free_cols_.transpose() * v_rows_;
-  for (Eigen::Index i = 0; i < free_count(); ++i)
-    Hv.row(i) -= d_rhs_.row(free_row_(i));
+  Eigen::MatrixXd Hv(free_count(), 3);
+  const auto rows = static_cast<int>(free_position_.size());
+  const double* vr = v_rows_.data();
+#pragma omp parallel for schedule(static)
+  for (int r = 0; r < rows; ++r) {
+    double d_rhs[3], Lv[3];
+    arap_rhs_row(data_.elements, dR_, free_position_[static_cast<size_t>(r)], d_rhs);
+    L_row_times(L_row_start_.data(), L_column_.data(), L_value_.data(), r, vr, Lv);
+    for (int d = 0; d < 3; ++d) Hv(r, d) = Lv[d] - d_rhs[d];
+  }
   return Hv;
 }
 

@@ -17,28 +17,29 @@ class LocalGlobalProblem {
 public:
   // Sets U's constrained rows (targets at data.fixed, U's own rows at data.pinned) and precomputes
   // L_fc U_c and the free rows of L. data and U must outlive the problem. While it lives the positions and
-  // data.R are kept in the elements' visit order (ArapElements::visit_order; x itself follows data.free);
-  // the destructor writes them back to U and data.R in the file's order.
+  // data.R are kept in the elements' visit order (ArapElements::visit_order), and so are the rows of x, B,
+  // g and every #free x 3 matrix of this interface (the free vertices in visit order: the passes over them
+  // stream); the destructor writes U and data.R back in the file's order.
   LocalGlobalProblem(ArapData& data, const Eigen::MatrixXd& targets, Eigen::MatrixXd& U);
   ~LocalGlobalProblem();
   LocalGlobalProblem(const LocalGlobalProblem&) = delete;
   LocalGlobalProblem& operator=(const LocalGlobalProblem&) = delete;
 
   Eigen::Index free_count() const { return data_.free.size(); }
-  // x = U's free rows.
+  // x = U's free rows (in visit order).
   Eigen::MatrixXd positions() const;
   void set_positions(const Eigen::MatrixXd& x);
 
   // Local step at U: fits data.R and returns E(U).
   double local_step();
-  // B(U) from data.R (the rotations of the last local step), kept for plain_step and gradient.
+  // B(U) from data.R (the rotations of the last local step), kept for plain_step, and the gradient there
+  // (gradient()), in one pass over the free vertices.
   void assemble_rhs();
   // G = L_ff^{-1} B: the plain local/global iterate from the point assemble_rhs last saw (kept in this
   // object until the next call: the solve reuses its workspaces and allocates nothing).
   const Eigen::MatrixXd& plain_step();
-  // g = L_ff x - B at the point assemble_rhs last saw (U's free rows must still hold it). Kept in this
-  // object until the next call (no allocation per iteration).
-  const Eigen::MatrixXd& gradient();
+  // g = L_ff x - B at the point assemble_rhs last saw, computed there (kept until its next call).
+  const Eigen::MatrixXd& gradient() const { return g_; }
   // L_ff^{-1} r (r #free x 3).
   Eigen::MatrixXd solve(const Eigen::MatrixXd& r) const;
 
@@ -52,19 +53,23 @@ public:
   int solves() const { return solves_; }
 
 private:
+  void solve_into(const Eigen::MatrixXd& b, Eigen::MatrixXd& x) const;
+
   ArapData& data_;
   Eigen::MatrixXd& U_;
   Eigen::MatrixXd Lfc_Uc_;                 // #free x 3
-  Eigen::SparseMatrix<double> L_free_cols_; // #V x #free: columns `free` of the symmetric L (its free rows),
-                                            // rows numbered in visit order
+  // The free rows of the symmetric L in visit order, as flat CSR: row r belongs to the free vertex at
+  // position free_position_[r] (increasing) with free index free_index_[r]; its columns are visit positions.
+  // The fused right-hand-side and gradient pass and the Hessian product stream them beside U_rows_.
+  std::vector<int> free_position_, free_index_, L_row_start_, L_column_;
+  std::vector<double> L_value_;
   ArapElements::ValueRows U_rows_;         // the positions in visit order (U's are written back at the end)
-  Eigen::VectorXi free_row_;               // #free: the row of U_rows_ of free vertex data.free(i)
   std::vector<Eigen::Matrix3d> R_spare_;   // num_cells: where data.R goes back to the file's order
   Eigen::VectorXd cell_energy_;
-  Eigen::MatrixXd rhs_, B_, X_, g_;
+  Eigen::MatrixXd B_, X_, g_;
+  mutable Eigen::MatrixXd b_free_, x_free_; // a solve's right-hand side and solution in the factor's row order
   std::vector<Eigen::Matrix3d> S_, M_inverse_, dR_; // Hessian workspaces (per cell)
   ArapElements::ValueRows v_rows_;                 // a direction v on all vertices, 0 at constrained ones
-  Eigen::MatrixXd d_rhs_;
   mutable int solves_ = 0;
 };
 

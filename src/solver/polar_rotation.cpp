@@ -131,6 +131,10 @@ constexpr int kGroupMaxSteps = 6;
 // its smallest leading-minor ratio against |G| below this and the step is not trusted.
 constexpr double kGroupDefinite = 1e-6;
 
+// The helpers from here on are inlined into both clones of the batched fit (a call would leave the
+// AVX2 clone).
+#define IARAP_INLINE_INTO_CLONES __attribute__((always_inline)) inline
+
 // polar_rotation_near's start: S0 = S / (its largest entry), row-major, and the guess's unit quaternion.
 // False when polar_rotation(S) decides instead: S = 0, the exact rest state (bitwise symmetric S, which
 // polar_rotation turns into exactly I when S is positive definite) or a guess that is not a rotation. Nothing
@@ -141,7 +145,7 @@ constexpr double kGroupDefinite = 1e-6;
 // guess need no test here: they make the first step's concavity test fail (comparisons with NaN are false),
 // and polar_rotation returns its non-finite answer. One reciprocal and multiplications, not a division
 // per entry: this runs once per cell and iteration.
-bool group_start(const Eigen::Matrix3d& S, const Eigen::Matrix3d& guess, double (&s)[9], double (&q)[4]) {
+IARAP_INLINE_INTO_CLONES bool group_start(const Eigen::Matrix3d& S, const Eigen::Matrix3d& guess, double (&s)[9], double (&q)[4]) {
   double scale = 0.0;
   for (int k = 0; k < 9; ++k) scale = std::max(scale, std::abs(S(k)));
   if (scale == 0.0)
@@ -149,7 +153,9 @@ bool group_start(const Eigen::Matrix3d& S, const Eigen::Matrix3d& guess, double 
   if (S(0, 1) == S(1, 0) && S(0, 2) == S(2, 0) && S(1, 2) == S(2, 1))
     return false;
   const Eigen::Vector4d start = quaternion_of(guess);
-  const double start_norm2 = start.squaredNorm();
+  // Written out, not Eigen's squaredNorm: inside the AVX2 clone below Eigen could sum in another order,
+  // and the two clones must agree to the bit.
+  const double start_norm2 = start(0) * start(0) + start(1) * start(1) + start(2) * start(2) + start(3) * start(3);
   if (!(start_norm2 > 0.25)) // not a rotation
     return false;
   const double to_unit = 1.0 / std::sqrt(start_norm2), to_scaled = 1.0 / scale;
@@ -169,7 +175,7 @@ typedef double Lanes __attribute__((vector_size(kLanes * sizeof(double))));
 typedef long long LaneMask __attribute__((vector_size(kLanes * sizeof(long long))));
 
 // R (row-major) of the unit quaternions q.
-inline void rotation_of(const Lanes (&q)[4], Lanes (&R)[9]) {
+IARAP_INLINE_INTO_CLONES void rotation_of(const Lanes (&q)[4], Lanes (&R)[9]) {
   const Lanes qw = q[0], qx = q[1], qy = q[2], qz = q[3];
   const Lanes xx = qx * qx, yy = qy * qy, zz = qz * qz, xy = qx * qy, xz = qx * qz, yz = qy * qz;
   const Lanes wx = qw * qx, wy = qw * qy, wz = qw * qz;
@@ -182,7 +188,7 @@ inline void rotation_of(const Lanes (&q)[4], Lanes (&R)[9]) {
 // unit quaternions q, updated in place). `converged` gets the lanes that converged; a lane that was running
 // and did not (the model not safely concave, the first step too long, no convergence within the step limit)
 // is for polar_rotation.
-void group_newton(const Lanes (&s)[9], Lanes (&q)[4], LaneMask& running, LaneMask& converged) {
+IARAP_INLINE_INTO_CLONES void group_newton(const Lanes (&s)[9], Lanes (&q)[4], LaneMask& running, LaneMask& converged) {
   converged = LaneMask{};
   for (int step = 0; step < kGroupMaxSteps; ++step) {
     bool any = false;
@@ -241,6 +247,12 @@ Eigen::Matrix3d polar_rotation_near(const Eigen::Matrix3d& S, const Eigen::Matri
   return R;
 }
 
+// Compiled twice, for AVX2 (one 4-lane register per Lanes value, twice the registers of SSE2) and for the
+// base x86-64 ISA, the loader picking the one the CPU runs (GCC function multi-versioning): 1.7x fewer
+// cycles per fit measured (bench/polar_rotation_bench). Without FMA, so that both round alike.
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+__attribute__((target_clones("avx2", "default")))
+#endif
 void polar_rotation_near(const Eigen::Matrix3d* S, const Eigen::Matrix3d* guess, Eigen::Matrix3d* R, int count) {
   for (int first = 0; first < count; first += kLanes) {
     Lanes s[9] = {}, q[4] = {};

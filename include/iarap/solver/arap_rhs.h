@@ -19,4 +19,15 @@ void arap_rhs(const ArapElements& elements, const std::vector<Eigen::Matrix3d>& 
 // allocated once rhs has its size.
 void arap_rhs_in_visit_order(const ArapElements& elements, const std::vector<Eigen::Matrix3d>& R, Eigen::MatrixXd& rhs);
 
+// Row p of arap_rhs_in_visit_order (the vertex at position p), for passes that fuse it with other work.
+inline void arap_rhs_row(const ArapElements& elements, const std::vector<Eigen::Matrix3d>& R, int p, double (&row)[3]) {
+  row[0] = row[1] = row[2] = 0.0;
+  const auto v = static_cast<size_t>(p);
+  for (int k = elements.rhs_term_start[v]; k < elements.rhs_term_start[v + 1]; ++k) {
+    const ArapElements::RhsTerm& t = elements.rhs_term[static_cast<size_t>(k)];
+    const Eigen::Matrix3d& Rc = R[static_cast<size_t>(t.cell)];
+    for (int i = 0; i < 3; ++i) row[i] += Rc(i, 0) * t.p[0] + Rc(i, 1) * t.p[1] + Rc(i, 2) * t.p[2];
+  }
+}
+
 } // namespace iarap
