@@ -64,12 +64,14 @@ double fit_rotations(const ArapElements& el, const Eigen::MatrixXd& U, ArapEleme
 }
 
 double fit_rotations_in_visit_order(const ArapElements& el, const ArapElements::ValueRows& U_rows,
-                                    std::vector<Eigen::Matrix3d>& R, Eigen::VectorXd& cell_energy) {
+                                    std::vector<Eigen::Matrix3d>& R, Eigen::VectorXd& cell_energy,
+                                    std::vector<Eigen::Matrix3d>* covariances) {
   const int n = el.num_cells;
   // The previous rotations are a start for the fit only when there is one per cell.
   const bool warm = R.size() == static_cast<size_t>(n);
   R.resize(static_cast<size_t>(n));
   cell_energy.resize(n);
+  if (covariances) covariances->resize(static_cast<size_t>(n));
   const double* u = U_rows.data();
   const ArapElements::CellEntry* entry = el.cell_entry.data();
 
@@ -125,6 +127,7 @@ double fit_rotations_in_visit_order(const ArapElements& el, const ArapElements::
         energy += 0.5 * x.w * r2;
       }
       R[c] = Rc[l];
+      if (covariances) (*covariances)[c] = S[l];
       cell_energy(el.visit_order[c]) = energy;
     }
   }

@@ -318,6 +318,8 @@ ArapReport run_local_global(LocalGlobalProblem& problem, const ArapSolveOptions&
   ArapReport report;
   report.accelerator = options.window == 0 ? ArapAccelerator::None : options.accelerator;
   Progress progress(options, report, factorization, start);
+  if (report.accelerator == ArapAccelerator::Newton) // it prepares the Hessian after nearly every local step
+    problem.keep_covariances();
   auto t = Clock::now();
   const double energy = problem.local_step();
   const double local_ms = ms_since(t);

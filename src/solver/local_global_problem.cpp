@@ -76,7 +76,8 @@ void LocalGlobalProblem::set_positions(const Eigen::MatrixXd& x) {
 }
 
 double LocalGlobalProblem::local_step() {
-  return fit_rotations_in_visit_order(data_.elements, U_rows_, data_.R, cell_energy_);
+  return fit_rotations_in_visit_order(data_.elements, U_rows_, data_.R, cell_energy_,
+                                      keep_covariances_ ? &S_ : nullptr);
 }
 
 namespace {
@@ -148,7 +149,8 @@ void LocalGlobalProblem::solve_into(const Eigen::MatrixXd& b, Eigen::MatrixXd& x
 // negative curvature there, which the step's line search covers).
 void LocalGlobalProblem::prepare_hessian() {
   constexpr double kFloor = 1e-6;
-  cell_covariances(data_.elements, U_rows_, S_); // U_rows_ holds the last local step's positions
+  if (!keep_covariances_) // else the last local step kept them
+    cell_covariances(data_.elements, U_rows_, S_); // U_rows_ holds the last local step's positions
   const auto n = static_cast<int>(S_.size());
   M_inverse_.resize(S_.size());
 #pragma omp parallel for schedule(static)
@@ -195,14 +197,14 @@ Eigen::MatrixXd LocalGlobalProblem::hessian_product(const Eigen::MatrixXd& v) {
     v_rows_.setZero(U_.rows(), 3);
   for (Eigen::Index r = 0; r < free_count(); ++r)
     v_rows_.row(free_position_[static_cast<size_t>(r)]) = v.row(r);
-  cell_covariances(data_.elements, v_rows_, S_); // dS_c, in the Hessian's workspace
-  const auto n = static_cast<int>(S_.size());
-  dR_.resize(S_.size());
+  cell_covariances(data_.elements, v_rows_, dS_); // dS_c
+  const auto n = static_cast<int>(dS_.size());
+  dR_.resize(dS_.size());
 #pragma omp parallel for schedule(static)
   for (int k = 0; k < n; ++k) {
     const auto c = static_cast<size_t>(k);
     const Eigen::Matrix3d& R = data_.R[c];
-    const Eigen::Matrix3d A = R.transpose() * S_[c];
+    const Eigen::Matrix3d A = R.transpose() * dS_[c];
     const Eigen::Vector3d a(A(2, 1) - A(1, 2), A(0, 2) - A(2, 0), A(1, 0) - A(0, 1));
     const Eigen::Vector3d w = M_inverse_[c] * a;
     Eigen::Matrix3d W;

@@ -47,6 +47,9 @@ public:
   // prepare_hessian() keeps per cell M_c^{-1} = (tr(P_c) I - P_c)^{-1} with P_c = R_c^T S_c (what the
   // derivative of the polar rotation needs); hessian_product(v) then returns H v (v #free x 3).
   void prepare_hessian();
+  // From now on each local step keeps its covariances for prepare_hessian, which then need not sweep the
+  // elements again (for loops that prepare the Hessian at most local steps).
+  void keep_covariances() { keep_covariances_ = true; }
   Eigen::MatrixXd hessian_product(const Eigen::MatrixXd& v);
 
   // Back-substitutions with the factor so far (plain_step and solve).
@@ -68,7 +71,8 @@ private:
   Eigen::VectorXd cell_energy_;
   Eigen::MatrixXd B_, X_, g_;
   mutable Eigen::MatrixXd b_free_, x_free_; // a solve's right-hand side and solution in the factor's row order
-  std::vector<Eigen::Matrix3d> S_, M_inverse_, dR_; // Hessian workspaces (per cell)
+  std::vector<Eigen::Matrix3d> S_, dS_, M_inverse_, dR_; // Hessian workspaces (per cell)
+  bool keep_covariances_ = false;
   ArapElements::ValueRows v_rows_;                 // a direction v on all vertices, 0 at constrained ones
   mutable int solves_ = 0;
 };

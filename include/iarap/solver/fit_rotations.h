@@ -24,8 +24,10 @@ double fit_rotations(const ArapElements& elements, const Eigen::MatrixXd& U, Ara
 // (#V x 3) holds the position of vertex visit_order[p] in row p, R[p] belongs to cell visit_order[p].
 // cell_energy stays in cell order, so that E(U) is the same sum, bit for bit. One sweep over
 // elements.cell_entry; OpenMP-parallel over cells, without atomics.
+// When covariances is given, it gets S_c too (num_cells, visit order).
 double fit_rotations_in_visit_order(const ArapElements& elements, const ArapElements::ValueRows& U_rows,
-                                    std::vector<Eigen::Matrix3d>& R, Eigen::VectorXd& cell_energy);
+                                    std::vector<Eigen::Matrix3d>& R, Eigen::VectorXd& cell_energy,
+                                    std::vector<Eigen::Matrix3d>* covariances = nullptr);
 
 // U_rows (#V x 3, row-major) = U's rows in visit order: row p is U's row elements.visit_order[p].
 void visit_rows(const ArapElements& elements, const Eigen::MatrixXd& U, ArapElements::ValueRows& U_rows);
