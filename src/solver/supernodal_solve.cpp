@@ -19,6 +19,8 @@ constexpr int kMaxGroup = 4;
 // Columns of L applied per sweep over a supernode's rows: J x G running values stay in registers while
 // J columns are streamed side by side.
 constexpr int kColumnBlock = 4;
+// Parts of the subtrees per thread in a parallel solve (see make_schedule).
+constexpr int kBinsPerThread = 4;
 
 // Cost model of the schedule, in units of one entry of L applied to the right-hand sides: a supernode
 // also pays for its row indices and a fixed overhead (the parallel solve's own: kParallelOverhead).
@@ -184,10 +186,10 @@ void solve_group(const SupernodalFactorView& L, const SupernodalSchedule& sc, co
     for (int col = L.super[s]; col < L.super[s + 1]; ++col)
       f(col);
   };
-#pragma omp parallel num_threads(bins)
+#pragma omp parallel num_threads(sc.threads)
   {
     // Subtrees: each bin writes its own rows and its own accumulator only.
-#pragma omp for schedule(static)
+#pragma omp for schedule(dynamic, 1)
     for (int bin = 0; bin < bins; ++bin) {
       double* acc_bin = acc + bin * bin_stride;
       std::fill(acc_bin, acc_bin + bin_stride, 0.0);
@@ -217,7 +219,7 @@ void solve_group(const SupernodalFactorView& L, const SupernodalSchedule& sc, co
       }
     }
     // Subtrees again, each reading only its own rows and the top part's.
-#pragma omp for schedule(static)
+#pragma omp for schedule(dynamic, 1)
     for (int bin = 0; bin < bins; ++bin)
       for (auto it = sc.bin_supernodes[bin].rbegin(); it != sc.bin_supernodes[bin].rend(); ++it) {
         backward_supernode<G>(L, *it, W);
@@ -378,17 +380,44 @@ SupernodalSchedule SupernodalSolve::make_schedule(int threads) const {
     return serial();
 
   std::vector<char> is_top(ns, 0);
-  for (std::size_t m = 0; m < best_moves; ++m)
+  top_work = 0;
+  for (std::size_t m = 0; m < best_moves; ++m) {
     is_top[moved[m]] = 1;
-  // Longest subtree first onto the least loaded bin (LPT), ties to the lower index.
-  std::vector<int> roots;
+    top_work += work_[moved[m]];
+  }
+  // More parts than threads, taken by whichever thread is free (dynamic scheduling): the cost model's
+  // errors and a thread the scheduler holds back even out. Subtrees too heavy for one part are split
+  // further while that adds at most 2% of the estimate to the top part.
+  const int max_bins = kBinsPerThread * threads;
+  std::priority_queue<Candidate> parts;
+  candidate_work = 0;
   for (int s = 0; s < ns; ++s)
-    if (!is_top[s] && (parent_[s] < 0 || is_top[parent_[s]]))
-      roots.push_back(s);
-  std::stable_sort(roots.begin(), roots.end(), [&](int a, int b) { return subtree[a] > subtree[b]; });
-  std::vector<double> load(threads, 0.0);
+    if (!is_top[s] && (parent_[s] < 0 || is_top[parent_[s]])) {
+      parts.push({subtree[s], -s});
+      candidate_work += subtree[s];
+    }
+  const double top_limit = top_work + 0.02 * best;
+  while (static_cast<int>(parts.size()) < max_bins) {
+    const int s = -parts.top().second;
+    if (subtree[s] <= candidate_work / max_bins || top_work + work_[s] > top_limit)
+      break;
+    parts.pop();
+    is_top[s] = 1;
+    top_work += work_[s];
+    candidate_work -= subtree[s];
+    for (const int child : children[s]) {
+      parts.push({subtree[child], -child});
+      candidate_work += subtree[child];
+    }
+    if (parts.empty())
+      break;
+  }
+  // Heaviest subtree first onto the least loaded part (LPT); parts then in decreasing load, the order in
+  // which the threads take them.
+  std::vector<double> load(std::min<std::size_t>(max_bins, parts.size()), 0.0);
   std::vector<int> bin(ns, -1);
-  for (const int r : roots) {
+  for (; !parts.empty(); parts.pop()) {
+    const int r = -parts.top().second;
     const int target = static_cast<int>(std::min_element(load.begin(), load.end()) - load.begin());
     load[target] += subtree[r];
     bin[r] = target;
@@ -396,14 +425,18 @@ SupernodalSchedule SupernodalSolve::make_schedule(int threads) const {
   for (int s = ns - 1; s >= 0; --s)
     if (!is_top[s] && bin[s] < 0)
       bin[s] = bin[parent_[s]];
-  // Bins without work are dropped; their numbering keeps the LPT order.
-  std::vector<int> renumber(threads, -1);
+  std::vector<int> by_load(load.size());
+  for (std::size_t b = 0; b < load.size(); ++b)
+    by_load[b] = static_cast<int>(b);
+  std::stable_sort(by_load.begin(), by_load.end(), [&](int a, int b) { return load[a] > load[b]; });
+  std::vector<int> renumber(load.size(), -1);
   sc.bins = 0;
-  for (int t = 0; t < threads; ++t)
-    if (load[t] > 0)
-      renumber[t] = sc.bins++;
+  for (const int b : by_load)
+    if (load[b] > 0)
+      renumber[b] = sc.bins++;
   if (sc.bins < 2)
     return serial();
+  sc.threads = std::min(threads, sc.bins);
   sc.bin_supernodes.assign(sc.bins, {});
   sc.top_slot.assign(L_.n, -1);
   for (int s = 0; s < ns; ++s) {

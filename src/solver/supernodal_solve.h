@@ -40,14 +40,15 @@ struct SupernodalFactorView {
 // Eigen's CholmodSupernodalLLT makes); nullopt otherwise.
 std::optional<SupernodalFactorView> supernodal_factor_view(const cholmod_factor_struct* L);
 
-// Who does which supernode with `bins` parallel parts (bins = 1: everything in order on one thread).
-// Supernodes split into the top part (closed under "parent of", done on one thread) and subtrees hanging
-// below it, each subtree in one bin; bins run in parallel. A subtree's supernode updates rows of its own
-// subtree and rows of the top part: the latter go to the bin's own accumulator (top_slot gives the
-// accumulator row), summed in bin order before the top part runs, so no two threads write one row and the
-// result does not depend on which thread ran which bin.
+// Who does which supernode with `bins` parts (bins = 1: everything in order on one thread). Supernodes
+// split into the top part (closed under "parent of", done on one thread) and subtrees hanging below it,
+// each subtree in one bin; `threads` threads take the bins as they come free. A subtree's supernode
+// updates rows of its own subtree and rows of the top part: the latter go to the bin's own accumulator
+// (top_slot gives the accumulator row), summed in bin order before the top part runs, so no two threads
+// write one row and the result does not depend on which thread ran which bin.
 struct SupernodalSchedule {
   int bins = 1;
+  int threads = 1;
   std::vector<std::vector<int>> bin_supernodes; // per bin, ascending (children before parents)
   std::vector<int> top;                         // top part, ascending
   std::vector<int> inside_rows; // per supernode: how many of its below-diagonal rows are not top rows
