@@ -4,6 +4,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cstddef>
 #include <optional>
 #include <queue>
@@ -180,8 +181,11 @@ void solve_group(const SupernodalFactorView& L, const SupernodalSchedule& sc, co
   const std::ptrdiff_t bin_stride = static_cast<std::ptrdiff_t>(sc.top_columns) * G;
   double* acc = ws.accumulator.data();
   const int* top_slot = sc.top_slot.data();
-  // Each bin gathers and scatters the rows of its own supernodes, the top part's thread those of the top:
-  // three barriers in all (after the subtrees' forward pass, after the top part, at the end).
+  // Each bin gathers and scatters the rows of its own supernodes, the top part's thread those of the top.
+  // One barrier and the join at the end: the last thread out of the forward pass does the top part at
+  // once (no wake-up on the critical path; the counter's acquire-release makes the other threads' rows
+  // visible to it) while the others wait at the barrier.
+  std::atomic<int> finished{0};
   auto columns = [&](int s, auto&& f) {
     for (int col = L.super[s]; col < L.super[s + 1]; ++col)
       f(col);
@@ -189,7 +193,7 @@ void solve_group(const SupernodalFactorView& L, const SupernodalSchedule& sc, co
 #pragma omp parallel num_threads(sc.threads)
   {
     // Subtrees: each bin writes its own rows and its own accumulator only.
-#pragma omp for schedule(dynamic, 1)
+#pragma omp for schedule(dynamic, 1) nowait
     for (int bin = 0; bin < bins; ++bin) {
       double* acc_bin = acc + bin * bin_stride;
       std::fill(acc_bin, acc_bin + bin_stride, 0.0);
@@ -200,8 +204,7 @@ void solve_group(const SupernodalFactorView& L, const SupernodalSchedule& sc, co
     }
     // The top part on one thread: the bins' updates in bin order (each accumulator holds minus the sum of
     // its bin's updates, as the subtraction started from zero), then its forward and backward solves.
-#pragma omp single
-    {
+    if (finished.fetch_add(1, std::memory_order_acq_rel) + 1 == omp_get_num_threads()) {
       for (const int s : sc.top)
         columns(s, [&](int col) {
           gather(col);
@@ -218,8 +221,9 @@ void solve_group(const SupernodalFactorView& L, const SupernodalSchedule& sc, co
         columns(*it, scatter);
       }
     }
+#pragma omp barrier
     // Subtrees again, each reading only its own rows and the top part's.
-#pragma omp for schedule(dynamic, 1)
+#pragma omp for schedule(dynamic, 1) nowait
     for (int bin = 0; bin < bins; ++bin)
       for (auto it = sc.bin_supernodes[bin].rbegin(); it != sc.bin_supernodes[bin].rend(); ++it) {
         backward_supernode<G>(L, *it, W);
