@@ -10,7 +10,6 @@
 #include <Eigen/SparseCholesky>
 #include <algorithm>
 #include <cmath>
-#include <exception>
 #include <utility>
 
 namespace iarap {
@@ -83,10 +82,6 @@ std::unique_ptr<detail::SupernodalSolve> supernodal_plan(const cholmod_factor* L
   return plan;
 }
 
-// The threads a solve may use: one inside another parallel region (the caller's team already has the cores).
-int solve_thread_count() {
-  return omp_in_parallel() ? 1 : thread_count();
-}
 } // namespace
 
 struct SparseCholesky::Impl {
@@ -251,7 +246,7 @@ void SparseCholesky::solve(const Eigen::MatrixXd& B, Eigen::MatrixXd& X) {
   const FactorizationKind k = kind();
   check_solve(k, rows(), B);
   if (k == FactorizationKind::CholmodSupernodalLLT && impl_->supernodal) {
-    impl_->supernodal->solve(B, X, solve_thread_count(), impl_->supernodal_workspace);
+    impl_->supernodal->solve(B, X, thread_count(), impl_->supernodal_workspace);
     return;
   }
   solve_with_cholmod(B, X);
@@ -287,7 +282,7 @@ Eigen::MatrixXd SparseCholesky::solve(const Eigen::MatrixXd& B) const {
     return impl_->llt->solve(B);
   Eigen::MatrixXd X;
   detail::SupernodalWorkspace ws; // a workspace of its own: const solves may run concurrently
-  std::as_const(*impl_->supernodal).solve(B, X, solve_thread_count(), ws);
+  std::as_const(*impl_->supernodal).solve(B, X, thread_count(), ws);
   return X;
 }
 

@@ -11,6 +11,7 @@
 #include <Eigen/CholmodSupport>
 #include <Eigen/Dense>
 #include <gtest/gtest.h>
+#include <omp.h>
 
 #include <random>
 #include <vector>
@@ -142,6 +143,31 @@ TEST(SupernodalSolve, GridSplitsIntoSubtreesAndAgreesAcrossThreadCounts) {
     many.solve(B, again, threads, ws);
     EXPECT_EQ(X, again) << threads << " threads";
     EXPECT_LT(relative_difference(X, X1), 1e-13) << threads << " threads";
+  }
+}
+
+// Inside another parallel region the solve's team has one thread, which then does every part in turn:
+// the same schedule, so the same bits as the solve on its own threads.
+TEST(SupernodalSolve, InsideAParallelRegionGivesTheSameBits) {
+  const Eigen::SparseMatrix<double> A = test::grid_laplacian(30, 1.0);
+  const Factor factor(A);
+  ASSERT_EQ(factor.info(), Eigen::Success);
+  const detail::SupernodalSolve solve(factor.view(), 2, 0.0);
+  ASSERT_GE(solve.schedule().bins, 2);
+  const Eigen::MatrixXd B = Eigen::MatrixXd::Random(A.rows(), 3);
+  Eigen::MatrixXd alone, nested[2];
+  detail::SupernodalWorkspace ws;
+  solve.solve(B, alone, 2, ws);
+#pragma omp parallel num_threads(2)
+  {
+    detail::SupernodalWorkspace own; // const solves may run concurrently, each with its own workspace
+    const int t = omp_get_thread_num();
+    if (t < 2)
+      solve.solve(B, nested[t], 2, own);
+  }
+  EXPECT_EQ(nested[0], alone);
+  if (nested[1].size() > 0) { // the runtime may give the region one thread
+    EXPECT_EQ(nested[1], alone);
   }
 }
 
