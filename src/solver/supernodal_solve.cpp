@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <optional>
 #include <queue>
+#include <thread>
 #include <utility>
 
 namespace iarap::detail {
@@ -22,6 +23,9 @@ constexpr int kMaxGroup = 4;
 constexpr int kColumnBlock = 4;
 // Parts of the subtrees per thread in a parallel solve (see make_schedule).
 constexpr int kBinsPerThread = 4;
+// Spins of a waiting thread before it yields its core: some 0.1-1 ms, longer than the wait at the top part
+// of the meshes measured (beetle: 5% of a 1.2 ms solve).
+constexpr int kSpinsBeforeYield = 1 << 14;
 
 // Cost model of the schedule, in units of one entry of L applied to the right-hand sides: a supernode
 // also pays for its row indices and a fixed overhead (the parallel solve's own: kParallelOverhead).
@@ -148,6 +152,20 @@ template <int G> void backward_supernode(const SupernodalFactorView& L, int s, d
   }
 }
 
+// Waits until `counter` reaches `value` (acquire): spinning first (the phases of a solve are short), then
+// yielding the core (a thread held back by the scheduler then gets it sooner).
+void wait_until(const std::atomic<int>& counter, int value) {
+  for (int spin = 0; counter.load(std::memory_order_acquire) < value; ++spin) {
+    if (spin < kSpinsBeforeYield) {
+#if defined(__x86_64__) || defined(__i386__)
+      __builtin_ia32_pause();
+#endif
+    } else {
+      std::this_thread::yield();
+    }
+  }
+}
+
 // Columns [c0, c0 + G) of B solved into the same columns of X.
 template <int G>
 void solve_group(const SupernodalFactorView& L, const SupernodalSchedule& sc, const Eigen::MatrixXd& B,
@@ -182,10 +200,12 @@ void solve_group(const SupernodalFactorView& L, const SupernodalSchedule& sc, co
   double* acc = ws.accumulator.data();
   const int* top_slot = sc.top_slot.data();
   // Each bin gathers and scatters the rows of its own supernodes, the top part's thread those of the top.
-  // One barrier and the join at the end: the last thread out of the forward pass does the top part at
-  // once (no wake-up on the critical path; the counter's acquire-release makes the other threads' rows
-  // visible to it) while the others wait at the barrier.
-  std::atomic<int> finished{0};
+  // The last thread out of the forward pass does the top part at once (the counter's acquire-release
+  // makes the other threads' rows visible to it) while the others wait for it; the main thread waits for
+  // the others' backward passes before the region's join. Both waits spin before they yield: an OpenMP
+  // barrier under the tool's passive wait policy (app/omp_wait_policy.cpp) puts the waiting thread to
+  // sleep, and waking it costs tens of microseconds on the critical path, twice per solve.
+  std::atomic<int> finished{0}, top_done{0}, backward_done{0};
   auto columns = [&](int s, auto&& f) {
     for (int col = L.super[s]; col < L.super[s + 1]; ++col)
       f(col);
@@ -220,8 +240,10 @@ void solve_group(const SupernodalFactorView& L, const SupernodalSchedule& sc, co
         backward_supernode<G>(L, *it, W);
         columns(*it, scatter);
       }
+      top_done.store(1, std::memory_order_release);
+    } else {
+      wait_until(top_done, 1);
     }
-#pragma omp barrier
     // Subtrees again, each reading only its own rows and the top part's.
 #pragma omp for schedule(dynamic, 1) nowait
     for (int bin = 0; bin < bins; ++bin)
@@ -229,6 +251,9 @@ void solve_group(const SupernodalFactorView& L, const SupernodalSchedule& sc, co
         backward_supernode<G>(L, *it, W);
         columns(*it, scatter);
       }
+    backward_done.fetch_add(1, std::memory_order_release);
+    if (omp_get_thread_num() == 0)
+      wait_until(backward_done, omp_get_num_threads());
   }
 }
 
