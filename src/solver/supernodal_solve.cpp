@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cstddef>
 #include <optional>
 #include <queue>
@@ -23,9 +24,10 @@ constexpr int kMaxGroup = 4;
 constexpr int kColumnBlock = 4;
 // Parts of the subtrees per thread in a parallel solve (see make_schedule).
 constexpr int kBinsPerThread = 4;
-// Spins of a waiting thread before it yields its core: some 0.1-1 ms, longer than the wait at the top part
-// of the meshes measured (beetle: 5% of a 1.2 ms solve).
-constexpr int kSpinsBeforeYield = 1 << 14;
+// How long a waiting thread spins before it yields its core at each further check. Short: a long spin
+// costs whole time slices when the two threads share one core (another process on the other); measured
+// on beetle, a spin of some 0.3 ms made the 2-thread solve 2.0 ms against 1.2 ms on one thread then.
+constexpr std::chrono::microseconds kSpinBeforeYield{50};
 
 // Cost model of the schedule, in units of one entry of L applied to the right-hand sides: a supernode
 // also pays for its row indices and a fixed overhead (the parallel solve's own: kParallelOverhead).
@@ -152,11 +154,15 @@ template <int G> void backward_supernode(const SupernodalFactorView& L, int s, d
   }
 }
 
-// Waits until `counter` reaches `value` (acquire): spinning first (the phases of a solve are short), then
-// yielding the core (a thread held back by the scheduler then gets it sooner).
+// Waits until `counter` reaches `value` (acquire): spinning for kSpinBeforeYield, then yielding the core
+// between checks (a thread of ours waiting for this core then runs at once).
 void wait_until(const std::atomic<int>& counter, int value) {
-  for (int spin = 0; counter.load(std::memory_order_acquire) < value; ++spin) {
-    if (spin < kSpinsBeforeYield) {
+  const auto spin_end = std::chrono::steady_clock::now() + kSpinBeforeYield;
+  bool spinning = true;
+  for (int check = 1; counter.load(std::memory_order_acquire) < value; ++check) {
+    if (spinning && check % 64 == 0)
+      spinning = std::chrono::steady_clock::now() < spin_end;
+    if (spinning) {
 #if defined(__x86_64__) || defined(__i386__)
       __builtin_ia32_pause();
 #endif
@@ -202,7 +208,7 @@ void solve_group(const SupernodalFactorView& L, const SupernodalSchedule& sc, co
   // Each bin gathers and scatters the rows of its own supernodes, the top part's thread those of the top.
   // The last thread out of the forward pass does the top part at once (the counter's acquire-release
   // makes the other threads' rows visible to it) while the others wait for it; the main thread waits for
-  // the others' backward passes before the region's join. Both waits spin before they yield: an OpenMP
+  // the others' backward passes before the region's join. Both waits spin briefly, then yield: an OpenMP
   // barrier under the tool's passive wait policy (app/omp_wait_policy.cpp) puts the waiting thread to
   // sleep, and waking it costs tens of microseconds on the critical path, twice per solve.
   std::atomic<int> finished{0}, top_done{0}, backward_done{0};
