@@ -2,6 +2,7 @@
 
 #include "iarap/core/errors.h"
 #include "iarap/core/threads.h"
+#include "supernodal_solve.h"
 
 #include <omp.h>
 
@@ -9,7 +10,7 @@
 #include <Eigen/SparseCholesky>
 #include <algorithm>
 #include <cmath>
-#include <exception>
+#include <utility>
 
 namespace iarap {
 
@@ -56,31 +57,31 @@ struct SolveWorkspace {
   }
 };
 
-// A CHOLMOD common of its own for a second thread's solves: the factor is only read, but the common holds
-// status and allocation state that two threads must not share.
-struct OwnCommon {
-  cholmod_common common;
-  OwnCommon() { cholmod_start(&common); }
-  ~OwnCommon() { cholmod_finish(&common); }
-  OwnCommon(const OwnCommon&) = delete;
-  OwnCommon& operator=(const OwnCommon&) = delete;
-};
-
-// cholmod_solve2 of A X = B for columns [first, first + count) of B into the workspace's X.
-void solve_columns(cholmod_factor* factor, const Eigen::MatrixXd& B, Eigen::Index first, Eigen::Index count,
-                   SolveWorkspace& ws) {
-  // A CHOLMOD view of the columns (column-major, leading dimension = rows); CHOLMOD only reads it.
+// cholmod_solve2 of A X = B into the workspace's X.
+void cholmod_solve_into(cholmod_factor* factor, const Eigen::MatrixXd& B, SolveWorkspace& ws) {
+  // A CHOLMOD view of B (column-major, leading dimension = rows); CHOLMOD only reads it.
   cholmod_dense b{};
   b.nrow = static_cast<size_t>(B.rows());
-  b.ncol = static_cast<size_t>(count);
+  b.ncol = static_cast<size_t>(B.cols());
   b.nzmax = b.nrow * b.ncol;
   b.d = b.nrow;
-  b.x = const_cast<double*>(B.data() + first * B.rows());
+  b.x = const_cast<double*>(B.data());
   b.xtype = CHOLMOD_REAL;
   b.dtype = CHOLMOD_DOUBLE;
   if (!cholmod_solve2(CHOLMOD_A, factor, &b, nullptr, &ws.X, nullptr, &ws.Y, &ws.E, ws.common))
     throw SolverError("sparse Cholesky: CHOLMOD's solve failed (status " + std::to_string(ws.common->status) + ")");
 }
+
+// The hand-written solve's plan for llt's factor; null when the factor is not of the kind it reads
+// (CHOLMOD's own solve then).
+std::unique_ptr<detail::SupernodalSolve> supernodal_plan(const cholmod_factor* L) {
+  const auto view = detail::supernodal_factor_view(L);
+  if (!view) return nullptr;
+  auto plan = std::make_unique<detail::SupernodalSolve>(*view, thread_count());
+  if (!plan->usable()) return nullptr;
+  return plan;
+}
+
 } // namespace
 
 struct SparseCholesky::Impl {
@@ -90,8 +91,9 @@ struct SparseCholesky::Impl {
   std::unique_ptr<CholmodLlt> llt;
   std::unique_ptr<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>> ldlt;
   SolveWorkspace workspace;
-  std::unique_ptr<OwnCommon> second_common; // for the second thread's columns (solve with 2+ threads)
-  SolveWorkspace second_workspace;
+  // The hand-written supernodal solve over llt's factor (null: cholmod_solve2 instead) and its workspaces.
+  std::unique_ptr<detail::SupernodalSolve> supernodal;
+  detail::SupernodalWorkspace supernodal_workspace;
 
   Impl() = default;
   Impl(Impl&& other) noexcept { *this = std::move(other); }
@@ -99,7 +101,6 @@ struct SparseCholesky::Impl {
   Impl& operator=(Impl&& other) noexcept {
     if (this == &other) return *this;
     workspace.release();
-    second_workspace.release();
     A = std::move(other.A);
     kind = other.kind;
     analyzed = std::move(other.analyzed);
@@ -107,15 +108,11 @@ struct SparseCholesky::Impl {
     ldlt = std::move(other.ldlt);
     workspace = other.workspace;
     other.workspace = SolveWorkspace{};
-    second_common = std::move(other.second_common);
-    second_workspace = other.second_workspace;
-    other.second_workspace = SolveWorkspace{};
+    supernodal = std::move(other.supernodal);
+    supernodal_workspace = std::move(other.supernodal_workspace);
     return *this;
   }
-  ~Impl() {
-    workspace.release();
-    second_workspace.release();
-  }
+  ~Impl() { workspace.release(); }
 };
 
 std::string factorization_name(FactorizationKind kind) {
@@ -211,6 +208,7 @@ void SparseCholesky::factorize(const Eigen::SparseMatrix<double>& A) {
   }
   if (next.llt->info() == Eigen::Success) {
     next.kind = FactorizationKind::CholmodSupernodalLLT;
+    next.supernodal = supernodal_plan(next.llt->factor());
     *impl_ = std::move(next);
     return;
   }
@@ -247,50 +245,30 @@ void check_solve(FactorizationKind kind, Eigen::Index rows, const Eigen::MatrixX
 void SparseCholesky::solve(const Eigen::MatrixXd& B, Eigen::MatrixXd& X) {
   const FactorizationKind k = kind();
   check_solve(k, rows(), B);
+  if (k == FactorizationKind::CholmodSupernodalLLT && impl_->supernodal) {
+    impl_->supernodal->solve(B, X, thread_count(), impl_->supernodal_workspace);
+    return;
+  }
+  solve_with_cholmod(B, X);
+}
+
+void SparseCholesky::solve_with_cholmod(const Eigen::MatrixXd& B, Eigen::MatrixXd& X) {
+  const FactorizationKind k = kind();
+  check_solve(k, rows(), B);
   if (k != FactorizationKind::CholmodSupernodalLLT) {
     X = solve(B);
     return;
   }
   Impl& impl = *impl_;
   impl.workspace.common = &impl.llt->cholmod();
-  cholmod_factor* factor = impl.llt->factor();
+  cholmod_solve_into(impl.llt->factor(), B, impl.workspace);
   const Eigen::Index n = B.rows(), columns = B.cols();
   X.resize(n, columns);
-  auto copy_out = [&](const SolveWorkspace& ws, Eigen::Index first, Eigen::Index count) {
-    for (Eigen::Index c = 0; c < count; ++c)
-      X.col(first + c) = Eigen::Map<const Eigen::VectorXd>(
-          static_cast<const double*>(ws.X->x) + c * static_cast<Eigen::Index>(ws.X->d), n);
-  };
-  // With two threads the columns are split (the solve is serial inside CHOLMOD): each thread streams the
-  // factor once for its columns.
-  if (columns >= 2 && !omp_in_parallel() && thread_count() >= 2) {
-    if (!impl.second_common) impl.second_common = std::make_unique<OwnCommon>();
-    impl.second_workspace.common = &impl.second_common->common;
-    const Eigen::Index first = (columns + 1) / 2;
-    std::exception_ptr error;
-#pragma omp parallel num_threads(2)
-    {
-      try {
-        if (omp_get_num_threads() < 2) { // the runtime gave one thread after all
-          solve_columns(factor, B, 0, columns, impl.workspace);
-          copy_out(impl.workspace, 0, columns);
-        } else if (omp_get_thread_num() == 0) {
-          solve_columns(factor, B, 0, first, impl.workspace);
-          copy_out(impl.workspace, 0, first);
-        } else {
-          solve_columns(factor, B, first, columns - first, impl.second_workspace);
-          copy_out(impl.second_workspace, first, columns - first);
-        }
-      } catch (...) {
-#pragma omp critical(iarap_sparse_cholesky_solve)
-        error = std::current_exception();
-      }
-    }
-    if (error) std::rethrow_exception(error);
-    return;
-  }
-  solve_columns(factor, B, 0, columns, impl.workspace);
-  copy_out(impl.workspace, 0, columns);
+  const SolveWorkspace& ws = impl.workspace;
+  for (Eigen::Index c = 0; c < columns; ++c)
+    X.col(c) = Eigen::Map<const Eigen::VectorXd>(static_cast<const double*>(ws.X->x) +
+                                                     c * static_cast<Eigen::Index>(ws.X->d),
+                                                 n);
 }
 
 Eigen::MatrixXd SparseCholesky::solve(const Eigen::MatrixXd& B) const {
@@ -298,8 +276,13 @@ Eigen::MatrixXd SparseCholesky::solve(const Eigen::MatrixXd& B) const {
   check_solve(k, rows(), B);
   if (k == FactorizationKind::Empty)
     return Eigen::MatrixXd(0, B.cols());
-  Eigen::MatrixXd X = k == FactorizationKind::CholmodSupernodalLLT ? Eigen::MatrixXd(impl_->llt->solve(B))
-                                                                   : Eigen::MatrixXd(impl_->ldlt->solve(B));
+  if (k == FactorizationKind::SimplicialLDLT)
+    return impl_->ldlt->solve(B);
+  if (!impl_->supernodal)
+    return impl_->llt->solve(B);
+  Eigen::MatrixXd X;
+  detail::SupernodalWorkspace ws; // a workspace of its own: const solves may run concurrently
+  std::as_const(*impl_->supernodal).solve(B, X, thread_count(), ws);
   return X;
 }
 

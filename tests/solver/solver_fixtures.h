@@ -1,11 +1,12 @@
 // Meshes for the solver tests: the bundled bunny, a small bumpy patch built in code, a mesh doubled
-// into two disjoint components, and axis-band constraint sets.
+// into two disjoint components, and axis-band constraint sets; a grid Laplacian for the factorization tests.
 #pragma once
 #include "iarap/core/threads.h"
 #include "iarap/io/read_mesh.h"
 #include "test_support.h"
 
 #include <Eigen/Core>
+#include <Eigen/SparseCore>
 #include <gtest/gtest.h>
 #include <cmath>
 #include <random>
@@ -127,6 +128,25 @@ inline Eigen::MatrixXd rows_of(const Eigen::MatrixXd& V, const Eigen::VectorXi& 
 
 inline double bbox_diagonal(const Eigen::MatrixXd& V) {
   return (V.colwise().maxCoeff() - V.colwise().minCoeff()).norm();
+}
+
+// The n^2-vertex grid graph Laplacian (4-neighbourhood) plus `shift` on the diagonal: eigenvalues in
+// (shift, 8 + shift), positive definite for shift > 0.
+inline Eigen::SparseMatrix<double> grid_laplacian(int n, double shift) {
+  std::vector<Eigen::Triplet<double>> t;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      const int v = i * n + j;
+      t.emplace_back(v, v, 4.0 + shift);
+      for (const int w : {i + 1 < n ? v + n : -1, j + 1 < n ? v + 1 : -1})
+        if (w >= 0) {
+          t.emplace_back(v, w, -1.0);
+          t.emplace_back(w, v, -1.0);
+        }
+    }
+  Eigen::SparseMatrix<double> A(n * n, n * n);
+  A.setFromTriplets(t.begin(), t.end());
+  return A;
 }
 
 } // namespace iarap::test

@@ -47,9 +47,18 @@ public:
   // or B has the wrong number of rows.
   Eigen::MatrixXd solve(const Eigen::MatrixXd& B) const;
   // The same X, written into X (resized only when its shape changes). For the CHOLMOD factorization the
-  // solve's workspaces live in this object and are reused from call to call (cholmod_solve2): repeated
-  // solves of one shape allocate nothing. Not for concurrent use on one object (hence non-const).
+  // solve's workspaces live in this object and are reused from call to call: repeated solves of one shape
+  // allocate nothing. Not for concurrent use on one object (hence non-const).
+  //
+  // Both solves run the project's own supernodal triangular solves over CHOLMOD's factor
+  // (src/solver/supernodal_solve.h): the k columns together, split over thread_count() threads by
+  // subtrees of the elimination tree. The result is deterministic for a given thread count and differs
+  // between thread counts by rounding only; the two solves agree bit for bit at one thread count (also
+  // when called inside a parallel region, where the calling thread does all the work).
   void solve(const Eigen::MatrixXd& B, Eigen::MatrixXd& X);
+  // The same X by CHOLMOD's own solve (cholmod_solve2, serial, workspaces reused like solve's): the
+  // reference the hand-written solve is measured and tested against. The LDL^T fallback solves as solve().
+  void solve_with_cholmod(const Eigen::MatrixXd& B, Eigen::MatrixXd& X);
 
   FactorizationKind kind() const;
   Eigen::Index rows() const;
