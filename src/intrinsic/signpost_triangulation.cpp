@@ -77,15 +77,13 @@ void check_signpost_input(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
   if (!V.allFinite()) throw InputError("vertex coordinates contain NaN or Inf");
 }
 
-// Halfedges to reserve room for: one split (one face) per boundary edge when asked.
-size_t halfedge_capacity(const EdgeTopology& topo, int num_faces, bool room_for_boundary_splits) {
-  int boundary_edges = 0;
-  if (room_for_boundary_splits) {
-    const int ne = static_cast<int>(topo.E.rows());
-#pragma omp parallel for num_threads(loop_thread_count()) schedule(static) reduction(+ : boundary_edges)
-    for (int e = 0; e < ne; ++e) boundary_edges += topo.face_count(e) == 1;
-  }
-  return static_cast<size_t>(3 * (num_faces + boundary_edges));
+// Edges with one face. Boundary refinement splits some: each split adds a face, a vertex and two edges.
+int boundary_edge_count(const EdgeTopology& topo) {
+  const int ne = static_cast<int>(topo.E.rows());
+  int count = 0;
+#pragma omp parallel for num_threads(loop_thread_count()) schedule(static) reduction(+ : count)
+  for (int e = 0; e < ne; ++e) count += topo.face_count(e) == 1;
+  return count;
 }
 
 } // namespace
@@ -105,16 +103,25 @@ SignpostInput signpost_input(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
   check_signpost_input(V, F);
   const int nf = static_cast<int>(F.rows());
   auto topology = std::make_shared<const EdgeTopology>(edge_topology(F, static_cast<int>(V.rows())));
-  auto C = std::make_shared<Eigen::MatrixXd>(nf, 3);
+  const EdgeTopology& topo = *topology;
+  const int ne = static_cast<int>(topo.E.rows());
+  const size_t splits = room_for_boundary_splits ? static_cast<size_t>(boundary_edge_count(topo)) : 0;
   SignpostInput input;
-  input.angle.reserve(halfedge_capacity(*topology, nf, room_for_boundary_splits));
+  // With the room the build reserves (it takes both vectors over).
+  input.length.reserve(static_cast<size_t>(ne) + 2 * splits);
+  input.length.resize(static_cast<size_t>(ne));
+#pragma omp parallel for num_threads(loop_thread_count()) schedule(static)
+  for (int e = 0; e < ne; ++e) input.length[static_cast<size_t>(e)] = input_distance(V, topo.E(e, 0), topo.E(e, 1));
+  auto C = std::make_shared<Eigen::MatrixXd>(nf, 3);
+  input.angle.reserve(3 * (static_cast<size_t>(nf) + splits));
   input.angle.resize(static_cast<size_t>(3 * nf));
-  // The arithmetic of update_face_geometry on the lengths the build computes per edge, and C(f, k + 2) is
-  // the cotangent opposite halfedge k: the values the build and face_cotangents would compute.
+  // The arithmetic of update_face_geometry on the build's lengths (halfedge k of face f is edge
+  // FE(f, k + 2)), and C(f, k + 2) is the cotangent opposite halfedge k: the values the build and
+  // face_cotangents compute.
 #pragma omp parallel for num_threads(loop_thread_count()) schedule(static)
   for (int f = 0; f < nf; ++f) {
     double l[3], d[3];
-    for (int k = 0; k < 3; ++k) l[k] = input_distance(V, F(f, k), F(f, (k + 1) % 3));
+    for (int k = 0; k < 3; ++k) l[k] = input.length[static_cast<size_t>(topo.FE(f, (k + 2) % 3))];
     const double four_area = face_terms(l, d);
     for (int k = 0; k < 3; ++k) (*C)(f, (k + 2) % 3) = d[k] / four_area;
     corner_angles(l, d, four_area, input.angle.data() + 3 * static_cast<size_t>(f));
@@ -141,16 +148,18 @@ SignpostTriangulation build_signpost_triangulation(const Eigen::MatrixXd& V, con
   if (room_for_boundary_splits) {
     // A split adds one face, one vertex and two edges. Reserving before the arrays are filled costs no copy,
     // and untouched capacity costs no page faults.
-    const size_t halfedges = halfedge_capacity(topo, nf, true);
-    const size_t boundary_edges = halfedges / 3 - static_cast<size_t>(nf);
+    const size_t boundary_edges = static_cast<size_t>(boundary_edge_count(topo));
+    const size_t halfedges = 3 * (static_cast<size_t>(nf) + boundary_edges);
     const size_t edges = static_cast<size_t>(ne) + 2 * boundary_edges;
     for (auto* v : {&tri.corner_vertex, &tri.twin, &tri.edge}) v->reserve(halfedges);
     tri.phi.reserve(halfedges);
     tri.cot.reserve(halfedges);
-    if (!input) tri.angle.reserve(halfedges); // else taken from input with its room
+    if (!input) { // else taken over from input, with this room
+      tri.angle.reserve(halfedges);
+      tri.length.reserve(edges);
+    }
     for (auto* v : {&tri.edge_halfedge, &tri.original_edge}) v->reserve(edges);
     tri.edge_vertex.reserve(2 * edges);
-    tri.length.reserve(edges);
     tri.vertex_angle_sum.reserve(static_cast<size_t>(nv) + boundary_edges);
     tri.boundary_vertex.reserve(static_cast<size_t>(nv) + boundary_edges);
   }
@@ -167,14 +176,17 @@ SignpostTriangulation build_signpost_triangulation(const Eigen::MatrixXd& V, con
       tri.edge[static_cast<size_t>(3 * f + k)] = topo.FE(f, (k + 2) % 3);
     }
   // Twins and lengths per edge (each edge writes only its own halfedges), with the mean length.
-  tri.length.resize(static_cast<size_t>(ne));
+  if (input)
+    tri.length = std::move(input->length);
+  else
+    tri.length.resize(static_cast<size_t>(ne));
   double length_sum = 0.0;
   int bad_edge = ne;
 #pragma omp parallel for num_threads(loop_thread_count()) schedule(static) reduction(+ : length_sum) reduction(min : bad_edge)
   for (int e = 0; e < ne; ++e) {
     tri.original_edge[static_cast<size_t>(e)] = e;
     const int i = topo.E(e, 0), j = topo.E(e, 1);
-    tri.length[static_cast<size_t>(e)] = input_distance(V, i, j);
+    if (!input) tri.length[static_cast<size_t>(e)] = input_distance(V, i, j);
     length_sum += tri.length[static_cast<size_t>(e)];
     if (topo.face_count(e) > 2) {
       bad_edge = std::min(bad_edge, e);

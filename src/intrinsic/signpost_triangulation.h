@@ -19,8 +19,9 @@
 
 namespace iarap::detail {
 
-inline int next_halfedge(int h) { return h - h % 3 + (h % 3 + 1) % 3; }
-inline int prev_halfedge(int h) { return h - h % 3 + (h % 3 + 2) % 3; }
+// The next and previous halfedge of h's face (h >= 0): one remainder, no second one to wrap around.
+inline int next_halfedge(int h) { return h % 3 == 2 ? h - 2 : h + 1; }
+inline int prev_halfedge(int h) { return h % 3 == 0 ? h + 2 : h - 1; }
 
 struct SignpostTriangulation {
   int num_vertices = 0;            // input vertices followed by inserted ones
@@ -79,7 +80,8 @@ struct SignpostInput {
   std::shared_ptr<const EdgeTopology> topology; // edge_topology(F, #V)
   std::shared_ptr<const Eigen::MatrixXd> C;     // #F x 3 face_cotangents(V, F), bit for bit: C(f, k) is the
                                                 // cotangent at corner k, from the unmollified lengths
-  std::vector<double> angle;                    // 3F SignpostTriangulation::angle of the unmollified input
+  std::vector<double> length;                   // #E SignpostTriangulation::length before mollification
+  std::vector<double> angle;                    // 3F SignpostTriangulation::angle before mollification
 };
 
 // Checks (V, F) as the build does (InputError for a bad index or coordinate, TopologyError for a face
