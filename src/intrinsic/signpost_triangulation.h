@@ -64,7 +64,11 @@ struct SignpostTriangulation {
 // One record per entry (angle and halfedge side by side): the tracer's lookups are random, so each costs
 // one cache miss instead of two.
 struct VertexFans {
+  // Left uninitialized when default-constructed (as ArapElements::CellEntry): the build writes every entry,
+  // and zeroing them first would cost a pass over 16 bytes per halfedge.
   struct Entry {
+    Entry() {}
+    Entry(double phi_, int halfedge_) : phi(phi_), halfedge(halfedge_) {}
     double phi;   // signpost angle, increasing within a vertex
     int halfedge;
   };
@@ -104,7 +108,10 @@ SignpostTriangulation build_signpost_triangulation(const Eigen::MatrixXd& V, con
 // faces at random, so each halfedge is one record (a face's three records share one or two cache lines)
 // rather than four arrays: tail, twin, length and corner angle each cost a cache miss otherwise.
 struct InputTriangulation {
-  struct Halfedge {
+  struct Halfedge { // uninitialized when default-constructed, like VertexFans::Entry
+    Halfedge() {}
+    Halfedge(int tail_, int twin_, double length_, double angle_)
+        : tail(tail_), twin(twin_), length(length_), angle(angle_) {}
     int tail;
     int twin;      // -1 on the boundary
     double length;
