@@ -170,6 +170,10 @@ EdgesToTrace flipped_edges(const SignpostTriangulation& intrinsic) {
   flipped.num_input_vertices = intrinsic.num_input_vertices;
   flipped.inserted_halfedge = intrinsic.inserted_halfedge;
   flipped.inserted_t = intrinsic.inserted_t;
+  const size_t count = static_cast<size_t>(
+      std::count_if(intrinsic.original_edge.begin(), intrinsic.original_edge.end(), [](int o) { return o < 0; }));
+  for (auto* v : {&flipped.edge, &flipped.tail, &flipped.head}) v->reserve(count);
+  for (auto* v : {&flipped.phi, &flipped.length}) v->reserve(count);
   for (int e = 0; e < intrinsic.num_edges(); ++e) {
     if (intrinsic.original_edge[static_cast<size_t>(e)] >= 0) continue;
     const int h = intrinsic.edge_halfedge[static_cast<size_t>(e)];
