@@ -21,10 +21,11 @@ double ms_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
-// inserted_ends: the input boundary edge (tail, head) of each inserted point, 2 per point.
+// inserted_ends: the input boundary edge (tail, head) of each inserted point, 2 per point. Without
+// `with_faces`, F, FE, corner_angle and face_area stay empty.
 IntrinsicTriangulation export_triangulation(const detail::SignpostTriangulation& tri,
-                                            const std::vector<int>& inserted_ends) {
-  const int nf = tri.num_faces(), ne = tri.num_edges();
+                                            const std::vector<int>& inserted_ends, bool with_faces) {
+  const int nf = with_faces ? tri.num_faces() : 0, ne = tri.num_edges();
   IntrinsicTriangulation out;
   out.F.resize(nf, 3);
   out.FE.resize(nf, 3);
@@ -76,11 +77,12 @@ IntrinsicTriangulation export_triangulation(const detail::SignpostTriangulation&
 
 namespace detail {
 
-FlippedTriangulation flip_phase(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const IntrinsicOptions& options) {
+FlippedTriangulation flip_phase(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const IntrinsicOptions& options,
+                                SignpostInput* input) {
   const auto t0 = std::chrono::steady_clock::now();
   FlippedTriangulation out;
   out.tri = build_signpost_triangulation(V, F, options.mollify, options.mollify_epsilon, out.fans,
-                                         options.refine_boundary);
+                                         options.refine_boundary, input);
   // The tracer and the boundary refinement read the unflipped connectivity, lengths and angles only.
   out.input = input_triangulation(out.tri);
   out.stats = flip_to_delaunay(out.tri, options.delaunay_tolerance);
@@ -98,7 +100,7 @@ FlippedTriangulation flip_phase(const Eigen::MatrixXd& V, const Eigen::MatrixXi&
   return out;
 }
 
-TracedTriangulation trace_phase(FlippedTriangulation&& flipped) {
+TracedTriangulation trace_phase(FlippedTriangulation&& flipped, bool with_faces) {
   TracedTriangulation result;
   result.flip_ms = flipped.flip_ms;
   SignpostTriangulation& tri = flipped.tri;
@@ -121,7 +123,7 @@ TracedTriangulation trace_phase(FlippedTriangulation&& flipped) {
   result.trace_ms = ms_since(t0);
 
   t0 = std::chrono::steady_clock::now();
-  result.triangulation = export_triangulation(tri, inserted_ends);
+  result.triangulation = export_triangulation(tri, inserted_ends, with_faces);
   tri = {};
   IntrinsicTriangulation& out = result.triangulation;
   out.obtuse_boundary_before = flipped.refine.obtuse_before;

@@ -22,7 +22,9 @@ struct FlippedTriangulation {
 };
 
 // Phase 1: builds the signpost triangulation of (V, F) and flips it to Delaunay (TopologyError on bad input).
-FlippedTriangulation flip_phase(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const IntrinsicOptions& options);
+// `input`, when given, is signpost_input(V, F, options.refine_boundary), which the build takes over.
+FlippedTriangulation flip_phase(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const IntrinsicOptions& options,
+                                SignpostInput* input = nullptr);
 
 // The exported intrinsic triangulation with its traced edges.
 struct TracedTriangulation {
@@ -33,7 +35,9 @@ struct TracedTriangulation {
 
 // Phase 2: traces the flipped edges and exports the triangulation; consumes `flipped` piece by piece so
 // that its arrays are released as soon as they are no longer needed. Segments follow from the result
-// (build_segments, segments.h).
-TracedTriangulation trace_phase(FlippedTriangulation&& flipped);
+// (build_segments, segments.h), which reads its edges only: without `with_faces` the faces, their edges,
+// corner angles and areas are not exported (IntrinsicTriangulation's F, FE, corner_angle and face_area
+// stay empty: 40 bytes per face the solver would write and never read).
+TracedTriangulation trace_phase(FlippedTriangulation&& flipped, bool with_faces = true);
 
 } // namespace iarap::detail

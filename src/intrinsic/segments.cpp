@@ -19,7 +19,29 @@ Eigen::VectorXi segment_offsets(const CompactTraces& traces, int num_edges) {
   return start;
 }
 
+namespace {
+
+// s_hat = V^T b summed in slot order, and its length.
+void set_rest_vector(const Eigen::MatrixXd& V, SegmentVector& out) {
+  out.s_hat.setZero();
+  for (int q = 0; q < 3; ++q) out.s_hat += out.value[q] * V.row(out.index[q]).transpose();
+  out.length = out.s_hat.norm();
+}
+
+} // namespace
+
 bool segment_vector(const Eigen::MatrixXd& V, const TracePoint& p0, const TracePoint& p1, SegmentVector& out) {
+  if (p0.c < 0 && p1.c < 0 && p0.a != p1.a) {
+    // Vertex to vertex (every edge never flipped): what the merge below gives, without its searches.
+    out.index[0] = out.index[2] = p1.a;
+    out.index[1] = p0.a;
+    out.value[0] = 1.0;
+    out.value[1] = -1.0;
+    out.value[2] = 0.0;
+    set_rest_vector(V, out);
+    out.face = p0.face;
+    return true;
+  }
   int n = 0;
   auto add = [&](int v, double coefficient) {
     for (int q = 0; q < n; ++q)
@@ -40,9 +62,7 @@ bool segment_vector(const Eigen::MatrixXd& V, const TracePoint& p0, const TraceP
     out.index[q] = out.index[0];
     out.value[q] = 0.0;
   }
-  out.s_hat.setZero();
-  for (int q = 0; q < 3; ++q) out.s_hat += out.value[q] * V.row(out.index[q]).transpose();
-  out.length = out.s_hat.norm();
+  set_rest_vector(V, out);
   out.face = p0.face;
   return true;
 }

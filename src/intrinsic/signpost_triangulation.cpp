@@ -19,47 +19,49 @@ constexpr double kPi = 3.14159265358979323846;
 
 std::string edge_name(int a, int b) { return "(" + std::to_string(a) + ", " + std::to_string(b) + ")"; }
 
-// Writes the cotangents of face f's three halfedges (of the angle opposite each) from the current lengths;
-// returns 4 x its area, with l[k] the length of halfedge 3f + k and d[k] = 2 l_a l_b cos(angle opposite it)
-// by the law of cosines.
-double set_face_cotangents(SignpostTriangulation& tri, int f, double (&l)[3], double (&d)[3]) {
-  for (int k = 0; k < 3; ++k) l[k] = tri.halfedge_length(3 * f + k);
+// d[k] = 2 l_a l_b cos(angle opposite halfedge k) by the law of cosines, with l[k] the length of halfedge
+// 3f + k; returns 4 x the face's area.
+double face_terms(const double (&l)[3], double (&d)[3]) {
   const double four_area = 4.0 * triangle_area_from_lengths(l[0], l[1], l[2]);
-  for (int k = 0; k < 3; ++k) {
+  for (int k = 0; k < 3; ++k)
     d[k] = l[(k + 1) % 3] * l[(k + 1) % 3] + l[(k + 2) % 3] * l[(k + 2) % 3] - l[k] * l[k];
-    tri.cot[static_cast<size_t>(3 * f + k)] = d[k] / four_area;
-  }
   return four_area;
 }
 
-} // namespace
-
-void SignpostTriangulation::update_face_cotangents(int f) {
-  double l[3], d[3];
-  set_face_cotangents(*this, f, l, d);
-}
-
-void SignpostTriangulation::update_face_geometry(int f) {
-  double l[3], d[3];
-  const double four_area = set_face_cotangents(*this, f, l, d);
-  // atan2 keeps needles accurate where acos fails; the corner at the tail of halfedge k faces halfedge k + 1.
-  // The largest angle (facing the longest side, at least pi/3) is pi minus the other two: no accuracy lost,
-  // one atan2 saved per face.
+// Writes the corner angle at the tail of each halfedge of the face to a[0..2] (face_terms gave d and four_area).
+// atan2 keeps needles accurate where acos fails; the corner at the tail of halfedge k faces halfedge k + 1.
+// The largest angle (facing the longest side, at least pi/3) is pi minus the other two: no accuracy lost,
+// one atan2 saved per face.
+void corner_angles(const double (&l)[3], const double (&d)[3], double four_area, double* a) {
   const int longest = l[0] >= l[1] ? (l[0] >= l[2] ? 0 : 2) : (l[1] >= l[2] ? 1 : 2);
   const int big = (longest + 2) % 3, k1 = (big + 1) % 3, k2 = (big + 2) % 3;
-  double* a = angle.data() + 3 * static_cast<size_t>(f);
   a[k1] = std::atan2(four_area, d[(k1 + 1) % 3]);
   a[k2] = std::atan2(four_area, d[(k2 + 1) % 3]);
   a[big] = std::max(kPi - a[k1] - a[k2], 0.0);
 }
 
-SignpostTriangulation build_signpost_triangulation(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
-                                                   bool mollify, double mollify_epsilon, VertexFans& fans_out,
-                                                   bool room_for_boundary_splits) {
+// Writes the cotangents of face f's three halfedges (of the angle opposite each) from the current lengths;
+// returns 4 x its area (l, d as in face_terms).
+double set_face_cotangents(SignpostTriangulation& tri, int f, double (&l)[3], double (&d)[3]) {
+  for (int k = 0; k < 3; ++k) l[k] = tri.halfedge_length(3 * f + k);
+  const double four_area = face_terms(l, d);
+  for (int k = 0; k < 3; ++k) tri.cot[static_cast<size_t>(3 * f + k)] = d[k] / four_area;
+  return four_area;
+}
+
+// |V_i - V_j|, one expression for every length of the input (the per-edge and the per-face passes agree
+// bit for bit).
+double input_distance(const Eigen::MatrixXd& V, int i, int j) {
+  return std::sqrt((V(i, 0) - V(j, 0)) * (V(i, 0) - V(j, 0)) + (V(i, 1) - V(j, 1)) * (V(i, 1) - V(j, 1)) +
+                   (V(i, 2) - V(j, 2)) * (V(i, 2) - V(j, 2)));
+}
+
+// The checks of the input that come before its topology: indices, repeated vertices, finite coordinates.
+// Parallel scans that keep the first offending index; the error is thrown afterwards.
+void check_signpost_input(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
   const int nv = static_cast<int>(V.rows());
   const int nf = static_cast<int>(F.rows());
   if (F.cols() != 3) throw InputError("faces must have 3 columns, got " + std::to_string(F.cols()));
-  // Checks run as parallel scans that keep the first offending index; the error is thrown afterwards.
   int bad_face = nf;
 #pragma omp parallel for num_threads(loop_thread_count()) schedule(static) reduction(min : bad_face)
   for (int f = 0; f < nf; ++f)
@@ -73,8 +75,72 @@ SignpostTriangulation build_signpost_triangulation(const Eigen::MatrixXd& V, con
     throw TopologyError("face " + std::to_string(bad_face) + " repeats a vertex");
   }
   if (!V.allFinite()) throw InputError("vertex coordinates contain NaN or Inf");
+}
 
-  EdgeTopology topo = edge_topology(F, nv); // released once twins and lengths are set (peak memory)
+// Edges with one face. Boundary refinement splits some: each split adds a face, a vertex and two edges.
+int boundary_edge_count(const EdgeTopology& topo) {
+  const int ne = static_cast<int>(topo.E.rows());
+  int count = 0;
+#pragma omp parallel for num_threads(loop_thread_count()) schedule(static) reduction(+ : count)
+  for (int e = 0; e < ne; ++e) count += topo.face_count(e) == 1;
+  return count;
+}
+
+} // namespace
+
+void SignpostTriangulation::update_face_cotangents(int f) {
+  double l[3], d[3];
+  set_face_cotangents(*this, f, l, d);
+}
+
+void SignpostTriangulation::update_face_geometry(int f) {
+  double l[3], d[3];
+  const double four_area = set_face_cotangents(*this, f, l, d);
+  corner_angles(l, d, four_area, angle.data() + 3 * static_cast<size_t>(f));
+}
+
+SignpostInput signpost_input(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, bool room_for_boundary_splits) {
+  check_signpost_input(V, F);
+  const int nf = static_cast<int>(F.rows());
+  auto topology = std::make_shared<const EdgeTopology>(edge_topology(F, static_cast<int>(V.rows())));
+  const EdgeTopology& topo = *topology;
+  const int ne = static_cast<int>(topo.E.rows());
+  const size_t splits = room_for_boundary_splits ? static_cast<size_t>(boundary_edge_count(topo)) : 0;
+  SignpostInput input;
+  // With the room the build reserves (it takes both vectors over).
+  input.length.reserve(static_cast<size_t>(ne) + 2 * splits);
+  input.length.resize(static_cast<size_t>(ne));
+#pragma omp parallel for num_threads(loop_thread_count()) schedule(static)
+  for (int e = 0; e < ne; ++e) input.length[static_cast<size_t>(e)] = input_distance(V, topo.E(e, 0), topo.E(e, 1));
+  auto C = std::make_shared<Eigen::MatrixXd>(nf, 3);
+  input.angle.reserve(3 * (static_cast<size_t>(nf) + splits));
+  input.angle.resize(static_cast<size_t>(3 * nf));
+  // The arithmetic of update_face_geometry on the build's lengths (halfedge k of face f is edge
+  // FE(f, k + 2)), and C(f, k + 2) is the cotangent opposite halfedge k: the values the build and
+  // face_cotangents compute.
+#pragma omp parallel for num_threads(loop_thread_count()) schedule(static)
+  for (int f = 0; f < nf; ++f) {
+    double l[3], d[3];
+    for (int k = 0; k < 3; ++k) l[k] = input.length[static_cast<size_t>(topo.FE(f, (k + 2) % 3))];
+    const double four_area = face_terms(l, d);
+    for (int k = 0; k < 3; ++k) (*C)(f, (k + 2) % 3) = d[k] / four_area;
+    corner_angles(l, d, four_area, input.angle.data() + 3 * static_cast<size_t>(f));
+  }
+  input.topology = std::move(topology);
+  input.C = std::move(C);
+  return input;
+}
+
+SignpostTriangulation build_signpost_triangulation(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
+                                                   bool mollify, double mollify_epsilon, VertexFans& fans_out,
+                                                   bool room_for_boundary_splits, SignpostInput* input) {
+  const int nv = static_cast<int>(V.rows());
+  const int nf = static_cast<int>(F.rows());
+  if (!input) check_signpost_input(V, F); // signpost_input checked them
+  // Released once twins and lengths are set (peak memory).
+  std::shared_ptr<const EdgeTopology> topology =
+      input ? std::move(input->topology) : std::make_shared<const EdgeTopology>(edge_topology(F, nv));
+  const EdgeTopology& topo = *topology;
   const int ne = static_cast<int>(topo.E.rows());
   SignpostTriangulation tri;
   tri.num_vertices = nv;
@@ -82,18 +148,20 @@ SignpostTriangulation build_signpost_triangulation(const Eigen::MatrixXd& V, con
   if (room_for_boundary_splits) {
     // A split adds one face, one vertex and two edges. Reserving before the arrays are filled costs no copy,
     // and untouched capacity costs no page faults.
-    int boundary_edges = 0;
-#pragma omp parallel for num_threads(loop_thread_count()) schedule(static) reduction(+ : boundary_edges)
-    for (int e = 0; e < ne; ++e) boundary_edges += topo.face_count(e) == 1;
-    const size_t halfedges = static_cast<size_t>(3 * (nf + boundary_edges));
-    const size_t edges = static_cast<size_t>(ne + 2 * boundary_edges);
+    const size_t boundary_edges = static_cast<size_t>(boundary_edge_count(topo));
+    const size_t halfedges = 3 * (static_cast<size_t>(nf) + boundary_edges);
+    const size_t edges = static_cast<size_t>(ne) + 2 * boundary_edges;
     for (auto* v : {&tri.corner_vertex, &tri.twin, &tri.edge}) v->reserve(halfedges);
-    for (auto* v : {&tri.phi, &tri.angle, &tri.cot}) v->reserve(halfedges);
+    tri.phi.reserve(halfedges);
+    tri.cot.reserve(halfedges);
+    if (!input) { // else taken over from input, with this room
+      tri.angle.reserve(halfedges);
+      tri.length.reserve(edges);
+    }
     for (auto* v : {&tri.edge_halfedge, &tri.original_edge}) v->reserve(edges);
     tri.edge_vertex.reserve(2 * edges);
-    tri.length.reserve(edges);
-    tri.vertex_angle_sum.reserve(static_cast<size_t>(nv + boundary_edges));
-    tri.boundary_vertex.reserve(static_cast<size_t>(nv + boundary_edges));
+    tri.vertex_angle_sum.reserve(static_cast<size_t>(nv) + boundary_edges);
+    tri.boundary_vertex.reserve(static_cast<size_t>(nv) + boundary_edges);
   }
   tri.corner_vertex.resize(static_cast<size_t>(3 * nf));
   tri.twin.assign(static_cast<size_t>(3 * nf), -1);
@@ -108,16 +176,17 @@ SignpostTriangulation build_signpost_triangulation(const Eigen::MatrixXd& V, con
       tri.edge[static_cast<size_t>(3 * f + k)] = topo.FE(f, (k + 2) % 3);
     }
   // Twins and lengths per edge (each edge writes only its own halfedges), with the mean length.
-  tri.length.resize(static_cast<size_t>(ne));
+  if (input)
+    tri.length = std::move(input->length);
+  else
+    tri.length.resize(static_cast<size_t>(ne));
   double length_sum = 0.0;
   int bad_edge = ne;
 #pragma omp parallel for num_threads(loop_thread_count()) schedule(static) reduction(+ : length_sum) reduction(min : bad_edge)
   for (int e = 0; e < ne; ++e) {
     tri.original_edge[static_cast<size_t>(e)] = e;
     const int i = topo.E(e, 0), j = topo.E(e, 1);
-    tri.length[static_cast<size_t>(e)] = std::sqrt((V(i, 0) - V(j, 0)) * (V(i, 0) - V(j, 0)) +
-                                                   (V(i, 1) - V(j, 1)) * (V(i, 1) - V(j, 1)) +
-                                                   (V(i, 2) - V(j, 2)) * (V(i, 2) - V(j, 2)));
+    if (!input) tri.length[static_cast<size_t>(e)] = input_distance(V, i, j);
     length_sum += tri.length[static_cast<size_t>(e)];
     if (topo.face_count(e) > 2) {
       bad_edge = std::min(bad_edge, e);
@@ -147,13 +216,13 @@ SignpostTriangulation build_signpost_triangulation(const Eigen::MatrixXd& V, con
     throw TopologyError("faces " + std::to_string(topo.EF(e, 0)) + " and " + std::to_string(topo.EF(e, 1)) +
                         " are inconsistently oriented across edge " + edge_name(topo.E(e, 0), topo.E(e, 1)));
   }
-  topo = EdgeTopology{};
+  topology.reset();
 
   // The mollification of Sharp & Crane 2020: one delta for all edges so that every triangle inequality
   // holds with margin eps.
   const double eps = mollify_epsilon * length_sum / std::max(ne, 1);
   double delta = 0.0;
-  bad_face = nf;
+  int bad_face = nf;
 #pragma omp parallel for num_threads(loop_thread_count()) schedule(static) reduction(max : delta) reduction(min : bad_face)
   for (int f = 0; f < nf; ++f) {
     for (int k = 0; k < 3; ++k) {
@@ -197,11 +266,24 @@ SignpostTriangulation build_signpost_triangulation(const Eigen::MatrixXd& V, con
   tri.phi.assign(static_cast<size_t>(3 * nf), -1.0);
   tri.vertex_angle_sum.assign(static_cast<size_t>(nv), 0.0);
   tri.boundary_vertex.assign(static_cast<size_t>(nv), 0);
-  // Corner angles and cotangents once per face, in parallel; the fan sweeps below only add angles up.
-  tri.angle.resize(static_cast<size_t>(3 * nf));
+  // Corner angles and cotangents once per face, in parallel; the fan sweeps below only add angles up. The
+  // input's, when the lengths are the input's (not mollified).
   tri.cot.resize(static_cast<size_t>(3 * nf));
+  if (input && delta == 0) {
+    tri.angle = std::move(input->angle);
+    const Eigen::MatrixXd& C = *input->C;
 #pragma omp parallel for num_threads(loop_thread_count()) schedule(static)
-  for (int f = 0; f < nf; ++f) tri.update_face_geometry(f);
+    for (int f = 0; f < nf; ++f)
+      for (int k = 0; k < 3; ++k) tri.cot[static_cast<size_t>(3 * f + k)] = C(f, (k + 2) % 3);
+  } else {
+    tri.angle.resize(static_cast<size_t>(3 * nf));
+#pragma omp parallel for num_threads(loop_thread_count()) schedule(static)
+    for (int f = 0; f < nf; ++f) tri.update_face_geometry(f);
+  }
+  if (input) {
+    input->C.reset();
+    input->angle = {};
+  }
   const std::vector<double>& corner = tri.angle;
   // Each vertex's sweeps touch only the halfedges leaving it, so vertices run in parallel. Open fans come
   // first, from their boundary halfedge, then the closed fan; within each, in increasing halfedge index.

@@ -11,13 +11,17 @@
 // Layout: halfedge h = 3 f + k runs from corner k to corner k+1 of face f and is opposite corner k+2.
 // There are no halfedges outside the surface: twin = -1 marks a boundary edge.
 #pragma once
+#include "iarap/mesh/edge_topology.h"
+
 #include <Eigen/Core>
+#include <memory>
 #include <vector>
 
 namespace iarap::detail {
 
-inline int next_halfedge(int h) { return h - h % 3 + (h % 3 + 1) % 3; }
-inline int prev_halfedge(int h) { return h - h % 3 + (h % 3 + 2) % 3; }
+// The next and previous halfedge of h's face (h >= 0): one remainder, no second one to wrap around.
+inline int next_halfedge(int h) { return h % 3 == 2 ? h - 2 : h + 1; }
+inline int prev_halfedge(int h) { return h % 3 == 0 ? h + 2 : h - 1; }
 
 struct SignpostTriangulation {
   int num_vertices = 0;            // input vertices followed by inserted ones
@@ -60,7 +64,11 @@ struct SignpostTriangulation {
 // One record per entry (angle and halfedge side by side): the tracer's lookups are random, so each costs
 // one cache miss instead of two.
 struct VertexFans {
+  // Left uninitialized when default-constructed (as ArapElements::CellEntry): the build writes every entry,
+  // and zeroing them first would cost a pass over 16 bytes per halfedge.
   struct Entry {
+    Entry() {}
+    Entry(double phi_, int halfedge_) : phi(phi_), halfedge(halfedge_) {}
     double phi;   // signpost angle, increasing within a vertex
     int halfedge;
   };
@@ -68,20 +76,42 @@ struct VertexFans {
   std::vector<Entry> entry;  // 3F
 };
 
+// What the build reads of the input before it flips anything, for a caller that needs part of it too and
+// computes it once (arap_precompute: the topology for the pattern of L, the cotangents for the cotan
+// Laplacian, while the build runs beside). Shared pointers, so that each reader drops its reference when
+// it is done (peak memory).
+struct SignpostInput {
+  std::shared_ptr<const EdgeTopology> topology; // edge_topology(F, #V)
+  std::shared_ptr<const Eigen::MatrixXd> C;     // #F x 3 face_cotangents(V, F), bit for bit: C(f, k) is the
+                                                // cotangent at corner k, from the unmollified lengths
+  std::vector<double> length;                   // #E SignpostTriangulation::length before mollification
+  std::vector<double> angle;                    // 3F SignpostTriangulation::angle before mollification
+};
+
+// Checks (V, F) as the build does (InputError for a bad index or coordinate, TopologyError for a face
+// repeating a vertex) and computes the SignpostInput. Non-finite entries of C mark degenerate faces.
+SignpostInput signpost_input(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, bool room_for_boundary_splits);
+
 // Builds the triangulation of the input mesh: validates manifoldness and orientation (TopologyError
 // naming the edge or vertex), computes edge lengths (mollified if asked and needed), vertex angle sums and
 // the signpost angles of the input halfedges. Edge ids equal those of edge_topology(F). `fans` receives the
 // vertex fans, which the angle sweep visits in order anyway. With `room_for_boundary_splits`, the arrays
 // get capacity for one split per boundary edge, so that refine_obtuse_boundary does not reallocate them.
+// `input`, when given, is signpost_input(V, F, room_for_boundary_splits): the build takes its angles and
+// drops its references instead of computing them again.
 SignpostTriangulation build_signpost_triangulation(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
                                                    bool mollify, double mollify_epsilon,
-                                                   VertexFans& fans, bool room_for_boundary_splits = false);
+                                                   VertexFans& fans, bool room_for_boundary_splits = false,
+                                                   SignpostInput* input = nullptr);
 
 // The unflipped input as the tracer and the boundary refinement read it. The tracer's walk jumps between
 // faces at random, so each halfedge is one record (a face's three records share one or two cache lines)
 // rather than four arrays: tail, twin, length and corner angle each cost a cache miss otherwise.
 struct InputTriangulation {
-  struct Halfedge {
+  struct Halfedge { // uninitialized when default-constructed, like VertexFans::Entry
+    Halfedge() {}
+    Halfedge(int tail_, int twin_, double length_, double angle_)
+        : tail(tail_), twin(twin_), length(length_), angle(angle_) {}
     int tail;
     int twin;      // -1 on the boundary
     double length;

@@ -170,6 +170,10 @@ EdgesToTrace flipped_edges(const SignpostTriangulation& intrinsic) {
   flipped.num_input_vertices = intrinsic.num_input_vertices;
   flipped.inserted_halfedge = intrinsic.inserted_halfedge;
   flipped.inserted_t = intrinsic.inserted_t;
+  const size_t count = static_cast<size_t>(
+      std::count_if(intrinsic.original_edge.begin(), intrinsic.original_edge.end(), [](int o) { return o < 0; }));
+  for (auto* v : {&flipped.edge, &flipped.tail, &flipped.head}) v->reserve(count);
+  for (auto* v : {&flipped.phi, &flipped.length}) v->reserve(count);
   for (int e = 0; e < intrinsic.num_edges(); ++e) {
     if (intrinsic.original_edge[static_cast<size_t>(e)] >= 0) continue;
     const int h = intrinsic.edge_halfedge[static_cast<size_t>(e)];
@@ -189,6 +193,9 @@ CompactTraces trace_edges(const InputTriangulation& input, const VertexFans& fan
   // The flipped edges are traced into per-thread buffers, then concatenated in edge order.
   std::vector<int> count(static_cast<size_t>(nk)), owner(static_cast<size_t>(nk)), offset(static_cast<size_t>(nk));
   std::vector<std::vector<TracePoint>> buffers(static_cast<size_t>(chunk_workers()));
+  // Room for 8 points per edge (a few on a mesh near Delaunay): reserved capacity that stays unused costs
+  // no page faults, and growing by copies does.
+  for (auto& buffer : buffers) buffer.reserve(8 * static_cast<size_t>(nk / static_cast<int>(buffers.size()) + 1));
   std::string error;
   parallel_chunks(nk, 256, [&](int begin, int end, int worker) {
     auto& buffer = buffers[static_cast<size_t>(worker)];
@@ -212,13 +219,22 @@ CompactTraces trace_edges(const InputTriangulation& input, const VertexFans& fan
   compact.start.resize(static_cast<size_t>(nk) + 1);
   compact.start[0] = 0;
   for (int k = 0; k < nk; ++k) compact.start[static_cast<size_t>(k) + 1] = compact.start[static_cast<size_t>(k)] + count[static_cast<size_t>(k)];
-  compact.points.resize(static_cast<size_t>(compact.start.back()));
-  parallel_chunks(nk, 1024, [&](int begin, int end, int) {
-    for (int k = begin; k < end; ++k) {
-      const TracePoint* from = buffers[static_cast<size_t>(owner[static_cast<size_t>(k)])].data() + offset[static_cast<size_t>(k)];
-      std::copy(from, from + count[static_cast<size_t>(k)], compact.points.begin() + compact.start[static_cast<size_t>(k)]);
-    }
-  });
+  // One thread took the chunks in order (one thread allowed, or the other busy throughout): its buffer is
+  // the result.
+  bool in_order = true;
+  for (int k = 0; k < nk && in_order; ++k)
+    in_order = owner[static_cast<size_t>(k)] == 0 && offset[static_cast<size_t>(k)] == compact.start[static_cast<size_t>(k)];
+  if (in_order && nk > 0) {
+    compact.points = std::move(buffers[0]);
+  } else {
+    compact.points.resize(static_cast<size_t>(compact.start.back()));
+    parallel_chunks(nk, 1024, [&](int begin, int end, int) {
+      for (int k = begin; k < end; ++k) {
+        const TracePoint* from = buffers[static_cast<size_t>(owner[static_cast<size_t>(k)])].data() + offset[static_cast<size_t>(k)];
+        std::copy(from, from + count[static_cast<size_t>(k)], compact.points.begin() + compact.start[static_cast<size_t>(k)]);
+      }
+    });
+  }
   compact.job.assign(static_cast<size_t>(ne), -1);
   compact.unflipped_face.resize(static_cast<size_t>(ne));
   for (int k = 0; k < nk; ++k) compact.job[static_cast<size_t>(flipped.edge[static_cast<size_t>(k)])] = k;

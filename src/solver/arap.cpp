@@ -20,6 +20,7 @@
 #include <cmath>
 #include <exception>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 
@@ -289,8 +290,8 @@ ArapData arap_precompute(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, con
   Eigen::SparseMatrix<double> L_ff, L_fc;
   SparseCholesky solver;
   double analyze_ms = 0.0;
-  auto analyze = [&](const EdgeTopology& topology) {
-    pattern = system_pattern(F, n, topology);
+  auto build_pattern = [&](const EdgeTopology& topology) { pattern = system_pattern(F, n, topology); };
+  auto analyze = [&] {
     split_system(pattern.matrix, layout, L_ff, nullptr);
     const auto t = Clock::now();
     solver.analyze(L_ff);
@@ -301,7 +302,10 @@ ArapData arap_precompute(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, con
     const EdgeTopology topology = edge_topology(F, n);
     double build_ms = 0.0;
     auto start = Clock::now();
-    run_beside([&] { analyze(topology); },
+    run_beside([&] {
+                 build_pattern(topology);
+                 analyze();
+               },
                [&] {
                  const auto t = Clock::now();
                  const Eigen::MatrixXd C = face_cotangents(V, F);
@@ -326,17 +330,26 @@ ArapData arap_precompute(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, con
     // elements are built beside them; the tracing's tasks are joined by whichever thread is free. Where the
     // intrinsic lengths are not the input's (mollified degenerate faces) the identity does not hold: L is
     // then assembled from the elements and factorized after them.
+    // The edge topology and the input's face cotangents and corner angles are computed once, for both: the
+    // pattern and the cotan Laplacian read the first two, the signpost triangulation takes all three. Each
+    // drops its references when done with them.
     std::optional<detail::TracedTriangulation> traced;
     double intrinsic_ms = 0.0, elements_ms = 0.0, cotan_ms = 0.0;
     bool cotan_factorized = false;
     auto start = Clock::now();
+    detail::SignpostInput input = detail::signpost_input(V, F, options.intrinsic.refine_boundary);
+    const double input_ms = ms_since(start);
+    std::shared_ptr<const EdgeTopology> topology = input.topology;
+    std::shared_ptr<const Eigen::MatrixXd> C = input.C;
     run_beside(
         [&] {
-          analyze(edge_topology(F, n));
+          build_pattern(*topology);
+          topology.reset();
+          analyze();
           const auto t = Clock::now();
-          const Eigen::MatrixXd C = face_cotangents(V, F);
-          if (!C.allFinite()) return; // degenerate faces: mollified lengths, the identity does not hold
-          data.L = cotan_system_matrix(F, C, pattern);
+          if (!C->allFinite()) return; // degenerate faces: mollified lengths, the identity does not hold
+          data.L = cotan_system_matrix(F, *C, pattern);
+          C.reset();
           split_system(data.L, layout, L_ff, &L_fc);
           cotan_ms = ms_since(t);
           solver.factorize(L_ff); // throws SolverError
@@ -344,11 +357,11 @@ ArapData arap_precompute(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, con
         },
         [&] {
           auto t = Clock::now();
-          traced = detail::trace_phase(detail::flip_phase(V, F, options.intrinsic));
-          intrinsic_ms = ms_since(t);
+          traced = detail::trace_phase(detail::flip_phase(V, F, options.intrinsic, &input), false);
+          intrinsic_ms = input_ms + ms_since(t);
           t = Clock::now();
           take_traced_elements(V, traced, data);
-          detail::finish_elements(V, data.elements);
+          detail::finish_elements(V, data.elements, true);
           elements_ms = ms_since(t);
         },
         true);

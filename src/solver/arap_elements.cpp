@@ -74,6 +74,16 @@ void set_segment_element(ArapElements& el, int x, const int* index, const double
   el.cell[static_cast<size_t>(2 * x + 1)] = head;
 }
 
+// s_hat_e = V^T b_e, summed in slot order (ArapElements::s_hat).
+void set_rest_vector(const Eigen::MatrixXd& V, ArapElements& el, Eigen::Index e) {
+  for (int d = 0; d < 3; ++d) {
+    double s = 0.0;
+    for (int k = 0; k < 3; ++k)
+      s += el.b_value(e, k) * V(el.b_index(e, k), d);
+    el.s_hat(e, d) = s;
+  }
+}
+
 // Rotation cells of an intrinsic triangulation: one per vertex of its edges, at least one per input vertex
 // (inserted boundary points get their own cells). InputError on a negative endpoint.
 int intrinsic_cell_count(const Eigen::MatrixXi& E, int num_vertices) {
@@ -314,17 +324,13 @@ ArapElements iarap_elements(const Eigen::MatrixXd& V, const IntrinsicDelaunay& i
 
 namespace detail {
 
-void finish_elements(const Eigen::MatrixXd& V, ArapElements& el) {
+void finish_elements(const Eigen::MatrixXd& V, ArapElements& el, bool has_rest_vectors) {
   const Eigen::Index m = el.size();
-  el.s_hat.resize(m, 3);
+  if (!has_rest_vectors) {
+    el.s_hat.resize(m, 3);
 #pragma omp parallel for num_threads(loop_thread_count()) schedule(static)
-  for (Eigen::Index e = 0; e < m; ++e)
-    for (int d = 0; d < 3; ++d) {
-      double s = 0.0;
-      for (int k = 0; k < 3; ++k)
-        s += el.b_value(e, k) * V(el.b_index(e, k), d);
-      el.s_hat(e, d) = s;
-    }
+    for (Eigen::Index e = 0; e < m; ++e) set_rest_vector(V, el, e);
+  }
   build_csr(
       el.num_cells,
       [&](const auto& emit) {
@@ -354,11 +360,14 @@ ArapElements traced_iarap_elements(const Eigen::MatrixXd& V, const IntrinsicTria
   const Eigen::VectorXi start = segment_offsets(traces, ne);
   const int ns = start(ne);
   resize_elements(el, ns, 2);
-  // One element per segment; a segment with b = 0 is marked and squeezed out after, as iarap_elements
-  // leaves it out.
+  el.s_hat.resize(ns, 3);
+  // One element per segment, with the segment's rest vector: the sum finish_elements would compute, in the
+  // same order (where a zero slot names another vertex, only the sign of a zero can differ). A segment with
+  // b = 0 is marked and squeezed out after, as iarap_elements leaves it out.
   std::vector<char> empty(static_cast<size_t>(ns), 0);
   for_each_segment(V, tri, traces, start, [&](int s, int e, const SegmentVector& segment) {
     set_segment_element(el, s, segment.index, segment.value, segment.weight, segment.face, tri.E(e, 0), tri.E(e, 1));
+    for (int d = 0; d < 3; ++d) el.s_hat(s, d) = segment.s_hat(d);
     empty[static_cast<size_t>(s)] = segment.value[0] == 0.0 && segment.value[1] == 0.0 && segment.value[2] == 0.0;
   });
   const auto empties = std::count(empty.begin(), empty.end(), 1);
@@ -368,6 +377,7 @@ ArapElements traced_iarap_elements(const Eigen::MatrixXd& V, const IntrinsicTria
       if (empty[static_cast<size_t>(s)]) continue;
       el.b_index.row(m) = el.b_index.row(s);
       el.b_value.row(m) = el.b_value.row(s);
+      el.s_hat.row(m) = el.s_hat.row(s);
       el.w(m) = el.w(s);
       el.face[static_cast<size_t>(m)] = el.face[static_cast<size_t>(s)];
       el.cell[static_cast<size_t>(2 * m)] = el.cell[static_cast<size_t>(2 * s)];
@@ -376,6 +386,7 @@ ArapElements traced_iarap_elements(const Eigen::MatrixXd& V, const IntrinsicTria
     }
     el.b_index.conservativeResize(m, 3);
     el.b_value.conservativeResize(m, 3);
+    el.s_hat.conservativeResize(m, 3);
     el.w.conservativeResize(m);
     el.face.resize(static_cast<size_t>(m));
     el.cell_start.resize(static_cast<size_t>(m) + 1);

@@ -7,16 +7,17 @@
 
 namespace iarap::detail {
 
-// The part of iarap_elements(V, intrinsic) that the system matrix needs (b, w, face, cells), for the
-// IntrinsicDelaunay these traces make, built in one pass over the segments without storing them: every
-// array arap_precompute does not fault in after the symbolic analysis is time iARAP pays over original
-// ARAP. finish_elements completes it, bit for bit equal to iarap_elements. SolverError names a segment
-// whose end points share no input face.
+// The part of iarap_elements(V, intrinsic) that the system matrix needs (b, w, face, cells) and the rest
+// vectors s_hat, for the IntrinsicDelaunay these traces make, built in one pass over the segments without
+// storing them: every array arap_precompute does not fault in after the symbolic analysis is time iARAP
+// pays over original ARAP. finish_elements(V, el, true) completes it, bit for bit equal to iarap_elements.
+// SolverError names a segment whose end points share no input face.
 ArapElements traced_iarap_elements(const Eigen::MatrixXd& V, const IntrinsicTriangulation& tri,
                                    const CompactTraces& traces);
 
-// Fills the rest vectors s_hat and the two transposed incidences (cell -> elements, vertex -> slots) from
-// b, w and the element -> cell lists. Every builder ends with it; only the iterations read what it fills.
-void finish_elements(const Eigen::MatrixXd& V, ArapElements& el);
+// Fills the rest vectors s_hat (unless the builder did: has_rest_vectors) and the two transposed incidences
+// (cell -> elements, vertex -> slots) from b, w and the element -> cell lists. Every builder ends with it;
+// only the iterations read what it fills.
+void finish_elements(const Eigen::MatrixXd& V, ArapElements& el, bool has_rest_vectors = false);
 
 } // namespace iarap::detail

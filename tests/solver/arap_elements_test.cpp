@@ -115,9 +115,12 @@ void expect_same_elements(const ArapElements& a, const ArapElements& b, const st
   EXPECT_EQ(a.vertex_slot, b.vertex_slot) << name;
 }
 
-// arap_precompute builds iARAP's elements from the traces without the Segments: they must equal, bit for
-// bit, what iarap_elements makes of intrinsic_delaunay's segments, on a non-Delaunay closed mesh, a curved
-// patch with boundary and a strip whose boundary refinement inserts points (extra cells).
+// arap_precompute builds iARAP's elements from the traces without the Segments, and its signpost
+// triangulation from the topology, face cotangents and corner angles it computed once for the cotan
+// Laplacian too (signpost_input): they must equal, bit for bit, what iarap_elements makes of
+// intrinsic_delaunay's segments, on a non-Delaunay closed mesh, a curved patch with boundary and a strip
+// whose boundary refinement inserts points (extra cells). The shared cotangents are face_cotangents', bit
+// for bit, since L is assembled from them (same lengths, same arithmetic).
 TEST(ArapElements, TracedElementsEqualSegmentElements) {
   const auto bunny = test::bunny();
   const auto patch = test::bumpy_patch(12);
@@ -127,9 +130,13 @@ TEST(ArapElements, TracedElementsEqualSegmentElements) {
   for (const auto& [name, mesh] : cases) {
     IntrinsicOptions options;
     options.refine_boundary = name == std::string("bent strip");
-    const detail::TracedTriangulation traced = detail::trace_phase(detail::flip_phase(mesh.first, mesh.second, options));
+    detail::SignpostInput input = detail::signpost_input(mesh.first, mesh.second, options.refine_boundary);
+    EXPECT_EQ(*input.C, face_cotangents(mesh.first, mesh.second)) << name;
+    const detail::TracedTriangulation traced =
+        detail::trace_phase(detail::flip_phase(mesh.first, mesh.second, options, &input), false);
+    EXPECT_FALSE(input.topology || input.C) << name << ": the build drops its references";
     ArapElements fused = detail::traced_iarap_elements(mesh.first, traced.triangulation, traced.traces);
-    detail::finish_elements(mesh.first, fused);
+    detail::finish_elements(mesh.first, fused, true);
     const ArapElements reference = iarap_elements(mesh.first, intrinsic_delaunay(mesh.first, mesh.second, options));
     EXPECT_GT(traced.traces.points.size(), 0u) << name << ": some edges must be traced";
     if (options.refine_boundary) {
@@ -150,7 +157,7 @@ TEST(ArapElements, ZeroLengthSegmentsAreLeftOut) {
   traces.points.insert(traces.points.begin() + 1, traces.points[1]);
   for (size_t k = 1; k < traces.start.size(); ++k) ++traces.start[k];
   ArapElements fused = detail::traced_iarap_elements(m.V, traced.triangulation, traces);
-  detail::finish_elements(m.V, fused);
+  detail::finish_elements(m.V, fused, true);
   IntrinsicDelaunay idt;
   idt.triangulation = traced.triangulation;
   idt.segments = detail::build_segments(m.V, traced.triangulation, traces, false);
