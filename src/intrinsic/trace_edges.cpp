@@ -74,9 +74,9 @@ bool target_in_face(const InputPoint& target, const int (&v)[3], const Vec2 (&po
 // Appends the points of flipped edge number `job` to `out`.
 void trace_one(const InputTriangulation& input, const VertexFans& fans, const EdgesToTrace& flipped, int job,
                std::vector<TracePoint>& out) {
-  const size_t x = static_cast<size_t>(job);
-  const int e = flipped.edge[x], i = flipped.tail[x], j = flipped.head[x];
-  const double length = flipped.length[x], phi = flipped.phi[x];
+  const size_t k = static_cast<size_t>(job);
+  const int e = flipped.edge[k], i = flipped.tail[k], j = flipped.head[k];
+  const double length = flipped.length[k], phi = flipped.phi[k];
   const double tol = 1e-7 * length; // snapping distance at the end; tracing errors are ~1e-14 * length
   const InputPoint start = input_point(flipped, input, i), target = input_point(flipped, input, j);
 
@@ -108,7 +108,7 @@ void trace_one(const InputTriangulation& input, const VertexFans& fans, const Ed
     const int first = fans.start[static_cast<size_t>(i)], last = fans.start[static_cast<size_t>(i + 1)];
     const auto fan = fans.entry.begin();
     const auto above = std::upper_bound(fan + first, fan + last, phi,
-                                        [](double x, const VertexFans::Entry& entry) { return x < entry.phi; });
+                                        [](double angle, const VertexFans::Entry& fan_entry) { return angle < fan_entry.phi; });
     const VertexFans::Entry& corner = fans.entry[static_cast<size_t>(std::max(static_cast<int>(above - fan) - 1, first))];
     const int hin = corner.halfedge;
     const double alpha = std::clamp(phi - corner.phi, 0.0, input[hin].angle);
