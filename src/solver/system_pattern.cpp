@@ -1,6 +1,7 @@
 #include "iarap/solver/system_pattern.h"
 
 #include "iarap/core/errors.h"
+#include "iarap/core/threads.h"
 #include "iarap/mesh/edge_topology.h"
 
 #include <string>
@@ -44,7 +45,9 @@ SystemPattern system_pattern(const Eigen::MatrixXi& F, int num_vertices, const E
     return -1; // unreachable: the pattern holds every face's pairs
   };
   p.face_slot.resize(nf, 9);
-#pragma omp parallel for schedule(static)
+  // loop_thread_count(): inside arap_precompute's two-thread region this runs beside the intrinsic build and
+  // must not open a nested team on the core that build is using.
+#pragma omp parallel for num_threads(loop_thread_count()) schedule(static)
   for (int f = 0; f < nf; ++f)
     for (int k = 0; k < 3; ++k)
       for (int l = 0; l < 3; ++l) p.face_slot(f, 3 * k + l) = slot(F(f, k), F(f, l));
