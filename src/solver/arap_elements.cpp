@@ -116,8 +116,7 @@ void fill_streamed_layout(const Eigen::MatrixXd& V, ArapElements& el) {
   // The streamed arrays index cells and vertices by their positions in visit_order. They are filled in the
   // file's cell order, each cell's run written where its position puts it: the element arrays are then read
   // about as they lie in memory, and the scattering is one block per cell.
-  std::vector<int> position(static_cast<size_t>(el.num_cells));
-  for (int p = 0; p < el.num_cells; ++p) position[static_cast<size_t>(order[static_cast<size_t>(p)])] = p;
+  const std::vector<int> position = detail::visit_positions(el);
   el.cell_entry_start.assign(static_cast<size_t>(el.num_cells) + 1, 0);
   for (int p = 0; p < el.num_cells; ++p) {
     const auto c = static_cast<size_t>(order[static_cast<size_t>(p)]);

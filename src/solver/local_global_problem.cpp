@@ -23,8 +23,7 @@ LocalGlobalProblem::LocalGlobalProblem(ArapData& data, const Eigen::MatrixXd& ta
     U.row(data.fixed(k)) = targets.row(k);
   const ArapElements& el = data.elements;
   visit_rows(el, U, U_rows_);
-  std::vector<int> position(el.visit_order.size());
-  for (size_t p = 0; p < position.size(); ++p) position[static_cast<size_t>(el.visit_order[p])] = static_cast<int>(p);
+  const std::vector<int> position = visit_positions(el);
   R_spare_.resize(static_cast<size_t>(el.num_cells));
 
   // The free vertices in visit order (x's rows), and for each its row of the symmetric L (= its column).

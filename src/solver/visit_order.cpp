@@ -54,6 +54,12 @@ std::vector<int> breadth_first_cell_order(const ArapElements& el, const Eigen::M
   return order;
 }
 
+std::vector<int> visit_positions(const ArapElements& el) {
+  std::vector<int> position(el.visit_order.size());
+  for (size_t p = 0; p < position.size(); ++p) position[static_cast<size_t>(el.visit_order[p])] = static_cast<int>(p);
+  return position;
+}
+
 void rotations_to_visit_order(const ArapElements& el, const std::vector<Eigen::Matrix3d>& R,
                               std::vector<Eigen::Matrix3d>& out) {
   out.resize(static_cast<size_t>(el.num_cells));

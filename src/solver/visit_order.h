@@ -21,6 +21,9 @@ namespace iarap::detail {
 // orders reduce fill and are no locality order).
 std::vector<int> breadth_first_cell_order(const ArapElements& el, const Eigen::MatrixXd& V);
 
+// The inverse of el.visit_order (num_cells): position[c] = p where visit_order[p] = c.
+std::vector<int> visit_positions(const ArapElements& el);
+
 // Per-cell rotations between the file's cell order and el.visit_order (num_cells each; out is resized):
 // to: out[p] = R[visit_order[p]]; from: out[visit_order[p]] = R[p].
 void rotations_to_visit_order(const ArapElements& el, const std::vector<Eigen::Matrix3d>& R,
