@@ -438,7 +438,10 @@ bool flip_edge(SignpostTriangulation& tri, int e) {
     tri.angle[static_cast<size_t>(3 * f0 + k)] = slots[k];
     tri.angle[static_cast<size_t>(3 * f1 + k)] = slots[3 + k];
   }
-  tri.update_face_cotangents(f0);
+  // f0's cotangents from the area just computed (what update_face_cotangents(f0) would compute again).
+  tri.cot[static_cast<size_t>(n_ca)] = (l_ad * l_ad + l_cd * l_cd - l_ca * l_ca) / four_area;
+  tri.cot[static_cast<size_t>(n_ad)] = (l_cd * l_cd + l_ca * l_ca - l_ad * l_ad) / four_area;
+  tri.cot[static_cast<size_t>(n_dc)] = (l_ca * l_ca + l_ad * l_ad - l_cd * l_cd) / four_area;
   tri.update_face_cotangents(f1);
   tri.phi[static_cast<size_t>(n_cd)] = wrap(c, phi_ca + tri.angle[static_cast<size_t>(n_ca)]);
   tri.phi[static_cast<size_t>(n_dc)] = wrap(d, phi_db + tri.angle[static_cast<size_t>(n_db)]);

@@ -27,7 +27,13 @@ Eigen::MatrixXd face_cotangents(const Eigen::MatrixXd& V, const Eigen::MatrixXi&
     double l[3];
     for (int k = 0; k < 3; ++k)
       l[k] = (V.row(F(f, (k + 1) % 3)) - V.row(F(f, (k + 2) % 3))).norm();
-    for (int k = 0; k < 3; ++k) C(f, k) = cotangent_from_lengths(l[k], l[(k + 1) % 3], l[(k + 2) % 3]);
+    // cotangent_from_lengths per corner, with the face's area computed once (it sorts its arguments, so
+    // each corner's call would compute the same bits).
+    const double four_area = 4.0 * triangle_area_from_lengths(l[0], l[1], l[2]);
+    for (int k = 0; k < 3; ++k) {
+      const double a = l[k], b = l[(k + 1) % 3], c = l[(k + 2) % 3];
+      C(f, k) = (b * b + c * c - a * a) / four_area;
+    }
   }
   return C;
 }
