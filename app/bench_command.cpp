@@ -20,6 +20,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <iostream>
 
 namespace iarap::cli {
@@ -229,6 +230,9 @@ void run_bench(const BenchArguments& args) {
   nlohmann::json j;
   j["cpu"] = cpu_name();
   j["threads"] = thread_count();
+  // The malloc settings the figures ran under (the tool's own, app/malloc_settings.cpp, or the user's).
+  const char* tunables = std::getenv("GLIBC_TUNABLES");
+  j["glibc_tunables"] = tunables != nullptr ? tunables : "";
   j["iterations"] = args.iterations;
   j["rounds"] = args.rounds;
   j["warmup_iterations"] = 1;

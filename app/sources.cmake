@@ -1,6 +1,6 @@
 list(APPEND IARAP_APP_SOURCES main.cpp)
 list(APPEND IARAP_APP_SOURCES info_command.cpp deform_command.cpp bench_command.cpp bench_converge.cpp cpu_name.cpp
-  write_text_file.cpp explain_error.cpp omp_wait_policy.cpp huge_pages.cpp
+  write_text_file.cpp explain_error.cpp omp_wait_policy.cpp malloc_settings.cpp
   mesh_report_json.cpp)
 list(APPEND IARAP_APP_SOURCES intrinsic_command.cpp)
 list(APPEND IARAP_APP_SOURCES laplacian_command.cpp)

@@ -17,9 +17,9 @@ struct CliRun {
   std::string out; // stdout (stderr too when asked)
 };
 
-// Runs `iarap ARGS`; stderr goes to the test log unless merge_stderr.
-inline CliRun iarap_cli(const std::string& args, bool merge_stderr = false) {
-  const std::string command = std::string("'") + IARAP_CLI_PATH + "' " + args + (merge_stderr ? " 2>&1" : "");
+// Runs a shell command line; stderr goes to the test log unless merge_stderr.
+inline CliRun run_command(const std::string& line, bool merge_stderr = false) {
+  const std::string command = line + (merge_stderr ? " 2>&1" : "");
   CliRun run;
   std::FILE* pipe = ::popen(command.c_str(), "r");
   if (pipe == nullptr)
@@ -31,6 +31,16 @@ inline CliRun iarap_cli(const std::string& args, bool merge_stderr = false) {
   const int status = ::pclose(pipe);
   run.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return run;
+}
+
+// Runs `iarap ARGS`; stderr goes to the test log unless merge_stderr.
+inline CliRun iarap_cli(const std::string& args, bool merge_stderr = false) {
+  return run_command(std::string("'") + IARAP_CLI_PATH + "' " + args, merge_stderr);
+}
+
+// Runs `iarap ARGS` under `env ENV` (e.g. "-u NAME" or "NAME=value").
+inline CliRun iarap_cli_env(const std::string& env, const std::string& args) {
+  return run_command("env " + env + " '" + std::string(IARAP_CLI_PATH) + "' " + args);
 }
 
 inline nlohmann::json parse_json(const CliRun& run) {

@@ -303,6 +303,38 @@ TEST(Cli, BenchJsonHasEveryTiming) {
   EXPECT_GT(j["results"][1]["intrinsic_ms"].get<double>(), 0.0);
 }
 
+// The tool's malloc settings (app/malloc_settings.cpp): set by its re-execution unless the user chose, and
+// reported by bench so that a benchmark's figures say what they ran under.
+TEST(Cli, BenchReportsTheMallocSettings) {
+  std::ifstream thp_file("/sys/kernel/mm/transparent_hugepage/enabled");
+  std::string thp;
+  std::getline(thp_file, thp);
+  const bool thp_on = !thp.empty() && thp.find("[never]") == std::string::npos;
+  const std::string args = "bench '" + bunny + "' --methods arap --iterations 1 --threads 1 --json";
+  auto tunables = [&](const std::string& env) {
+    const CliRun run = iarap_cli_env(env, args);
+    EXPECT_EQ(run.code, 0) << run.out;
+    return parse_json(run)["glibc_tunables"].get<std::string>();
+  };
+  const std::string ours = tunables("-u GLIBC_TUNABLES");
+  if (thp_on) {
+    EXPECT_EQ(ours, "glibc.malloc.hugetlb=1:glibc.malloc.mmap_threshold=33554432:glibc.malloc.top_pad=67108864:"
+                    "glibc.malloc.trim_threshold=134217728");
+  } else {
+    EXPECT_EQ(ours, ""); // no re-execution: huge pages would change nothing
+  }
+  // A setting of the user's is kept and not repeated; the others are added.
+  const std::string mixed = tunables("GLIBC_TUNABLES=glibc.malloc.trim_threshold=1048576");
+  if (thp_on) {
+    EXPECT_EQ(mixed, "glibc.malloc.trim_threshold=1048576:glibc.malloc.hugetlb=1:"
+                     "glibc.malloc.mmap_threshold=33554432:glibc.malloc.top_pad=67108864");
+  } else {
+    EXPECT_EQ(mixed, "glibc.malloc.trim_threshold=1048576");
+  }
+  // Choosing huge pages (here: off) opts out of every setting of the tool's.
+  EXPECT_EQ(tunables("GLIBC_TUNABLES=glibc.malloc.hugetlb=0"), "glibc.malloc.hugetlb=0");
+}
+
 TEST(Cli, BenchRoundsKeepEveryRoundAndThePairedMedian) {
   const CliRun run =
       iarap_cli("bench '" + bunny + "' --methods arap,iarap --iterations 1 --rounds 3 --threads 1 --json");
