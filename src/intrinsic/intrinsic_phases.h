@@ -1,7 +1,6 @@
 // Internal: intrinsic_delaunay in phases, for a caller that needs something else than Segments from the
-// traces. arap_precompute runs both phases beside CHOLMOD's symbolic analysis (the analysis' thread joins
-// the tracing once it is done, parallel_chunks) and builds its elements straight from the traces
-// (traced_iarap_elements).
+// traces. arap_precompute runs both phases beside CHOLMOD's analysis and factorization and builds its
+// elements straight from the traces (traced_iarap_elements).
 #pragma once
 #include "iarap/intrinsic/intrinsic_delaunay.h"
 #include "signpost_triangulation.h"

@@ -23,6 +23,8 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <system_error>
+#include <thread>
 
 namespace iarap {
 
@@ -205,52 +207,96 @@ void commit_layout(ArapData& data, const Eigen::VectorXi& fixed, ConstraintLayou
   data.free_slot = std::move(layout.free_slot);
 }
 
+// Where run_beside runs side() while main() runs.
+enum class Beside {
+  // side() on the second thread of an OpenMP region of two (the pool's thread, already there and warm),
+  // main() on the caller's. For the symbolic analysis beside the element build: a std::thread for it
+  // started 1-2 ms after it was created and the build around it took 3-4 ms longer (beetle, original ARAP,
+  // 2 threads: precompute 58-60 against 54-55 ms).
+  SecondTeamThread,
+  // side() on the caller's thread outside any OpenMP region, main() on a std::thread. For the numeric
+  // factorization: CHOLMOD's supernodal factorization opens a (serialized) OpenMP region per supernode,
+  // about 16,500 on beetle, and inside an enclosing team libgomp allocates, initializes and frees a team for
+  // each one where at the top level it reuses one: on one thread of a region of two, beetle's factorization
+  // took 54-56 ms against 35-38 ms here (iARAP precompute, 2 threads: 70 -> 53 ms). On the caller's thread
+  // the factor is allocated from the caller's heap arena, which keeps the pages of what it freed (every
+  // other thread gets an arena of its own: beetle, iARAP, 6600 against 5300 page faults per precompute).
+  CallerOutsideOpenMP,
+};
+
 // Runs side() and main() at the same time when two threads are allowed, else one after the other; the
-// first exception of either is rethrown after both have ended. side() is a serial CHOLMOD call (the symbolic
-// analysis, the numeric factorization), main() what the precompute can do meanwhile.
-//
-// Both run inside one OpenMP region of two threads, side() on the pool's second thread or (side_on_caller)
-// on the caller's. A separate std::thread for side() competed on a 2-core machine with the pool's idle
-// thread, which spins for milliseconds after every parallel loop (the previous solve's, say) before it
-// sleeps. The numeric factorization runs on the caller's thread: glibc gives the pool thread its own heap
-// arena, so a factor allocated there is faulted in afresh instead of reusing what the caller freed (beetle,
-// iARAP: 6600 against 5300 page faults per precompute). main()'s own loops run on the cores side() leaves
-// (CoreReservation; threads.h says why): one on a 2-core machine; on more, as nested teams, which the
-// region allows for its duration.
-void run_beside(const std::function<void()>& side, const std::function<void()>& main, bool side_on_caller = false) {
-  const int side_thread = side_on_caller ? 0 : 1;
+// first exception of either is rethrown after both have ended (main()'s first). side() is a serial CHOLMOD
+// call (the symbolic analysis, the numeric factorization), main() what the precompute can do meanwhile.
+// side() is allowed one thread (the setting of the thread that runs it): SparseCholesky then keeps CHOLMOD's
+// own teams from crowding the cores main() is using (beetle's factorization beside the element finish: 29
+// ms, 128 ms with CHOLMOD's teams). main()'s loops run on the cores side() leaves (CoreReservation;
+// threads.h says why): one on a 2-core machine.
+void run_beside(const std::function<void()>& side, const std::function<void()>& main, Beside where) {
+  if (omp_get_max_threads() <= 1 || omp_in_parallel()) {
+    side();
+    main();
+    return;
+  }
+  const int threads = omp_get_max_threads();
   std::exception_ptr side_error, main_error;
-  bool beside = false;
-  if (omp_get_max_threads() > 1 && !omp_in_parallel()) {
-    const CoreReservation core;
+  auto run_side = [&] {
+    const int saved = omp_get_max_threads();
+    omp_set_num_threads(1);
+    try {
+      side();
+    } catch (...) {
+      side_error = std::current_exception();
+    }
+    omp_set_num_threads(saved);
+  };
+  auto run_main = [&] {
+    try {
+      main();
+    } catch (...) {
+      main_error = std::current_exception();
+    }
+  };
+  std::optional<CoreReservation> core(std::in_place);
+  if (where == Beside::SecondTeamThread) {
+    // main()'s loops may open nested teams on machines with more cores: allowed for the region's duration.
     const int active_levels = omp_get_max_active_levels();
     omp_set_max_active_levels(std::max(active_levels, 2));
+    bool beside = false;
 #pragma omp parallel num_threads(2)
     {
       if (omp_get_num_threads() == 2) {
-        if (omp_get_thread_num() == 0) beside = true;
-        try {
-          if (omp_get_thread_num() == side_thread) {
-            // side() stays on its core: with one thread allowed here (this thread's setting, for the region
-            // only) SparseCholesky keeps CHOLMOD's own teams from crowding the cores main() is using
-            // (beetle's factorization beside the element finish: 29 ms, 128 ms with CHOLMOD's teams).
-            omp_set_num_threads(1);
-            side();
-          } else {
-            main();
-          }
-        } catch (...) {
-#pragma omp critical(iarap_run_beside)
-          (omp_get_thread_num() == side_thread ? side_error : main_error) = std::current_exception();
+        if (omp_get_thread_num() == 0) {
+          beside = true;
+          run_main();
+        } else {
+          run_side();
         }
       }
     }
     omp_set_max_active_levels(active_levels);
+    if (!beside) { // the runtime gave one thread
+      core.reset();
+      side();
+      main();
+      return;
+    }
+  } else {
+    std::thread helper;
+    try {
+      helper = std::thread([&] {
+        omp_set_num_threads(threads); // a new thread starts from OpenMP's initial settings, not the caller's
+        run_main();
+      });
+    } catch (const std::system_error&) { // no thread to be had: one after the other
+      core.reset();
+      side();
+      main();
+      return;
+    }
+    run_side();
+    helper.join();
   }
-  if (!beside) {
-    side();
-    main();
-  }
+  core.reset();
   if (main_error) std::rethrow_exception(main_error);
   if (side_error) std::rethrow_exception(side_error);
 }
@@ -312,7 +358,8 @@ ArapData arap_precompute(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, con
                  data.elements = options.method == ArapMethod::Arap ? arap_edge_elements(V, topology, C)
                                                                     : spokes_rims_elements(V, F, C);
                  build_ms = ms_since(t);
-               });
+               },
+               Beside::SecondTeamThread);
     // What the build did not hide of the analysis counts as factorization time.
     data.timings.factor_ms = std::max(0.0, ms_since(start) - build_ms);
     data.timings.assembly_ms = build_ms;
@@ -327,7 +374,7 @@ ArapData arap_precompute(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, con
     // iARAP's L = 2 B^T D_w B is twice the cotan Laplacian of the input (cotan_system_matrix), so its
     // assembly, analysis and numeric factorization need nothing of the intrinsic triangulation: they run on
     // the caller's thread (its heap arena keeps the factor's pages warm) while the flips, the tracing and the
-    // elements are built beside them; the tracing's tasks are joined by whichever thread is free. Where the
+    // elements are built beside them. Where the
     // intrinsic lengths are not the input's (mollified degenerate faces) the identity does not hold: L is
     // then assembled from the elements and factorized after them.
     // The edge topology and the input's face cotangents and corner angles are computed once, for both: the
@@ -364,7 +411,7 @@ ArapData arap_precompute(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, con
           detail::finish_elements(V, data.elements, true);
           elements_ms = ms_since(t);
         },
-        true);
+        Beside::CallerOutsideOpenMP);
     data.timings.intrinsic_ms = intrinsic_ms;
     data.timings.assembly_ms = elements_ms + cotan_ms;
     // What the intrinsic and element build did not hide of the analysis and factorization.

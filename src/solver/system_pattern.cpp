@@ -45,8 +45,8 @@ SystemPattern system_pattern(const Eigen::MatrixXi& F, int num_vertices, const E
     return -1; // unreachable: the pattern holds every face's pairs
   };
   p.face_slot.resize(nf, 9);
-  // loop_thread_count(): inside arap_precompute's two-thread region this runs beside the intrinsic build and
-  // must not open a nested team on the core that build is using.
+  // loop_thread_count(): in arap_precompute this runs beside the element or intrinsic build and must not
+  // open a team on the core that build is using.
 #pragma omp parallel for num_threads(loop_thread_count()) schedule(static)
   for (int f = 0; f < nf; ++f)
     for (int k = 0; k < 3; ++k)

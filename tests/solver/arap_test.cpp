@@ -279,8 +279,9 @@ TEST(Arap, BadConstraintSetsAreNamed) {
   EXPECT_NO_THROW(arap_solve(data, targets, U));
 }
 
-// The element build runs beside CHOLMOD's analysis in a two-thread region: an error it throws there must
-// come out of arap_precompute as the same typed exception, on one thread and on two.
+// With two threads the element build runs beside CHOLMOD (original ARAP: the analysis, in a two-thread
+// OpenMP region; iARAP: the factorization, the build on a std::thread): an error it throws there must come
+// out of arap_precompute as the same typed exception, on one thread and on two.
 TEST(Arap, ErrorsFromTheBuildBesideTheAnalysisAreRethrown) {
   Eigen::MatrixXd V(4, 3);
   V << 0, 0, 0, 1, 0, 0, 0, 1, 0, 2, 0, 0;
