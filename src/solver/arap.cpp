@@ -215,9 +215,9 @@ enum class Beside {
   // 2 threads: precompute 58-60 against 54-55 ms).
   SecondTeamThread,
   // side() on the caller's thread outside any OpenMP region, main() on a std::thread. For the numeric
-  // factorization: CHOLMOD's supernodal factorization opens a (serialized) OpenMP region per supernode,
-  // about 16,500 on beetle, and inside an enclosing team libgomp allocates, initializes and frees a team for
-  // each one where at the top level it reuses one: on one thread of a region of two, beetle's factorization
+  // factorization: CHOLMOD's supernodal factorization enters about 16,500 serialized OpenMP regions on
+  // beetle, and inside an enclosing team libgomp allocates, initializes and frees a team for each one where
+  // at the top level it reuses one (16,500 empty regions: 25 against 49 ms). On one thread of a region of two it
   // took 54-56 ms against 35-38 ms here (iARAP precompute, 2 threads: 70 -> 53 ms). On the caller's thread
   // the factor is allocated from the caller's heap arena, which keeps the pages of what it freed (every
   // other thread gets an arena of its own: beetle, iARAP, 6600 against 5300 page faults per precompute).
