@@ -40,13 +40,18 @@ void corner_angles(const double (&l)[3], const double (&d)[3], double four_area,
   a[big] = std::max(kPi - a[k1] - a[k2], 0.0);
 }
 
-// Writes the cotangents of face f's three halfedges (of the angle opposite each) from the current lengths;
-// returns 4 x its area (l, d as in face_terms).
-double set_face_cotangents(SignpostTriangulation& tri, int f, double (&l)[3], double (&d)[3]) {
-  for (int k = 0; k < 3; ++k) l[k] = tri.halfedge_length(3 * f + k);
+// Writes the cotangents of face f's three halfedges (of the angle opposite each) from the lengths l of those
+// halfedges; returns 4 x its area (d as in face_terms).
+double write_face_cotangents(SignpostTriangulation& tri, int f, const double (&l)[3], double (&d)[3]) {
   const double four_area = face_terms(l, d);
   for (int k = 0; k < 3; ++k) tri.cot[static_cast<size_t>(3 * f + k)] = d[k] / four_area;
   return four_area;
+}
+
+// The same from the current lengths, which it writes to l.
+double set_face_cotangents(SignpostTriangulation& tri, int f, double (&l)[3], double (&d)[3]) {
+  for (int k = 0; k < 3; ++k) l[k] = tri.halfedge_length(3 * f + k);
+  return write_face_cotangents(tri, f, l, d);
 }
 
 // |V_i - V_j|, one expression for every length of the input (the per-edge and the per-face passes agree
@@ -429,19 +434,18 @@ bool flip_edge(SignpostTriangulation& tri, int e) {
   const double angle_a = tri.angle[static_cast<size_t>(h)] + tri.angle[static_cast<size_t>(t1)];
   const double angle_b = tri.angle[static_cast<size_t>(h1)] + tri.angle[static_cast<size_t>(t)];
   const double angle_c = tri.angle[static_cast<size_t>(h2)], angle_d = tri.angle[static_cast<size_t>(t2)];
-  // f0 = (c, a, d) with sides l_ca, l_ad, l_cd.
-  const double four_area = 4.0 * triangle_area_from_lengths(l_ca, l_ad, l_cd);
-  const double c0 = std::atan2(four_area, l_ca * l_ca + l_cd * l_cd - l_ad * l_ad);
-  const double d0 = std::atan2(four_area, l_cd * l_cd + l_ad * l_ad - l_ca * l_ca);
+  // f0 = (c, a, d) with sides l_ca, l_ad, l_cd: its cotangents, and its angles at c and d from the same area
+  // and law-of-cosines terms.
+  const double l0[3] = {l_ca, l_ad, l_cd};
+  double terms0[3];
+  const double four_area = write_face_cotangents(tri, f0, l0, terms0);
+  const double c0 = std::atan2(four_area, terms0[1]);
+  const double d0 = std::atan2(four_area, terms0[0]);
   const double slots[6] = {c0, angle_a, d0, std::max(angle_d - d0, 0.0), angle_b, std::max(angle_c - c0, 0.0)};
   for (int k = 0; k < 3; ++k) {
     tri.angle[static_cast<size_t>(3 * f0 + k)] = slots[k];
     tri.angle[static_cast<size_t>(3 * f1 + k)] = slots[3 + k];
   }
-  // f0's cotangents from the area just computed (what update_face_cotangents(f0) would compute again).
-  tri.cot[static_cast<size_t>(n_ca)] = (l_ad * l_ad + l_cd * l_cd - l_ca * l_ca) / four_area;
-  tri.cot[static_cast<size_t>(n_ad)] = (l_cd * l_cd + l_ca * l_ca - l_ad * l_ad) / four_area;
-  tri.cot[static_cast<size_t>(n_dc)] = (l_ca * l_ca + l_ad * l_ad - l_cd * l_cd) / four_area;
   tri.update_face_cotangents(f1);
   tri.phi[static_cast<size_t>(n_cd)] = wrap(c, phi_ca + tri.angle[static_cast<size_t>(n_ca)]);
   tri.phi[static_cast<size_t>(n_dc)] = wrap(d, phi_db + tri.angle[static_cast<size_t>(n_db)]);

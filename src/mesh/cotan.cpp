@@ -15,10 +15,17 @@ double triangle_area_from_lengths(double a, double b, double c) {
   return 0.25 * std::sqrt(std::max(p, 0.0));
 }
 
+namespace {
+
+// cot(alpha) = (b^2 + c^2 - a^2) / (4 * area), alpha the angle opposite side a.
+double cotangent_given_four_area(double a, double b, double c, double four_area) {
+  return (b * b + c * c - a * a) / four_area;
+}
+
+} // namespace
+
 double cotangent_from_lengths(double a, double b, double c) {
-  // cot(alpha) = (b^2 + c^2 - a^2) / (4 * area)
-  const double area = triangle_area_from_lengths(a, b, c);
-  return (b * b + c * c - a * a) / (4.0 * area);
+  return cotangent_given_four_area(a, b, c, 4.0 * triangle_area_from_lengths(a, b, c));
 }
 
 Eigen::MatrixXd face_cotangents(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
@@ -30,10 +37,7 @@ Eigen::MatrixXd face_cotangents(const Eigen::MatrixXd& V, const Eigen::MatrixXi&
     // cotangent_from_lengths per corner, with the face's area computed once (it sorts its arguments, so
     // each corner's call would compute the same bits).
     const double four_area = 4.0 * triangle_area_from_lengths(l[0], l[1], l[2]);
-    for (int k = 0; k < 3; ++k) {
-      const double a = l[k], b = l[(k + 1) % 3], c = l[(k + 2) % 3];
-      C(f, k) = (b * b + c * c - a * a) / four_area;
-    }
+    for (int k = 0; k < 3; ++k) C(f, k) = cotangent_given_four_area(l[k], l[(k + 1) % 3], l[(k + 2) % 3], four_area);
   }
   return C;
 }

@@ -217,8 +217,8 @@ enum class Beside {
   // side() on the caller's thread outside any OpenMP region, main() on a std::thread. For the numeric
   // factorization: CHOLMOD's supernodal factorization enters about 16,500 serialized OpenMP regions on
   // beetle, and inside an enclosing team libgomp allocates, initializes and frees a team for each one where
-  // at the top level it reuses one (16,500 empty regions: 25 against 49 ms). On one thread of a region of two it
-  // took 54-56 ms against 35-38 ms here (iARAP precompute, 2 threads: 70 -> 53 ms). On the caller's thread
+  // at the top level it reuses one (16,500 empty regions: 25 against 49 ms). On one thread of a region of
+  // two it took 54-56 ms against 35-38 ms here (iARAP precompute, 2 threads: 70 -> 53 ms). On the caller's thread
   // the factor is allocated from the caller's heap arena, which keeps the pages of what it freed (every
   // other thread gets an arena of its own: beetle, iARAP, 6600 against 5300 page faults per precompute).
   CallerOutsideOpenMP,
@@ -256,47 +256,46 @@ void run_beside(const std::function<void()>& side, const std::function<void()>& 
       main_error = std::current_exception();
     }
   };
-  std::optional<CoreReservation> core(std::in_place);
-  if (where == Beside::SecondTeamThread) {
-    // main()'s loops may open nested teams on machines with more cores: allowed for the region's duration.
-    const int active_levels = omp_get_max_active_levels();
-    omp_set_max_active_levels(std::max(active_levels, 2));
-    bool beside = false;
+  bool beside = false; // false: the runtime gave one thread, or no thread could be made
+  {
+    const CoreReservation core;
+    if (where == Beside::SecondTeamThread) {
+      // main()'s loops may open nested teams on machines with more cores: allowed for the region's duration.
+      const int active_levels = omp_get_max_active_levels();
+      omp_set_max_active_levels(std::max(active_levels, 2));
 #pragma omp parallel num_threads(2)
-    {
-      if (omp_get_num_threads() == 2) {
-        if (omp_get_thread_num() == 0) {
-          beside = true;
-          run_main();
-        } else {
-          run_side();
+      {
+        if (omp_get_num_threads() == 2) {
+          if (omp_get_thread_num() == 0) {
+            beside = true;
+            run_main();
+          } else {
+            run_side();
+          }
         }
       }
+      omp_set_max_active_levels(active_levels);
+    } else {
+      std::thread helper;
+      try {
+        helper = std::thread([&] {
+          omp_set_num_threads(threads); // a new thread starts from OpenMP's initial settings, not the caller's
+          run_main();
+        });
+        beside = true;
+      } catch (const std::system_error&) { // no thread to be had: one after the other, below
+      }
+      if (beside) {
+        run_side();
+        helper.join();
+      }
     }
-    omp_set_max_active_levels(active_levels);
-    if (!beside) { // the runtime gave one thread
-      core.reset();
-      side();
-      main();
-      return;
-    }
-  } else {
-    std::thread helper;
-    try {
-      helper = std::thread([&] {
-        omp_set_num_threads(threads); // a new thread starts from OpenMP's initial settings, not the caller's
-        run_main();
-      });
-    } catch (const std::system_error&) { // no thread to be had: one after the other
-      core.reset();
-      side();
-      main();
-      return;
-    }
-    run_side();
-    helper.join();
   }
-  core.reset();
+  if (!beside) {
+    side();
+    main();
+    return;
+  }
   if (main_error) std::rethrow_exception(main_error);
   if (side_error) std::rethrow_exception(side_error);
 }
@@ -374,9 +373,8 @@ ArapData arap_precompute(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, con
     // iARAP's L = 2 B^T D_w B is twice the cotan Laplacian of the input (cotan_system_matrix), so its
     // assembly, analysis and numeric factorization need nothing of the intrinsic triangulation: they run on
     // the caller's thread (its heap arena keeps the factor's pages warm) while the flips, the tracing and the
-    // elements are built beside them. Where the
-    // intrinsic lengths are not the input's (mollified degenerate faces) the identity does not hold: L is
-    // then assembled from the elements and factorized after them.
+    // elements are built beside them. Where the intrinsic lengths are not the input's (mollified degenerate
+    // faces) the identity does not hold: L is then assembled from the elements and factorized after them.
     // The edge topology and the input's face cotangents and corner angles are computed once, for both: the
     // pattern and the cotan Laplacian read the first two, the signpost triangulation takes all three. Each
     // drops its references when done with them.
