@@ -9,6 +9,8 @@
 #include "traced_elements.h"
 #include "visit_order.h"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -97,18 +99,6 @@ int intrinsic_cell_count(const Eigen::MatrixXi& E, int num_vertices) {
   return cells;
 }
 
-// Calls visit(cell, w_e (b_e)_v, e) for every (slot, cell) pair of vertex v, in slot order.
-template <class Visit>
-void for_each_vertex_cell(const ArapElements& el, int v, const Visit& visit) {
-  for (int k = el.vertex_slot_start[static_cast<size_t>(v)]; k < el.vertex_slot_start[static_cast<size_t>(v) + 1]; ++k) {
-    const int slot = el.vertex_slot[static_cast<size_t>(k)];
-    const int e = slot / 3;
-    const double wb = el.w(e) * el.b_value(e, slot % 3);
-    for (int j = el.cell_start[static_cast<size_t>(e)]; j < el.cell_start[static_cast<size_t>(e) + 1]; ++j)
-      visit(el.cell[static_cast<size_t>(j)], wb, e);
-  }
-}
-
 // ArapElements::cell_entry and rhs_term from the per-element arrays and their incidences.
 void fill_streamed_layout(const Eigen::MatrixXd& V, ArapElements& el) {
   el.visit_order = detail::breadth_first_cell_order(el, V);
@@ -137,51 +127,81 @@ void fill_streamed_layout(const Eigen::MatrixXd& V, ArapElements& el) {
       entry->w = el.w(e);
     }
   }
-  // Two sweeps over the vertices, one counting their distinct cells and one summing the terms in place, so
-  // that no pair list of the size of the slots is stored. where[c] is the position of cell c among the
-  // current vertex's terms (-1: none yet), reset after each vertex.
+  // The right-hand side's terms, cell by cell: each cell's entries are read in one forward sweep (they lie
+  // side by side, as the local step reads them) and their contributions grouped by vertex; then every
+  // term goes to its vertex's run. Each thread takes a range of
+  // cells and, in every vertex's run, the share its cells hold there, after the shares of the ranges before
+  // it: a vertex's terms are then in cell order whatever the number of threads. (Gathering them vertex by
+  // vertex through a vertex -> slot incidence read an element's w, b, s_hat and cells from five places at
+  // every visit: beetle iARAP, finish_elements 10.9-11.1 ms, now 7.8-8.1.) where[v]: v's slot among the
+  // current cell's terms, -1 none.
   const int n = el.num_vertices;
   el.rhs_term_start.assign(static_cast<size_t>(n) + 1, 0);
+  std::vector<std::vector<int>> share; // per thread: its count, then its next slot, in every vertex's run
+  struct CellTerm {
+    double p[3];
+    int vertex;
+  };
 #pragma omp parallel num_threads(loop_thread_count())
   {
-    std::vector<int> where(static_cast<size_t>(el.num_cells), -1);
-    std::vector<int> seen;
-#pragma omp for schedule(dynamic, 1024)
-    for (int v = 0; v < n; ++v) {
-      for_each_vertex_cell(el, v, [&](int c, double, int) {
-        if (where[static_cast<size_t>(c)] < 0) {
-          where[static_cast<size_t>(c)] = 0;
-          seen.push_back(c);
+    const int threads = omp_get_num_threads(), thread = omp_get_thread_num();
+#pragma omp single
+    share.resize(static_cast<size_t>(threads));
+    std::vector<int>& mine = share[static_cast<size_t>(thread)];
+    mine.assign(static_cast<size_t>(n), 0);
+    std::vector<int> where(static_cast<size_t>(n), -1);
+    std::vector<CellTerm> terms;
+    const int first = static_cast<int>(static_cast<long long>(el.num_cells) * thread / threads);
+    const int last = static_cast<int>(static_cast<long long>(el.num_cells) * (thread + 1) / threads);
+    // Calls add(v, w_e (b_e)_v, s_hat_e) for every non-zero of every element of the cell at position p.
+    auto for_each_contribution = [&](int p, const auto& add) {
+      const ArapElements::CellEntry* entry = el.cell_entry.data() + el.cell_entry_start[static_cast<size_t>(p)];
+      const ArapElements::CellEntry* end = el.cell_entry.data() + el.cell_entry_start[static_cast<size_t>(p) + 1];
+      for (; entry != end; ++entry)
+        for (int j = 0; j < 3; ++j)
+          if (entry->value[j] != 0.0) add(entry->index[j], entry->w * entry->value[j], entry->s_hat);
+    };
+    for (int p = first; p < last; ++p) {
+      for_each_contribution(p, [&](int v, double, const double*) {
+        if (where[static_cast<size_t>(v)] < 0) {
+          where[static_cast<size_t>(v)] = 0;
+          terms.push_back({{0.0, 0.0, 0.0}, v});
+          ++mine[static_cast<size_t>(v)];
         }
       });
-      el.rhs_term_start[static_cast<size_t>(position[static_cast<size_t>(v)]) + 1] = static_cast<int>(seen.size());
-      for (const int c : seen) where[static_cast<size_t>(c)] = -1;
-      seen.clear();
+      for (const CellTerm& t : terms) where[static_cast<size_t>(t.vertex)] = -1;
+      terms.clear();
     }
+#pragma omp barrier
 #pragma omp single
     {
-      for (int p = 0; p < n; ++p) el.rhs_term_start[static_cast<size_t>(p) + 1] += el.rhs_term_start[static_cast<size_t>(p)];
+      for (int v = 0; v < n; ++v) {
+        int at = el.rhs_term_start[static_cast<size_t>(v)];
+        for (std::vector<int>& counts : share) {
+          const int count = counts[static_cast<size_t>(v)];
+          counts[static_cast<size_t>(v)] = at;
+          at += count;
+        }
+        el.rhs_term_start[static_cast<size_t>(v) + 1] = at;
+      }
       el.rhs_term.resize(static_cast<size_t>(el.rhs_term_start[static_cast<size_t>(n)]));
     }
-#pragma omp for schedule(dynamic, 1024)
-    for (int v = 0; v < n; ++v) {
-      const int begin = el.rhs_term_start[static_cast<size_t>(position[static_cast<size_t>(v)])];
-      int end = begin;
-      for_each_vertex_cell(el, v, [&](int c, double wb, int e) {
-        int& at = where[static_cast<size_t>(c)];
+    for (int p = first; p < last; ++p) {
+      for_each_contribution(p, [&](int v, double wb, const double* s_hat) {
+        int& at = where[static_cast<size_t>(v)];
         if (at < 0) {
-          at = end++;
-          ArapElements::RhsTerm& term = el.rhs_term[static_cast<size_t>(at)];
-          term.p[0] = term.p[1] = term.p[2] = 0.0;
-          term.cell = c;
+          at = static_cast<int>(terms.size());
+          terms.push_back({{0.0, 0.0, 0.0}, v});
         }
-        for (int d = 0; d < 3; ++d) el.rhs_term[static_cast<size_t>(at)].p[d] += wb * el.s_hat(e, d);
+        for (int d = 0; d < 3; ++d) terms[static_cast<size_t>(at)].p[d] += wb * s_hat[d];
       });
-      for (int k = begin; k < end; ++k) {
-        int& cell = el.rhs_term[static_cast<size_t>(k)].cell;
-        where[static_cast<size_t>(cell)] = -1;
-        cell = position[static_cast<size_t>(cell)];
+      for (const CellTerm& t : terms) {
+        where[static_cast<size_t>(t.vertex)] = -1;
+        ArapElements::RhsTerm& term = el.rhs_term[static_cast<size_t>(mine[static_cast<size_t>(t.vertex)]++)];
+        for (int d = 0; d < 3; ++d) term.p[d] = t.p[d];
+        term.cell = p;
       }
+      terms.clear();
     }
   }
 }
@@ -338,14 +358,6 @@ void finish_elements(const Eigen::MatrixXd& V, ArapElements& el, bool has_rest_v
             emit(el.cell[c], static_cast<int>(e));
       },
       el.cell_element_start, el.cell_element);
-  build_csr(
-      el.num_vertices,
-      [&](const auto& emit) {
-        for (Eigen::Index e = 0; e < m; ++e)
-          for (int k = 0; k < 3; ++k)
-            if (el.b_value(e, k) != 0.0) emit(el.b_index(e, k), static_cast<int>(3 * e + k));
-      },
-      el.vertex_slot_start, el.vertex_slot);
   fill_streamed_layout(V, el);
 }
 

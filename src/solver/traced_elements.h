@@ -15,9 +15,9 @@ namespace iarap::detail {
 ArapElements traced_iarap_elements(const Eigen::MatrixXd& V, const IntrinsicTriangulation& tri,
                                    const CompactTraces& traces);
 
-// Fills the rest vectors s_hat (unless the builder did: has_rest_vectors) and the two transposed incidences
-// (cell -> elements, vertex -> slots) from b, w and the element -> cell lists. Every builder ends with it;
-// only the iterations read what it fills.
+// Fills the rest vectors s_hat (unless the builder did: has_rest_vectors), the transposed incidence
+// (cell -> elements) and the streamed layout (visit order, cell entries, right-hand-side terms) from b, w and
+// the element -> cell lists. Every builder ends with it; only the iterations read what it fills.
 void finish_elements(const Eigen::MatrixXd& V, ArapElements& el, bool has_rest_vectors = false);
 
 } // namespace iarap::detail

@@ -12,8 +12,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <string>
 #include <utility>
+#include <vector>
 
 namespace {
 
@@ -32,13 +34,32 @@ void expect_consistent(const ArapElements& el, const Eigen::MatrixXd& V) {
       s += el.b_value(e, k) * V.row(el.b_index(e, k));
     EXPECT_LT((s - el.s_hat.row(e)).norm(), 1e-15 * test::bbox_diagonal(V));
   }
-  // The transposed incidences list every (element, cell) and (element, slot) pair once.
+  // The transposed incidence lists every (element, cell) pair once.
   EXPECT_EQ(el.cell_element.size(), el.cell.size());
-  size_t nonzeros = 0;
+  // The regrouped right-hand side: per vertex one term per distinct cell, in increasing cell position, and
+  // together they hold what the vertex's non-zeros give straight from the elements, sum_e |cells(e)| w_e
+  // (b_e)_v s_hat_e. Only the order of the additions differs: a few ulps of the sum of magnitudes.
+  ASSERT_EQ(el.rhs_term_start.size(), static_cast<size_t>(el.num_vertices) + 1);
+  std::vector<int> position(el.visit_order.size());
+  for (size_t p = 0; p < position.size(); ++p) position[static_cast<size_t>(el.visit_order[p])] = static_cast<int>(p);
+  Eigen::MatrixX3d direct = Eigen::MatrixX3d::Zero(el.num_vertices, 3), magnitude = direct, regrouped = direct;
   for (Eigen::Index e = 0; e < el.size(); ++e)
-    for (int k = 0; k < 3; ++k)
-      nonzeros += el.b_value(e, k) != 0.0;
-  EXPECT_EQ(el.vertex_slot.size(), nonzeros);
+    for (int k = 0; k < 3; ++k) {
+      if (el.b_value(e, k) == 0.0) continue;
+      const Eigen::RowVector3d q = (el.cell_start[e + 1] - el.cell_start[e]) * el.w(e) * el.b_value(e, k) * el.s_hat.row(e);
+      direct.row(position[static_cast<size_t>(el.b_index(e, k))]) += q;
+      magnitude.row(position[static_cast<size_t>(el.b_index(e, k))]) += q.cwiseAbs();
+    }
+  for (int v = 0; v < el.num_vertices; ++v)
+    for (int t = el.rhs_term_start[static_cast<size_t>(v)]; t < el.rhs_term_start[static_cast<size_t>(v) + 1]; ++t) {
+      const ArapElements::RhsTerm& term = el.rhs_term[static_cast<size_t>(t)];
+      if (t > el.rhs_term_start[static_cast<size_t>(v)]) {
+        EXPECT_LT(el.rhs_term[static_cast<size_t>(t) - 1].cell, term.cell) << "vertex at position " << v;
+      }
+      regrouped.row(v) += Eigen::RowVector3d(term.p[0], term.p[1], term.p[2]);
+    }
+  EXPECT_TRUE(((direct - regrouped).cwiseAbs().array() <= 1e-14 * magnitude.array()).all())
+      << "largest difference " << (direct - regrouped).cwiseAbs().maxCoeff();
 }
 
 // The element sum reproduces the cotan Laplacian: 2 x for original ARAP (each edge in 2 cells),
@@ -111,8 +132,11 @@ void expect_same_elements(const ArapElements& a, const ArapElements& b, const st
   EXPECT_EQ(a.cell, b.cell) << name;
   EXPECT_EQ(a.cell_element_start, b.cell_element_start) << name;
   EXPECT_EQ(a.cell_element, b.cell_element) << name;
-  EXPECT_EQ(a.vertex_slot_start, b.vertex_slot_start) << name;
-  EXPECT_EQ(a.vertex_slot, b.vertex_slot) << name;
+  EXPECT_EQ(a.rhs_term_start, b.rhs_term_start) << name;
+  for (size_t t = 0; t < std::min(a.rhs_term.size(), b.rhs_term.size()); ++t) {
+    EXPECT_EQ(a.rhs_term[t].cell, b.rhs_term[t].cell) << name << " term " << t;
+    for (int d = 0; d < 3; ++d) EXPECT_EQ(a.rhs_term[t].p[d], b.rhs_term[t].p[d]) << name << " term " << t;
+  }
 }
 
 // arap_precompute builds iARAP's elements from the traces without the Segments, and its signpost

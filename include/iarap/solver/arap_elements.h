@@ -32,16 +32,13 @@ struct ArapElements {
   std::vector<int>
       cell_element_start; // num_cells + 1: CSR transpose, the elements of cell c (with repetition)
   std::vector<int> cell_element;
-  std::vector<int> vertex_slot_start; // #V + 1: where vertex v is a non-zero of some b_e ...
-  std::vector<int> vertex_slot;       // ... as 3 * e + slot; lets the right-hand side be gathered per vertex
 
   // What the iterations stream (finish_elements fills it from the arrays above; fit_rotations.h, arap_rhs.h).
   // They number cells and vertices in visit_order (num_cells: position -> cell; the #V vertices first, in a
   // breadth-first order of the mesh, then the inserted boundary cells) and keep positions, rotations and
   // the right-hand side in that order while they iterate: neighbours then sit side by side in memory and
   // are read while in cache, whatever the file's vertex order (1-to-4 subdivision, for one, numbers the
-  // midpoints far from their corners). No sum changes with it: each cell's and each vertex's terms keep
-  // their order. The elements of the cell at position p are cell_entry[cell_entry_start[p] ..
+  // midpoints far from their corners). No cell's sum changes with it: each cell's terms keep their order. The elements of the cell at position p are cell_entry[cell_entry_start[p] ..
   // cell_entry_start[p + 1]), in cell_element's order, each with its b (vertex positions in visit_order),
   // s_hat and w side by side, so that the local step reads them in one forward sweep.
   // CellEntry and RhsTerm leave their members uninitialized when constructed (the builder writes each
@@ -58,8 +55,9 @@ struct ArapElements {
   std::vector<CellEntry> cell_entry;
   // The right-hand side as sum_c R_c p_vc per vertex v (Eq. 16 regrouped): one term per (vertex, cell)
   // pair with p_vc = sum over the elements e of cell c with (b_e)_v != 0 of w_e (b_e)_v s_hat_e (a cell
-  // repeated in cells(e) counts as often). rhs_term_start (#V + 1) delimits the terms of the vertex at
-  // each position of visit_order; RhsTerm::cell is a position too.
+  // repeated in cells(e) counts as often), summed in element order. rhs_term_start (#V + 1) delimits the
+  // terms of the vertex at each position of visit_order, in increasing cell position; RhsTerm::cell is a
+  // position too.
   struct RhsTerm {
     RhsTerm() {}
     double p[3];
