@@ -22,7 +22,7 @@ Eigen::VectorXi segment_offsets(const CompactTraces& traces, int num_edges) {
 namespace {
 
 // s_hat = V^T b summed in slot order, and its length.
-void set_rest_vector(const Eigen::MatrixXd& V, SegmentVector& out) {
+void set_rest_vector(const RowPositions& V, SegmentVector& out) {
   out.s_hat.setZero();
   for (int q = 0; q < 3; ++q) out.s_hat += out.value[q] * V.row(out.index[q]).transpose();
   out.length = out.s_hat.norm();
@@ -30,7 +30,7 @@ void set_rest_vector(const Eigen::MatrixXd& V, SegmentVector& out) {
 
 } // namespace
 
-bool segment_vector(const Eigen::MatrixXd& V, const TracePoint& p0, const TracePoint& p1, SegmentVector& out) {
+bool segment_vector(const RowPositions& V, const TracePoint& p0, const TracePoint& p1, SegmentVector& out) {
   if (p0.c < 0 && p1.c < 0 && p0.a != p1.a) {
     // Vertex to vertex (every edge never flipped): what the merge below gives, without its searches.
     out.index[0] = out.index[2] = p1.a;

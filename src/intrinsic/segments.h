@@ -30,9 +30,13 @@ struct SegmentVector {
   int face;              // the input face carrying the segment
 };
 
+// V with each vertex's coordinates side by side: a segment's rest vector reads its (up to 3) vertices in
+// one cache line each, not three (a column-major V), in the order of the traces, which is not the file's.
+using RowPositions = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
+
 // b, s_hat and length of the segment from p0 to p1; false when the points share no input face (b would
 // have more than three vertices).
-bool segment_vector(const Eigen::MatrixXd& V, const TracePoint& p0, const TracePoint& p1, SegmentVector& out);
+bool segment_vector(const RowPositions& V, const TracePoint& p0, const TracePoint& p1, SegmentVector& out);
 
 // The segment's weight w_ij^t = sigma_ij^t w_ij with sigma = |e_ij| / |s| (Eq. 11), 0 for a grazing segment.
 inline double segment_weight(double edge_cot_weight, double edge_length, double segment_length) {
@@ -49,6 +53,7 @@ template <class Visit>
 void for_each_segment(const Eigen::MatrixXd& V, const IntrinsicTriangulation& tri, const CompactTraces& traces,
                       const Eigen::VectorXi& start, const Visit& visit) {
   const int ne = static_cast<int>(tri.E.rows());
+  const RowPositions rows = V;
   int bad_segment = start(ne);
 #pragma omp parallel for num_threads(loop_thread_count()) schedule(static) reduction(min : bad_segment)
   for (int e = 0; e < ne; ++e) {
@@ -57,7 +62,7 @@ void for_each_segment(const Eigen::MatrixXd& V, const IntrinsicTriangulation& tr
     const TracePoint* points = traces.edge_points(e, tri.E, ends, count);
     for (int m = 0; m + 1 < count; ++m) {
       SegmentVector segment;
-      if (!segment_vector(V, points[m], points[m + 1], segment)) {
+      if (!segment_vector(rows, points[m], points[m + 1], segment)) {
         bad_segment = std::min(bad_segment, start(e) + m);
         continue;
       }
