@@ -25,9 +25,11 @@ struct Vec2 {
 double cross(Vec2 a, Vec2 b) { return a.x * b.y - a.y * b.x; }
 double norm(Vec2 a) { return std::sqrt(a.x * a.x + a.y * a.y); } // mesh-scale values: no hypot needed
 
-// Position of the third corner of the face left of the directed segment pa -> pb.
+// Position of the third corner of the face left of the directed segment pa -> pb, whose length is l_ab
+// (|pb - pa| up to rounding: dividing by l_ab keeps a square root and a division off the walk's critical
+// path).
 Vec2 third_corner(Vec2 pa, Vec2 pb, double l_ab, double l_ac, double l_bc) {
-  const Vec2 ex = (pb - pa) * (1.0 / norm(pb - pa));
+  const Vec2 ex = (pb - pa) * (1.0 / l_ab);
   const Vec2 ey{-ex.y, ex.x};
   const double x = (l_ac * l_ac - l_bc * l_bc + l_ab * l_ab) / (2 * l_ab);
   const double y = std::sqrt(std::max(l_ac * l_ac - x * x, 0.0));
