@@ -380,7 +380,7 @@ bool flip_edge(SignpostTriangulation& tri, int e) {
   if (!(cy > 0.0 && dy < 0.0)) return false;
   const double x_cross = cx + (dx - cx) * cy / (cy - dy);
   if (!(x_cross > 0.0 && x_cross < l_ab)) return false;
-  const double l_cd = std::hypot(cx - dx, cy - dy);
+  const double l_cd = std::sqrt((cx - dx) * (cx - dx) + (cy - dy) * (cy - dy)); // mesh-scale: no hypot needed
 
   // Old halfedge -> new slot, so that twins pointing into the two faces follow their halfedge.
   const int n_ca = 3 * f0 + 0, n_ad = 3 * f0 + 1, n_dc = 3 * f0 + 2;

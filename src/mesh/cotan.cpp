@@ -7,10 +7,14 @@
 namespace iarap {
 
 double triangle_area_from_lengths(double a, double b, double c) {
-  // Kahan: sort a >= b >= c, then the parenthesization below loses no precision for needles.
-  if (a < b) std::swap(a, b);
-  if (a < c) std::swap(a, c);
-  if (b < c) std::swap(b, c);
+  // Kahan: sort a >= b >= c, then the parenthesization below loses no precision for needles. Sorted by
+  // min / max, without branches: swaps on the order of three lengths mispredict about every other face.
+  const double high = std::max(a, b), low = std::min(a, b);
+  const double largest = std::max(high, c), rest = std::min(high, c);
+  const double middle = std::max(low, rest), smallest = std::min(low, rest);
+  a = largest;
+  b = middle;
+  c = smallest;
   const double p = (a + (b + c)) * (c - (a - b)) * (c + (a - b)) * (a + (b - c));
   return 0.25 * std::sqrt(std::max(p, 0.0));
 }
