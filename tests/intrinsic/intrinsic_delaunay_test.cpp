@@ -422,6 +422,22 @@ TEST(IntrinsicDelaunay, NonManifoldInputIsNamed) {
   }
 }
 
+TEST(IntrinsicDelaunay, VertexWithTwoClosedFansIsNamed) {
+  // Two closed square pyramids touching at their tips (vertex 0): every edge is manifold and vertex 0 has
+  // no boundary halfedge, but its halfedges form two closed fans (the interior sweep's early return to
+  // its first halfedge).
+  Eigen::MatrixXd V(9, 3);
+  V << 0, 0, 0, 1, 0, 1, 0, 1, 1, -1, 0, 1, 0, -1, 1, 1, 0, -1, 0, 1, -1, -1, 0, -1, 0, -1, -1;
+  Eigen::MatrixXi F(12, 3);
+  F << 0, 2, 1, 0, 3, 2, 0, 4, 3, 0, 1, 4, 1, 2, 3, 1, 3, 4, 0, 5, 6, 0, 6, 7, 0, 7, 8, 0, 8, 5, 5, 7, 6, 5, 8, 7;
+  try {
+    intrinsic_delaunay(V, F);
+    ADD_FAILURE() << "expected a TopologyError";
+  } catch (const TopologyError& e) {
+    EXPECT_NE(std::string(e.what()).find("non-manifold vertex 0"), std::string::npos) << e.what();
+  }
+}
+
 TEST(IntrinsicDelaunay, BoundaryRefinementRemovesObtuseBoundaryAngles) {
   const TestMesh m = obtuse_strip();
   IntrinsicOptions options;
