@@ -1,4 +1,5 @@
 #include "signpost_triangulation.h"
+#include "upper_half_angle.h"
 
 #include "iarap/core/errors.h"
 #include "iarap/core/threads.h"
@@ -35,8 +36,8 @@ double face_terms(const double (&l)[3], double (&d)[3]) {
 void corner_angles(const double (&l)[3], const double (&d)[3], double four_area, double* a) {
   const int longest = l[0] >= l[1] ? (l[0] >= l[2] ? 0 : 2) : (l[1] >= l[2] ? 1 : 2);
   const int big = (longest + 2) % 3, k1 = (big + 1) % 3, k2 = (big + 2) % 3;
-  a[k1] = std::atan2(four_area, d[(k1 + 1) % 3]);
-  a[k2] = std::atan2(four_area, d[(k2 + 1) % 3]);
+  a[k1] = upper_half_angle(four_area, d[(k1 + 1) % 3]);
+  a[k2] = upper_half_angle(four_area, d[(k2 + 1) % 3]);
   a[big] = std::max(kPi - a[k1] - a[k2], 0.0);
 }
 
@@ -464,8 +465,8 @@ bool flip_edge(SignpostTriangulation& tri, int e) {
   const double l0[3] = {l_ca, l_ad, l_cd};
   double terms0[3];
   const double four_area = write_face_cotangents(tri, f0, l0, terms0);
-  const double c0 = std::atan2(four_area, terms0[1]);
-  const double d0 = std::atan2(four_area, terms0[0]);
+  const double c0 = upper_half_angle(four_area, terms0[1]);
+  const double d0 = upper_half_angle(four_area, terms0[0]);
   const double slots[6] = {c0, angle_a, d0, std::max(angle_d - d0, 0.0), angle_b, std::max(angle_c - c0, 0.0)};
   for (int k = 0; k < 3; ++k) {
     tri.angle[static_cast<size_t>(3 * f0 + k)] = slots[k];
