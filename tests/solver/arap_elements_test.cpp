@@ -1,6 +1,7 @@
 #include "iarap/solver/arap_elements.h"
 
 #include "iarap/core/errors.h"
+#include "iarap/core/threads.h"
 #include "iarap/mesh/cotan.h"
 #include "intrinsic/mesh_generators.h"
 #include "solver_fixtures.h"
@@ -97,6 +98,35 @@ TEST(ArapElements, IarapElementsGiveTwiceBtDwB) {
     largest = std::max(largest, (seg.s_hat.row(s) - el.s_hat.row(e++)).norm());
   }
   EXPECT_LT(largest, 1e-14 * test::bbox_diagonal(m.V));
+}
+
+// The streamed layout, the right-hand side's terms included (a counting sort over per-thread ranges of
+// cells), is the same bit for bit whatever the number of threads: 3 splits the cells into ranges whose
+// shares of a vertex's run must land after those of the ranges before them.
+TEST(ArapElements, StreamedLayoutDoesNotDependOnTheThreadCount) {
+  const auto m = test::bunny();
+  const IntrinsicDelaunay idt = intrinsic_delaunay(m.V, m.F);
+  auto build = [&](int which) {
+    return which == 0 ? arap_edge_elements(m.V, m.F) : which == 1 ? spokes_rims_elements(m.V, m.F) : iarap_elements(m.V, idt);
+  };
+  for (int which = 0; which < 3; ++which) {
+    set_thread_count(1);
+    const ArapElements one = build(which);
+    for (const int threads : {2, 3}) {
+      set_thread_count(threads);
+      const ArapElements many = build(which);
+      EXPECT_EQ(many.visit_order, one.visit_order) << which << ", " << threads << " threads";
+      EXPECT_EQ(many.cell_entry_start, one.cell_entry_start) << which << ", " << threads << " threads";
+      ASSERT_EQ(many.rhs_term_start, one.rhs_term_start) << which << ", " << threads << " threads";
+      bool same = true;
+      for (size_t t = 0; t < one.rhs_term.size(); ++t) {
+        same = same && many.rhs_term[t].cell == one.rhs_term[t].cell;
+        for (int d = 0; d < 3; ++d) same = same && many.rhs_term[t].p[d] == one.rhs_term[t].p[d];
+      }
+      EXPECT_TRUE(same) << which << ", " << threads << " threads";
+    }
+  }
+  set_thread_count(0);
 }
 
 TEST(ArapElements, DegenerateFaceAndBadIndicesAreNamed) {
