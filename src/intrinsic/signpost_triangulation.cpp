@@ -297,6 +297,14 @@ SignpostTriangulation build_signpost_triangulation(const Eigen::MatrixXd& V, con
 #pragma omp parallel num_threads(loop_thread_count()) reduction(min : bad_vertex)
   {
     std::vector<int> outgoing;
+    // One step of a sweep: halfedge h becomes fan entry `slot` at `angle`, its corner is added, and the next
+    // halfedge leaving the same vertex counter-clockwise is returned (-1 past a boundary halfedge).
+    auto step = [&](int h, int slot, double& angle) {
+      tri.phi[static_cast<size_t>(h)] = angle;
+      fans_out.entry[static_cast<size_t>(slot)] = {angle, h};
+      angle += corner[static_cast<size_t>(h)];
+      return tri.twin[static_cast<size_t>(prev_halfedge(h))];
+    };
 #pragma omp for schedule(dynamic, 1024)
     for (int v = 0; v < nv; ++v) {
       const int first = start[static_cast<size_t>(v)], last = start[static_cast<size_t>(v) + 1];
@@ -315,10 +323,7 @@ SignpostTriangulation build_signpost_triangulation(const Eigen::MatrixXd& V, con
         double angle = 0.0;
         bool back_early = false;
         for (int k = first; k < last; ++k) {
-          tri.phi[static_cast<size_t>(h)] = angle;
-          fans_out.entry[static_cast<size_t>(k)] = {angle, h};
-          angle += corner[static_cast<size_t>(h)];
-          h = tri.twin[static_cast<size_t>(prev_halfedge(h))];
+          h = step(h, k, angle);
           back_early |= h == h0 && k + 1 < last;
         }
         tri.vertex_angle_sum[static_cast<size_t>(v)] = angle;
@@ -334,10 +339,7 @@ SignpostTriangulation build_signpost_triangulation(const Eigen::MatrixXd& V, con
         if (fans > 0) angle += 1.0; // gap between fans
         int h = h0;
         while (true) {
-          tri.phi[static_cast<size_t>(h)] = angle;
-          fans_out.entry[static_cast<size_t>(fill++)] = {angle, h};
-          angle += corner[static_cast<size_t>(h)];
-          const int t = tri.twin[static_cast<size_t>(prev_halfedge(h))];
+          const int t = step(h, fill++, angle);
           if (t < 0) break;
           if (t == h0) {
             closed = true;

@@ -128,13 +128,12 @@ void fill_streamed_layout(const Eigen::MatrixXd& V, ArapElements& el) {
     }
   }
   // The right-hand side's terms, cell by cell: each cell's entries are read in one forward sweep (they lie
-  // side by side, as the local step reads them) and their contributions grouped by vertex; then every
-  // term goes to its vertex's run. Each thread takes a range of
-  // cells and, in every vertex's run, the share its cells hold there, after the shares of the ranges before
-  // it: a vertex's terms are then in cell order whatever the number of threads. (Gathering them vertex by
-  // vertex through a vertex -> slot incidence read an element's w, b, s_hat and cells from five places at
-  // every visit: beetle iARAP, finish_elements 10.9-11.1 ms, now 7.8-8.1.) where[v]: v's slot among the
-  // current cell's terms, -1 none.
+  // side by side, as the local step reads them) and their contributions grouped by vertex; then every term
+  // goes to its vertex's run. Each thread takes a range of cells and, in every vertex's run, the share its
+  // cells hold there, after the shares of the ranges before it: a vertex's terms are then in cell order
+  // whatever the number of threads. (Gathering them vertex by vertex through a vertex -> slot incidence read
+  // an element's w, b, s_hat and cells from five places at every visit: beetle iARAP, finish_elements
+  // 10.9-11.1 ms, now 7.8-8.1.) where[v]: v's slot among the current cell's terms, -1 none.
   const int n = el.num_vertices;
   el.rhs_term_start.assign(static_cast<size_t>(n) + 1, 0);
   std::vector<std::vector<int>> share; // per thread: its count, then its next slot, in every vertex's run

@@ -38,9 +38,10 @@ struct ArapElements {
   // breadth-first order of the mesh, then the inserted boundary cells) and keep positions, rotations and
   // the right-hand side in that order while they iterate: neighbours then sit side by side in memory and
   // are read while in cache, whatever the file's vertex order (1-to-4 subdivision, for one, numbers the
-  // midpoints far from their corners). No cell's sum changes with it: each cell's terms keep their order. The elements of the cell at position p are cell_entry[cell_entry_start[p] ..
-  // cell_entry_start[p + 1]), in cell_element's order, each with its b (vertex positions in visit_order),
-  // s_hat and w side by side, so that the local step reads them in one forward sweep.
+  // midpoints far from their corners). No cell's sum changes with it: each cell's terms keep their order.
+  // The elements of the cell at position p are cell_entry[cell_entry_start[p] .. cell_entry_start[p + 1]),
+  // in cell_element's order, each with its b (vertex positions in visit_order), s_hat and w side by side,
+  // so that the local step reads them in one forward sweep.
   // CellEntry and RhsTerm leave their members uninitialized when constructed (the builder writes each
   // one): resizing the vectors then does not zero tens of megabytes that are overwritten at once.
   struct CellEntry {
