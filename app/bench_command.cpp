@@ -35,7 +35,7 @@ struct BenchArguments {
   int subdivide = 0;
   bool json = false;
   std::string report;
-  double converge = 0;                    // > 0: the convergence bench (bench_converge.h) with this gap
+  double converge = 0; // > 0: the convergence bench (bench_converge.h) with this gap
   std::vector<std::string> accelerators = ConvergeSettings{}.accelerators;
   int window = 0;
   int max_iterations = ConvergeSettings{}.max_iterations;
@@ -49,13 +49,11 @@ Scenario bench_scenario() {
 
 // Median of values[first..]: the entries after the warm-up.
 double median_after(std::vector<double> values, std::size_t first) {
-  if (values.size() <= first)
-    return 0;
+  if (values.size() <= first) return 0;
   values.erase(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(first));
   const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
   std::nth_element(values.begin(), middle, values.end());
-  if (values.size() % 2 == 1)
-    return *middle;
+  if (values.size() % 2 == 1) return *middle;
   return 0.5 * (*middle + *std::max_element(values.begin(), middle));
 }
 
@@ -118,8 +116,8 @@ nlohmann::json bench_one(const std::string& path, const Eigen::MatrixXd& V, cons
   const double precompute_ms = elapsed_ms(start);
   Eigen::MatrixXd U = V;
   ArapSolveOptions solve_options;
-  solve_options.max_iterations = iterations + 1; // the first is the warm-up
-  solve_options.tolerance = -1;                  // run them all
+  solve_options.max_iterations = iterations + 1;     // the first is the warm-up
+  solve_options.tolerance = -1;                      // run them all
   solve_options.accelerator = ArapAccelerator::None; // the plain local/global iteration (issue 18's figure)
   const ArapReport report = arap_solve(data, constraints.targets, U, solve_options);
   const IterationFloor floor = iteration_floor(data, U, 11);
@@ -160,40 +158,43 @@ double median_paired_ratio(const nlohmann::json& a, const nlohmann::json& b) {
 
 void print_table(const nlohmann::json& results) {
   std::printf("%-28s %9s %-12s %4s %12s %12s %12s %12s %12s %10s %10s %10s %10s %10s\n", "mesh", "vertices",
-              "method", "thr", "precompute", "intrinsic", "assembly", "factor", "iteration", "local", "global",
-              "solve_fl", "solve", "elem_pass");
+              "method", "thr", "precompute", "intrinsic", "assembly", "factor", "iteration", "local",
+              "global", "solve_fl", "solve", "elem_pass");
   for (const auto& r : results) {
     std::string name = r["mesh"].get<std::string>();
-    if (name.size() > 28)
-      name = "..." + name.substr(name.size() - 25);
+    if (name.size() > 28) name = "..." + name.substr(name.size() - 25);
     if (r.contains("error")) {
       std::printf("%-28s %9lld %-12s failed: %s\n", name.c_str(), r["vertices"].get<long long>(),
                   r["method"].get<std::string>().c_str(), r["error"].get<std::string>().c_str());
       continue;
     }
-    std::printf("%-28s %9lld %-12s %4d %12.3f %12.3f %12.3f %12.3f %12.3f %10.3f %10.3f %10.3f %10.3f %10.3f\n",
-                name.c_str(), r["vertices"].get<long long>(), r["method"].get<std::string>().c_str(),
-                r["threads"].get<int>(), r["precompute_ms"].get<double>(), r["intrinsic_ms"].get<double>(),
-                r["assembly_ms"].get<double>(), r["factor_ms"].get<double>(), r["iteration_ms"].get<double>(),
-                r["local_ms"].get<double>(), r["global_ms"].get<double>(), r["solve_floor_ms"].get<double>(),
-                r["solve_ms"].get<double>(), r["element_pass_ms"].get<double>());
+    std::printf(
+        "%-28s %9lld %-12s %4d %12.3f %12.3f %12.3f %12.3f %12.3f %10.3f %10.3f %10.3f %10.3f %10.3f\n",
+        name.c_str(), r["vertices"].get<long long>(), r["method"].get<std::string>().c_str(),
+        r["threads"].get<int>(), r["precompute_ms"].get<double>(), r["intrinsic_ms"].get<double>(),
+        r["assembly_ms"].get<double>(), r["factor_ms"].get<double>(), r["iteration_ms"].get<double>(),
+        r["local_ms"].get<double>(), r["global_ms"].get<double>(), r["solve_floor_ms"].get<double>(),
+        r["solve_ms"].get<double>(), r["element_pass_ms"].get<double>());
   }
-  std::printf("(milliseconds; iteration, local and global are medians over the measured plain local/global "
-              "iterations (no accelerator; `--converge` times the accelerated loops); with more "
-              "than one thread the symbolic analysis runs beside the intrinsic flips (iarap) or the element build "
-              "(the others), and factor counts only the part of it they did not hide; solve_fl (solve_floor_ms): "
-              "one CHOLMOD solve (cholmod_solve2) of the 3 right-hand sides, solve (solve_ms): the same solve "
-              "as the iterations run it (iarap's supernodal solve over the same factor), elem_pass "
-              "(element_pass_ms): one streaming pass over the cell-ordered elements reading U and writing the "
-              "3x3 covariances, medians of 11)\n");
+  std::printf(
+      "(milliseconds; iteration, local and global are medians over the measured plain local/global "
+      "iterations (no accelerator; `--converge` times the accelerated loops); with more "
+      "than one thread the symbolic analysis runs beside the intrinsic flips (iarap) or the element build "
+      "(the others), and factor counts only the part of it they did not hide; solve_fl (solve_floor_ms): "
+      "one CHOLMOD solve (cholmod_solve2) of the 3 right-hand sides, solve (solve_ms): the same solve "
+      "as the iterations run it (iarap's supernodal solve over the same factor), elem_pass "
+      "(element_pass_ms): one streaming pass over the cell-ordered elements reading U and writing the "
+      "3x3 covariances, medians of 11)\n");
   for (const auto& r : results)
     if (!r.contains("error"))
-      std::printf("%s: %s: iteration / (solve_floor + element_pass) = %.2f, iteration / (solve + element_pass) "
-                  "= %.2f\n",
-                  r["mesh"].get<std::string>().c_str(), r["method"].get<std::string>().c_str(),
-                  r["iteration_ms"].get<double>() /
-                      (r["solve_floor_ms"].get<double>() + r["element_pass_ms"].get<double>()),
-                  r["iteration_ms"].get<double>() / (r["solve_ms"].get<double>() + r["element_pass_ms"].get<double>()));
+      std::printf(
+          "%s: %s: iteration / (solve_floor + element_pass) = %.2f, iteration / (solve + element_pass) "
+          "= %.2f\n",
+          r["mesh"].get<std::string>().c_str(), r["method"].get<std::string>().c_str(),
+          r["iteration_ms"].get<double>() /
+              (r["solve_floor_ms"].get<double>() + r["element_pass_ms"].get<double>()),
+          r["iteration_ms"].get<double>() /
+              (r["solve_ms"].get<double>() + r["element_pass_ms"].get<double>()));
   // Ratios to original ARAP on the same mesh, from this one run: fastest to fastest, and with several rounds
   // also the median of the per-round ratios (round k of each method ran back to back, so a burst of other
   // load mostly cancels out of its ratio: the steadier figure on a shared machine).
@@ -219,13 +220,15 @@ void print_table(const nlohmann::json& results) {
 // The result entry of a mesh and method that could not be benchmarked: the other runs go on.
 nlohmann::json error_entry(const std::string& path, const MeshData& mesh, const std::string& method,
                            const std::exception& e) {
-  return {{"mesh", path}, {"vertices", mesh.V.rows()}, {"method", method}, {"threads", thread_count()},
+  return {{"mesh", path},
+          {"vertices", mesh.V.rows()},
+          {"method", method},
+          {"threads", thread_count()},
           {"error", e.what()}};
 }
 
 void run_bench(const BenchArguments& args) {
-  if (!args.report.empty())
-    check_output_path(args.report); // before the runs, which can take minutes
+  if (!args.report.empty()) check_output_path(args.report); // before the runs, which can take minutes
   set_thread_count(args.threads);
   nlohmann::json j;
   j["cpu"] = cpu_name();
@@ -237,9 +240,11 @@ void run_bench(const BenchArguments& args) {
   j["rounds"] = args.rounds;
   j["warmup_iterations"] = 1;
   j["subdivide"] = args.subdivide;
-  j["scenario"] = args.converge > 0 ? "bottom 10% along y fixed; top 10% along y turned 60 degrees about z and "
-                                      "moved by (0.3, -0.1, 0) bbox diagonals"
-                                    : "bottom 10% along y fixed; top 10% along y moved by 10% of the bbox diagonal along +x";
+  j["scenario"] =
+      args.converge > 0
+          ? "bottom 10% along y fixed; top 10% along y turned 60 degrees about z and "
+            "moved by (0.3, -0.1, 0) bbox diagonals"
+          : "bottom 10% along y fixed; top 10% along y moved by 10% of the bbox diagonal along +x";
   if (args.converge > 0) j["converge"] = args.converge;
   j["results"] = nlohmann::json::array();
   int failed = 0;
@@ -253,20 +258,21 @@ void run_bench(const BenchArguments& args) {
       subdivide_midpoint(mesh.V, mesh.F, args.subdivide);
       const MeshReport check = check_mesh(mesh.V, mesh.F);
       if (!check.usable())
-        throw TopologyError(path + ": mesh not usable for ARAP: " + check.errors.front() + " (see `iarap info`)");
+        throw TopologyError(path + ": mesh not usable for ARAP: " + check.errors.front() +
+                            " (see `iarap info`)");
       constraints = resolve_scenario(bench_scenario(), mesh.V);
     } catch (const Error& e) {
-      if (!args.json)
-        std::cerr << "bench: " << path << ": skipped: " << e.what() << "\n";
-      for (const auto& method : args.methods)
-        j["results"].push_back(error_entry(path, mesh, method, e));
+      if (!args.json) std::cerr << "bench: " << path << ": skipped: " << e.what() << "\n";
+      for (const auto& method : args.methods) j["results"].push_back(error_entry(path, mesh, method, e));
       ++failed;
       continue;
     }
     if (args.converge > 0) {
       const ConvergeSettings settings{args.converge, args.accelerators, args.window, args.max_iterations};
       for (const std::string& method : args.methods) {
-        if (!args.json) std::cerr << "bench --converge: " << path << " (" << mesh.V.rows() << " vertices), " << method << "\n";
+        if (!args.json)
+          std::cerr << "bench --converge: " << path << " (" << mesh.V.rows() << " vertices), " << method
+                    << "\n";
         try {
           j["results"].push_back(converge_one(path, mesh.V, mesh.F, method, settings));
         } catch (const Error& e) { // as below: report it, run the others
@@ -298,7 +304,8 @@ void run_bench(const BenchArguments& args) {
           best[m]["precompute_ms_rounds"].push_back(r["precompute_ms"]);
           best[m]["iteration_ms_rounds"].push_back(r["iteration_ms"]);
           if (r["precompute_ms"].get<double>() < best[m]["precompute_ms"].get<double>())
-            for (const char* key : {"precompute_ms", "intrinsic_ms", "assembly_ms", "factor_ms", "analyze_ms"})
+            for (const char* key :
+                 {"precompute_ms", "intrinsic_ms", "assembly_ms", "factor_ms", "analyze_ms"})
               best[m][key] = r[key];
           if (r["iteration_ms"].get<double>() < best[m]["iteration_ms"].get<double>())
             for (const char* key :
@@ -312,8 +319,7 @@ void run_bench(const BenchArguments& args) {
     for (const auto& r : best) j["results"].push_back(r);
   }
   const std::string text = json_text(j);
-  if (!args.report.empty())
-    write_text_file(args.report, text);
+  if (!args.report.empty()) write_text_file(args.report, text);
   if (args.json) {
     std::cout << text;
   } else if (args.converge > 0) {
@@ -359,17 +365,21 @@ const bool registered = register_command(
                        "Apply K midpoint 1-to-4 subdivisions first (4^K x faces)")
            ->check(CLI::Range(0, 6))
            ->capture_default_str();
-       sub->add_option("--converge", args->converge,
-                       "Instead of timing iterations: iterations and ms of each accelerator to reach an energy within "
-                       "TOL (relative) of a reference minimum, on the scene of data/bend60_scenario.json")
+       sub->add_option(
+              "--converge", args->converge,
+              "Instead of timing iterations: iterations and ms of each accelerator to reach an energy within "
+              "TOL (relative) of a reference minimum, on the scene of data/bend60_scenario.json")
            ->check(CLI::PositiveNumber);
-       sub->add_option("--accels", args->accelerators, "With --converge: comma-separated subset of none,anderson,lbfgs,newton")
+       sub->add_option("--accels", args->accelerators,
+                       "With --converge: comma-separated subset of none,anderson,lbfgs,newton")
            ->delimiter(',')
            ->check(CLI::IsMember({"none", "anderson", "lbfgs", "newton"}))
            ->capture_default_str();
-       sub->add_option("--window", args->window, "With --converge: accelerator history length (0 = the default)")
+       sub->add_option("--window", args->window,
+                       "With --converge: accelerator history length (0 = the default)")
            ->check(CLI::Range(0, 1000));
-       sub->add_option("--max-iterations", args->max_iterations, "With --converge: iteration limit of each run")
+       sub->add_option("--max-iterations", args->max_iterations,
+                       "With --converge: iteration limit of each run")
            ->check(CLI::Range(1, 10000000))
            ->capture_default_str();
        sub->add_flag("--json", args->json, "Print the results as one JSON object instead of a table");

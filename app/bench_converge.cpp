@@ -10,7 +10,8 @@
 
 namespace iarap::cli {
 
-Scenario band_scenario(const std::string& name, const Eigen::Vector3d& translation_relative, double degrees_about_z) {
+Scenario band_scenario(const std::string& name, const Eigen::Vector3d& translation_relative,
+                       double degrees_about_z) {
   Scenario scenario;
   scenario.source = name;
   Region bottom;
@@ -70,13 +71,13 @@ nlohmann::json converge_one(const std::string& path, const Eigen::MatrixXd& V, c
     const ArapReport report = arap_solve(data, constraints.targets, U, long_run);
     const double energy = report.energies.empty() ? report.initial_energy : report.energies.back();
     reference = std::min(reference, energy);
-    reference_runs.push_back({{"accelerator", accelerator},
-                              {"iterations", report.iterations},
-                              {"energy", energy},
-                              {"relative_gradient", report.gradient_norms.empty()
-                                                        ? 0.0
-                                                        : report.gradient_norms.back() / report.initial_gradient_norm},
-                              {"converged", report.converged}});
+    reference_runs.push_back(
+        {{"accelerator", accelerator},
+         {"iterations", report.iterations},
+         {"energy", energy},
+         {"relative_gradient",
+          report.gradient_norms.empty() ? 0.0 : report.gradient_norms.back() / report.initial_gradient_norm},
+         {"converged", report.converged}});
   }
   const double target = reference + settings.tolerance * std::abs(reference);
 
@@ -98,19 +99,20 @@ nlohmann::json converge_one(const std::string& path, const Eigen::MatrixXd& V, c
     const ArapReport report = arap_solve(data, constraints.targets, U, run);
     const bool reached = !report.energies.empty() && report.energies.back() <= target;
     const double ms = report.elapsed_ms.empty() ? 0.0 : report.elapsed_ms.back();
-    j["runs"].push_back({{"accelerator", accelerator},
-                         {"window", accelerator == "none" ? 0 : run.window},
-                         {"iterations", report.iterations},
-                         {"ms", ms},
-                         {"ms_per_iteration", report.iterations > 0 ? ms / report.iterations : 0.0},
-                         {"accelerator_ms", report.accelerator_ms},
-                         {"rejected", report.rejected},
-                         {"solves", report.solves},
-                         {"reached", reached},
-                         {"stationary", !reached && report.converged},
-                         {"final_energy", report.energies.empty() ? report.initial_energy : report.energies.back()},
-                         {"final_gap", (report.energies.empty() ? report.initial_energy : report.energies.back()) -
-                                           reference}});
+    j["runs"].push_back(
+        {{"accelerator", accelerator},
+         {"window", accelerator == "none" ? 0 : run.window},
+         {"iterations", report.iterations},
+         {"ms", ms},
+         {"ms_per_iteration", report.iterations > 0 ? ms / report.iterations : 0.0},
+         {"accelerator_ms", report.accelerator_ms},
+         {"rejected", report.rejected},
+         {"solves", report.solves},
+         {"reached", reached},
+         {"stationary", !reached && report.converged},
+         {"final_energy", report.energies.empty() ? report.initial_energy : report.energies.back()},
+         {"final_gap",
+          (report.energies.empty() ? report.initial_energy : report.energies.back()) - reference}});
   }
   return j;
 }
@@ -118,8 +120,8 @@ nlohmann::json converge_one(const std::string& path, const Eigen::MatrixXd& V, c
 void print_converge_table(const nlohmann::json& results, double tolerance) {
   std::printf("iterations and milliseconds to an energy within %.0e (relative) of the reference minimum\n",
               tolerance);
-  std::printf("%-28s %-12s %-9s %10s %7s %12s %10s %9s %9s %9s %8s\n", "mesh", "method", "accel", "iterations",
-              "solves", "ms", "ms/iter", "x iter", "x time", "overhead", "rejected");
+  std::printf("%-28s %-12s %-9s %10s %7s %12s %10s %9s %9s %9s %8s\n", "mesh", "method", "accel",
+              "iterations", "solves", "ms", "ms/iter", "x iter", "x time", "overhead", "rejected");
   for (const auto& r : results) {
     std::string name = r["mesh"].get<std::string>();
     if (name.size() > 28) name = "..." + name.substr(name.size() - 25);
@@ -132,9 +134,10 @@ void print_converge_table(const nlohmann::json& results, double tolerance) {
     for (const auto& run : r["runs"])
       if (run["accelerator"] == "none") plain = &run;
     for (const auto& run : r["runs"]) {
-      std::printf("%-28s %-12s %-9s %9d%s %7d %12.1f %10.3f", name.c_str(), r["method"].get<std::string>().c_str(),
-                  run["accelerator"].get<std::string>().c_str(), run["iterations"].get<int>(),
-                  run["reached"].get<bool>()          ? " "
+      std::printf("%-28s %-12s %-9s %9d%s %7d %12.1f %10.3f", name.c_str(),
+                  r["method"].get<std::string>().c_str(), run["accelerator"].get<std::string>().c_str(),
+                  run["iterations"].get<int>(),
+                  run["reached"].get<bool>()       ? " "
                   : run.value("stationary", false) ? "*"
                                                    : "+",
                   run["solves"].get<int>(), run["ms"].get<double>(), run["ms_per_iteration"].get<double>());
@@ -157,11 +160,13 @@ void print_converge_table(const nlohmann::json& results, double tolerance) {
       std::printf(" %8d\n", run["rejected"].get<int>());
     }
   }
-  std::printf("(x iter, x time: plain / accelerated; solves: back-substitutions with the factor (newton: one per "
-              "CG step); overhead: ms per solve over plain's ms per iteration; '+': the gap was not reached within the iteration "
-              "limit; '*': the run converged (relative gradient %.0e) to another stationary point, energy in the "
-              "JSON's final_energy)\n",
-              ConvergeSettings{}.reference_gradient);
+  std::printf(
+      "(x iter, x time: plain / accelerated; solves: back-substitutions with the factor (newton: one per "
+      "CG step); overhead: ms per solve over plain's ms per iteration; '+': the gap was not reached within "
+      "the iteration "
+      "limit; '*': the run converged (relative gradient %.0e) to another stationary point, energy in the "
+      "JSON's final_energy)\n",
+      ConvergeSettings{}.reference_gradient);
 }
 
 } // namespace iarap::cli

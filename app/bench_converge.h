@@ -13,18 +13,19 @@ namespace iarap::cli {
 
 // Bottom 10% along y fixed; the top 10% along y turned about z around its centroid, then moved by
 // translation_relative bbox diagonals. `name` is the scenario's source in error messages.
-Scenario band_scenario(const std::string& name, const Eigen::Vector3d& translation_relative, double degrees_about_z);
+Scenario band_scenario(const std::string& name, const Eigen::Vector3d& translation_relative,
+                       double degrees_about_z);
 
 // The convergence scene: bottom 10% along y fixed; the top 10% along y turned 60 degrees about z around its
 // centroid and moved by (0.3, -0.1, 0) bbox diagonals (data/bend60_scenario.json).
 Scenario converge_scenario();
 
 struct ConvergeSettings {
-  double tolerance = 1e-6;          // energy gap E - E* <= tolerance |E*|
+  double tolerance = 1e-6; // energy gap E - E* <= tolerance |E*|
   std::vector<std::string> accelerators = {"none", "anderson", "lbfgs", "newton"};
   int window = 0;                   // 0: ArapSolveOptions' default
   int max_iterations = 20000;       // per run, the plain one included
-  double reference_gradient = 1e-9;  // the reference run stops at this relative gradient norm
+  double reference_gradient = 1e-9; // the reference run stops at this relative gradient norm
 };
 
 // One mesh and method: precompute, a long reference run (the lowest energy of L-BFGS and Anderson run to

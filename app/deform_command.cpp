@@ -46,10 +46,8 @@ struct DeformArguments {
 const CLI::Validator finite_non_negative(
     [](const std::string& text) -> std::string {
       double value = 0;
-      if (!CLI::detail::lexical_cast(text, value))
-        return "'" + text + "' is not a number";
-      if (!std::isfinite(value) || value < 0)
-        return "'" + text + "' must be a finite number >= 0";
+      if (!CLI::detail::lexical_cast(text, value)) return "'" + text + "' is not a number";
+      if (!std::isfinite(value) || value < 0) return "'" + text + "' must be a finite number >= 0";
       return {};
     },
     "NUMBER >= 0");
@@ -75,11 +73,11 @@ void load_mesh_and_constraints(const DeformArguments& args, MeshData& mesh, Cons
                                nlohmann::json& j) {
   mesh = read_mesh(args.mesh);
   Scenario scenario;
-  if (!args.scenario.empty())
-    scenario = read_scenario(args.scenario);
+  if (!args.scenario.empty()) scenario = read_scenario(args.scenario);
   if (!args.repair) {
-    constraints = args.constraints.empty() ? resolve_scenario(scenario, mesh.V)
-                                           : read_constraints(args.constraints, static_cast<int>(mesh.V.rows()));
+    constraints = args.constraints.empty()
+                      ? resolve_scenario(scenario, mesh.V)
+                      : read_constraints(args.constraints, static_cast<int>(mesh.V.rows()));
     return;
   }
   RepairOptions repair_options;
@@ -148,8 +146,7 @@ void run_deform(const DeformArguments& args) {
   }
   // Before the solve, which can take seconds: a bad output path fails now.
   check_mesh_output_path(args.out);
-  if (!args.report.empty())
-    check_output_path(args.report);
+  if (!args.report.empty()) check_output_path(args.report);
   const auto total_start = std::chrono::steady_clock::now();
   nlohmann::json j;
   j["input"] = args.mesh;
@@ -158,21 +155,21 @@ void run_deform(const DeformArguments& args) {
   load_mesh_and_constraints(args, mesh, constraints, j);
   const MeshReport check = check_mesh(mesh.V, mesh.F);
   if (!check.usable()) {
-    std::string message = args.mesh + (args.repair ? ": mesh not usable for ARAP after --repair:" : ": mesh not usable for ARAP:");
-    for (const auto& error : check.errors)
-      message += "\n  " + error;
-    throw TopologyError(message + (args.repair ? "\n(numbers refer to the repaired mesh; `iarap info " + args.mesh +
-                                                     "` reports the file as it is)"
-                                               : "\n(run `iarap info " + args.mesh + "` for the full report)"));
+    std::string message = args.mesh + (args.repair ? ": mesh not usable for ARAP after --repair:"
+                                                   : ": mesh not usable for ARAP:");
+    for (const auto& error : check.errors) message += "\n  " + error;
+    throw TopologyError(message + (args.repair
+                                       ? "\n(numbers refer to the repaired mesh; `iarap info " + args.mesh +
+                                             "` reports the file as it is)"
+                                       : "\n(run `iarap info " + args.mesh + "` for the full report)"));
   }
-  for (const auto& warning : constraints.warnings)
-    std::cerr << "deform: warning: " << warning << "\n";
+  for (const auto& warning : constraints.warnings) std::cerr << "deform: warning: " << warning << "\n";
   if (!args.quiet) {
-    for (const auto& warning : check.warnings)
-      std::cerr << "deform: mesh warning: " << warning << "\n";
+    for (const auto& warning : check.warnings) std::cerr << "deform: mesh warning: " << warning << "\n";
   }
 
-  set_thread_count(args.threads == 0 ? automatic_thread_count(static_cast<int>(mesh.V.rows())) : args.threads);
+  set_thread_count(args.threads == 0 ? automatic_thread_count(static_cast<int>(mesh.V.rows()))
+                                     : args.threads);
   ArapOptions options;
   options.method = parse_arap_method(args.method);
   options.pin_unconstrained_components = args.pin_unconstrained;
@@ -206,9 +203,10 @@ void run_deform(const DeformArguments& args) {
     report = arap_solve(*data, targets, U, solve_options);
   } catch (const SolverError& e) {
     if (std::string(e.what()).find("initial guess is not finite") != std::string::npos)
-      throw SolverError("the ARAP energy of the constraints overflows: " + farthest_target(constraints, mesh.V) +
-                        ", against a mesh of bounding-box diagonal " + std::to_string(check.bbox_diagonal) +
-                        "; give targets at a distance comparable to the mesh");
+      throw SolverError(
+          "the ARAP energy of the constraints overflows: " + farthest_target(constraints, mesh.V) +
+          ", against a mesh of bounding-box diagonal " + std::to_string(check.bbox_diagonal) +
+          "; give targets at a distance comparable to the mesh");
     throw SolverError(explain_solver_error(e.what(), context));
   }
   const double max_displacement = (U - V).rowwise().norm().maxCoeff() * s; // no overflow at 1e300
@@ -229,8 +227,7 @@ void run_deform(const DeformArguments& args) {
     }
     std::cerr << "deform: " << (report.converged ? "converged" : "stopped at the iteration limit") << "\n";
   }
-  if (options.method == ArapMethod::Arap)
-    warn_about_original_energy(report, check);
+  if (options.method == ArapMethod::Arap) warn_about_original_energy(report, check);
   write_mesh(args.out, U, mesh.F);
   const ArapData& arap = *data;
 
@@ -277,12 +274,9 @@ void run_deform(const DeformArguments& args) {
                       {"inserted_points", arap.intrinsic.inserted_points}};
   }
   const std::string text = json_text(j);
-  if (!args.report.empty())
-    write_text_file(args.report, text);
-  if (args.json)
-    std::cout << text;
-  if (!args.quiet)
-    std::cerr << "deform: wrote " << args.out << "\n";
+  if (!args.report.empty()) write_text_file(args.report, text);
+  if (args.json) std::cout << text;
+  if (!args.quiet) std::cerr << "deform: wrote " << args.out << "\n";
 }
 
 const bool registered = register_command(
@@ -303,9 +297,10 @@ const bool registered = register_command(
        sub->add_option("--method", args->method, "Energy: arap, spokes-rims or iarap")
            ->check(CLI::IsMember({"arap", "spokes-rims", "iarap"}))
            ->capture_default_str();
-       sub->add_option("--boundary", args->boundary,
-                       "iARAP on meshes with boundary: 'refine' splits boundary edges whose opposite angle is obtuse "
-                       "(non-negative weights, stays at rest); 'paper' is the paper's exact discretization")
+       sub->add_option(
+              "--boundary", args->boundary,
+              "iARAP on meshes with boundary: 'refine' splits boundary edges whose opposite angle is obtuse "
+              "(non-negative weights, stays at rest); 'paper' is the paper's exact discretization")
            ->check(CLI::IsMember({"paper", "refine"}))
            ->capture_default_str();
        sub->add_option("--iterations", args->iterations, "Maximum number of local/global iterations (>= 0)")
@@ -316,15 +311,19 @@ const bool registered = register_command(
               "Stop when the energy decreases by at most this fraction of itself in one iteration (>= 0)")
            ->check(finite_non_negative)
            ->capture_default_str();
-       sub->add_option("--accel", args->accel, "Accelerator of the local/global iteration: lbfgs, newton, anderson or none")
+       sub->add_option("--accel", args->accel,
+                       "Accelerator of the local/global iteration: lbfgs, newton, anderson or none")
            ->check(CLI::IsMember({"anderson", "lbfgs", "newton", "none"}))
            ->capture_default_str();
-       sub->add_option("--window", args->window, "History length of the accelerator (newton: conjugate-gradient steps per Newton step; 0 = plain iteration)")
+       sub->add_option("--window", args->window,
+                       "History length of the accelerator (newton: conjugate-gradient steps per Newton step; "
+                       "0 = plain iteration)")
            ->check(CLI::Range(0, 1000))
            ->capture_default_str();
-       sub->add_option("--grad-tol", args->grad_tol,
-                       "Also stop when the gradient norm at the free vertices falls to this fraction of its initial "
-                       "value (0 = off)")
+       sub->add_option(
+              "--grad-tol", args->grad_tol,
+              "Also stop when the gradient norm at the free vertices falls to this fraction of its initial "
+              "value (0 = off)")
            ->check(finite_non_negative)
            ->capture_default_str();
        sub->add_option("--threads", args->threads, "Threads for the parallel loops; 0 = all hardware threads")

@@ -3,7 +3,9 @@
 namespace iarap::cli {
 namespace {
 
-bool has(const std::string& text, const char* part) { return text.find(part) != std::string::npos; }
+bool has(const std::string& text, const char* part) {
+  return text.find(part) != std::string::npos;
+}
 
 } // namespace
 
@@ -12,26 +14,30 @@ std::string explain_solver_error(const std::string& what, const ErrorContext& co
   const std::string info = "`iarap info " + context.mesh + "`";
   const std::string library_option = "enable pin_unconstrained_components";
   if (const auto at = message.find(library_option); at != std::string::npos) {
-    message.replace(at, library_option.size(), "pass --pin-unconstrained (pins one vertex of each such part)");
+    message.replace(at, library_option.size(),
+                    "pass --pin-unconstrained (pins one vertex of each such part)");
     message += "\n  a part of a single vertex is a vertex used by no face; --repair drops those";
   } else if (has(message, "singular")) {
     message += "\n  cause: the linear system of the free vertices has no unique solution: a part of the mesh "
                "no constraint reaches, or degenerate faces with zero or cancelling weights"
-               "\n  fix: see " + info + "; --repair welds coincident vertices and drops zero-area faces, "
+               "\n  fix: see " +
+               info +
+               "; --repair welds coincident vertices and drops zero-area faces, "
                "--pin-unconstrained holds unconstrained parts, and --method iarap avoids original ARAP's "
                "negative cotangent weights";
   } else if (has(message, "is not finite") && has(message, "entry")) {
     message += "\n  cause: an infinite weight in the system matrix, from a degenerate face (zero area or a "
                "zero-length edge)"
-               "\n  fix: --repair drops zero-area faces and welds coincident vertices; " + info +
-               " counts them";
+               "\n  fix: --repair drops zero-area faces and welds coincident vertices; " +
+               info + " counts them";
   } else if (has(message, "degenerate (zero area)")) {
     message += "\n  fix: --repair drops zero-area faces (" + info + " counts them)";
   } else if (has(message, "tracing intrinsic edge")) {
-    message += "\n  cause: an edge of the intrinsic Delaunay triangulation could not be followed across the "
-               "input faces, which happens on nearly degenerate faces (slivers, almost coincident vertices)"
-               "\n  fix: --repair drops zero-area faces and welds coincident vertices; --method spokes-rims or "
-               "--method arap need no tracing";
+    message +=
+        "\n  cause: an edge of the intrinsic Delaunay triangulation could not be followed across the "
+        "input faces, which happens on nearly degenerate faces (slivers, almost coincident vertices)"
+        "\n  fix: --repair drops zero-area faces and welds coincident vertices; --method spokes-rims or "
+        "--method arap need no tracing";
   }
   if (context.repaired)
     message += "\n  (after --repair: vertex, face and component numbers refer to the repaired mesh, not to " +

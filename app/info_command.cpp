@@ -26,8 +26,9 @@ void print_text(const nlohmann::json& j) {
   if (j.contains("vertices")) {
     std::cout << "vertices " << j["vertices"] << ", faces " << j["faces"] << ", components "
               << j["components"] << ", boundary loops " << j["boundary_loops"] << ", genus "
-              << (j["genus"].is_null() ? std::string(j["orientable"].get<bool>() ? "undefined" : "undefined (non-orientable)")
-                                       : j["genus"].dump())
+              << (j["genus"].is_null()
+                      ? std::string(j["orientable"].get<bool>() ? "undefined" : "undefined (non-orientable)")
+                      : j["genus"].dump())
               << ", orientable " << (j["orientable"].get<bool>() ? "yes" : "no") << "\n"
               << "bounding-box diagonal " << j["bbox_diagonal"] << "\n";
     for (const char* count :
@@ -39,10 +40,8 @@ void print_text(const nlohmann::json& j) {
   }
   for (const auto& note : j.value("notes", nlohmann::json::array()))
     std::cout << "note: " << note.get<std::string>() << "\n";
-  for (const auto& warning : j["warnings"])
-    std::cout << "warning: " << warning.get<std::string>() << "\n";
-  for (const auto& error : j["errors"])
-    std::cout << "error: " << error.get<std::string>() << "\n";
+  for (const auto& warning : j["warnings"]) std::cout << "warning: " << warning.get<std::string>() << "\n";
+  for (const auto& error : j["errors"]) std::cout << "error: " << error.get<std::string>() << "\n";
   if (j.contains("intrinsic")) {
     const auto& in = j["intrinsic"];
     if (in.contains("error")) {
@@ -64,18 +63,16 @@ void print_text(const nlohmann::json& j) {
 // `info` and `deform` agree: the defects check_mesh only warns about stop the solve without these flags.
 nlohmann::json deform_needs(const MeshReport& report) {
   nlohmann::json needs = nlohmann::json::array();
-  if (!report.usable())
-    return needs;
+  if (!report.usable()) return needs;
   std::string repair;
   const auto add = [&](int count, const std::string& what) {
-    if (count > 0)
-      repair += (repair.empty() ? "" : "; ") + std::to_string(count) + " " + what;
+    if (count > 0) repair += (repair.empty() ? "" : "; ") + std::to_string(count) + " " + what;
   };
   add(report.zero_area_faces, "zero-area faces (infinite cotangent weights), which it drops");
-  add(report.unreferenced_vertices, "vertices used by no face (each a part no constraint reaches), which it drops");
+  add(report.unreferenced_vertices,
+      "vertices used by no face (each a part no constraint reaches), which it drops");
   add(report.coincident_vertices, "coincident vertices (seams that split the surface), which it welds");
-  if (!repair.empty())
-    needs.push_back({{"flag", "--repair"}, {"why", repair}});
+  if (!repair.empty()) needs.push_back({{"flag", "--repair"}, {"why", repair}});
   if (report.components > 1)
     needs.push_back({{"flag", "--pin-unconstrained"},
                      {"why", std::to_string(report.components) +
@@ -124,8 +121,7 @@ void run_info(const InfoArguments& args) {
     print_text(j);
   }
   std::cout.flush();
-  if (!ok)
-    throw InputError(args.mesh + ": not usable for ARAP (see the report above)");
+  if (!ok) throw InputError(args.mesh + ": not usable for ARAP (see the report above)");
 }
 
 const bool registered = register_command(

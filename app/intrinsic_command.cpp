@@ -18,10 +18,10 @@
 #include <chrono>
 #include <cstdio>
 #include <cstring>
-#include <string>
 #include <filesystem>
 #include <iostream>
 #include <sstream>
+#include <string>
 #include <vector>
 
 namespace iarap::cli {
@@ -49,21 +49,28 @@ double status_mib(const char* key) {
   const std::string prefix = std::string(key) + ":";
   double kib = 0.0;
   while (std::fgets(line, sizeof line, status))
-    if (std::strncmp(line, prefix.c_str(), prefix.size()) == 0 && std::sscanf(line + prefix.size(), "%lf", &kib) == 1) break;
+    if (std::strncmp(line, prefix.c_str(), prefix.size()) == 0 &&
+        std::sscanf(line + prefix.size(), "%lf", &kib) == 1)
+      break;
   std::fclose(status);
   return kib / 1024.0;
 }
-double peak_rss_mib() { return status_mib("VmHWM"); }
-double rss_mib() { return status_mib("VmRSS"); }
+double peak_rss_mib() {
+  return status_mib("VmHWM");
+}
+double rss_mib() {
+  return status_mib("VmRSS");
+}
 
 // Bytes held by the segment arrays and B (issue 4's memory budget counts them).
 double segments_mib(const Segments& s) {
-  const double bytes = static_cast<double>(s.edge.size() + s.face.size() + s.b_index.size() + s.edge_start.size()) *
-                           sizeof(int) +
-                       static_cast<double>(s.b_value.size() + s.s_hat.size() + s.length.size() + s.weight.size()) *
-                           sizeof(double) +
-                       static_cast<double>(s.B.nonZeros()) * (sizeof(double) + sizeof(int)) +
-                       static_cast<double>(s.B.outerSize() + 1) * sizeof(int);
+  const double bytes =
+      static_cast<double>(s.edge.size() + s.face.size() + s.b_index.size() + s.edge_start.size()) *
+          sizeof(int) +
+      static_cast<double>(s.b_value.size() + s.s_hat.size() + s.length.size() + s.weight.size()) *
+          sizeof(double) +
+      static_cast<double>(s.B.nonZeros()) * (sizeof(double) + sizeof(int)) +
+      static_cast<double>(s.B.outerSize() + 1) * sizeof(int);
   return bytes / (1 << 20);
 }
 
@@ -78,7 +85,8 @@ std::string traced_edges_obj(const Eigen::MatrixXd& V, const IntrinsicDelaunay& 
   out.precision(17);
   out << "# iarap intrinsic Delaunay edges traced over the input mesh: " << idt.triangulation.E.rows()
       << " edges, " << idt.segments.edge.size() << " segments\n";
-  for (Eigen::Index v = 0; v < V.rows(); ++v) out << "v " << V(v, 0) << ' ' << V(v, 1) << ' ' << V(v, 2) << '\n';
+  for (Eigen::Index v = 0; v < V.rows(); ++v)
+    out << "v " << V(v, 0) << ' ' << V(v, 1) << ' ' << V(v, 2) << '\n';
   const auto& tr = idt.traces;
   std::vector<long> index(tr.a.size());
   long next = V.rows() + 1;
@@ -109,8 +117,10 @@ double cotan_factorization_ms(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F
   int n_free = 0;
   for (Eigen::Index v = 0; v < V.rows(); ++v) {
     char& pinned = pinned_component[static_cast<size_t>(component(v))];
-    if (!pinned) pinned = 1;
-    else free_index[static_cast<size_t>(v)] = n_free++;
+    if (!pinned)
+      pinned = 1;
+    else
+      free_index[static_cast<size_t>(v)] = n_free++;
   }
   const Eigen::SparseMatrix<double> L = cotan_laplacian(V, F);
   std::vector<Eigen::Triplet<double>> triplets;
@@ -166,7 +176,8 @@ void run(const IntrinsicArgs& args) {
   j["trace_ms"] = idt.trace_ms;
   j["segment_ms"] = idt.segment_ms;
   j["peak_rss_mib"] = rss_mib; // after reading, (subdividing) and the intrinsic preprocess
-  j["input_faces_mib"] = static_cast<double>(mesh.F.size() * sizeof(int) + mesh.V.size() * sizeof(double)) / (1 << 20);
+  j["input_faces_mib"] =
+      static_cast<double>(mesh.F.size() * sizeof(int) + mesh.V.size() * sizeof(double)) / (1 << 20);
   j["connectivity_mib"] = faces_mib; // F, #F x 3 ints
   j["segments_mib"] = segments_mib(idt.segments);
   j["traces_kept"] = options.keep_traces;
@@ -177,13 +188,13 @@ void run(const IntrinsicArgs& args) {
   j["inserted_points"] = idt.triangulation.inserted_t.size();
   if (args.compare_factorization) {
     double factor_ms = cotan_factorization_ms(mesh.V, mesh.F);
-    for (int round = 1; round < args.rounds; ++round) factor_ms = std::min(factor_ms, cotan_factorization_ms(mesh.V, mesh.F));
+    for (int round = 1; round < args.rounds; ++round)
+      factor_ms = std::min(factor_ms, cotan_factorization_ms(mesh.V, mesh.F));
     j["cotan_factorization_ms"] = factor_ms;
     j["intrinsic_over_factorization"] = total_ms / factor_ms;
   }
   if (!args.out_edges.empty()) {
-    if (std::filesystem::exists(args.out_edges) &&
-        std::filesystem::equivalent(args.out_edges, args.mesh))
+    if (std::filesystem::exists(args.out_edges) && std::filesystem::equivalent(args.out_edges, args.mesh))
       throw InputError("--out-edges " + args.out_edges + " is the input mesh; refusing to overwrite it");
     write_text_file(args.out_edges, traced_edges_obj(mesh.V, idt));
     j["out_edges"] = args.out_edges;
@@ -192,36 +203,43 @@ void run(const IntrinsicArgs& args) {
     std::cout << json_text(j);
     return;
   }
-  std::printf("%s: %ld vertices, %ld faces, %d threads\n", args.mesh.c_str(), static_cast<long>(mesh.V.rows()),
-              static_cast<long>(mesh.F.rows()), thread_count());
+  std::printf("%s: %ld vertices, %ld faces, %d threads\n", args.mesh.c_str(),
+              static_cast<long>(mesh.V.rows()), static_cast<long>(mesh.F.rows()), thread_count());
   std::printf("flips %ld, non-Delaunay edges %d -> %d, mollify delta %.3g\n", idt.triangulation.flips,
               idt.triangulation.non_delaunay_before, idt.triangulation.non_delaunay_after,
               idt.triangulation.mollify_delta);
   std::printf("boundary edges with an obtuse opposite angle: %d -> %d (%ld points inserted)\n",
               idt.triangulation.obtuse_boundary_before, idt.triangulation.obtuse_boundary_after,
               static_cast<long>(idt.triangulation.inserted_t.size()));
-  std::printf("segments %ld over %ld edges (%.4f per edge, max %d)\n", static_cast<long>(idt.segments.edge.size()),
-              static_cast<long>(idt.triangulation.E.rows()), j["segments_per_edge"].get<double>(),
-              j["max_segments_per_edge"].get<int>());
-  std::printf("time %.1f ms (flip %.1f, trace %.1f, segments %.1f); peak memory %.1f MiB (input V+F %.1f MiB)\n",
-              total_ms, idt.flip_ms, idt.trace_ms, idt.segment_ms, rss_mib, j["input_faces_mib"].get<double>());
-  std::printf("memory%s: the preprocess peaked %.1f MiB above its start; connectivity F %.1f MiB, segments %.1f MiB, "
-              "2 x (F + segments) = %.1f MiB\n",
-              options.keep_traces ? " (traces kept)" : "", preprocess_peak_mib, faces_mib,
-              j["segments_mib"].get<double>(), j["memory_budget_mib"].get<double>());
+  std::printf("segments %ld over %ld edges (%.4f per edge, max %d)\n",
+              static_cast<long>(idt.segments.edge.size()), static_cast<long>(idt.triangulation.E.rows()),
+              j["segments_per_edge"].get<double>(), j["max_segments_per_edge"].get<int>());
+  std::printf(
+      "time %.1f ms (flip %.1f, trace %.1f, segments %.1f); peak memory %.1f MiB (input V+F %.1f MiB)\n",
+      total_ms, idt.flip_ms, idt.trace_ms, idt.segment_ms, rss_mib, j["input_faces_mib"].get<double>());
+  std::printf(
+      "memory%s: the preprocess peaked %.1f MiB above its start; connectivity F %.1f MiB, segments %.1f MiB, "
+      "2 x (F + segments) = %.1f MiB\n",
+      options.keep_traces ? " (traces kept)" : "", preprocess_peak_mib, faces_mib,
+      j["segments_mib"].get<double>(), j["memory_budget_mib"].get<double>());
   if (args.compare_factorization)
-    std::printf("cotan Laplacian CHOLMOD factorization %.1f ms; intrinsic preprocess / factorization = %.3f\n",
-                j["cotan_factorization_ms"].get<double>(), j["intrinsic_over_factorization"].get<double>());
+    std::printf(
+        "cotan Laplacian CHOLMOD factorization %.1f ms; intrinsic preprocess / factorization = %.3f\n",
+        j["cotan_factorization_ms"].get<double>(), j["intrinsic_over_factorization"].get<double>());
   if (!args.out_edges.empty()) std::printf("traced edges written to %s\n", args.out_edges.c_str());
 }
 
 const bool registered = register_command(
     {"intrinsic", [](CLI::App& app) {
        auto args = std::make_shared<IntrinsicArgs>();
-       auto* sub = app.add_subcommand("intrinsic", "Intrinsic Delaunay triangulation: figures, traced edges, timing");
-       sub->add_option("mesh", args->mesh, "Input mesh (OBJ, OFF, PLY, STL)")->required()->check(CLI::ExistingFile);
-       sub->add_option("--out-edges", args->out_edges,
-                       "Write the traced intrinsic edges as OBJ polylines (input vertices first, in file order)");
+       auto* sub =
+           app.add_subcommand("intrinsic", "Intrinsic Delaunay triangulation: figures, traced edges, timing");
+       sub->add_option("mesh", args->mesh, "Input mesh (OBJ, OFF, PLY, STL)")
+           ->required()
+           ->check(CLI::ExistingFile);
+       sub->add_option(
+           "--out-edges", args->out_edges,
+           "Write the traced intrinsic edges as OBJ polylines (input vertices first, in file order)");
        sub->add_flag("--json", args->json, "Print one JSON object");
        sub->add_option("--threads", args->threads, "Threads (0: all)")->check(CLI::NonNegativeNumber);
        sub->add_option("--subdivide", args->subdivide, "Apply K 1-to-4 midpoint subdivisions first")
@@ -235,8 +253,9 @@ const bool registered = register_command(
        sub->add_flag("--no-mollify", args->no_mollify, "Fail on degenerate triangles instead of mollifying");
        sub->add_flag("--refine-boundary", args->refine_boundary,
                      "Split boundary edges with an obtuse opposite angle (boundary-robust iARAP)");
-       sub->add_flag("--keep-traces", args->keep_traces,
-                     "Keep every edge's traced polyline, as --out-edges does (the memory figures then count them)");
+       sub->add_flag(
+           "--keep-traces", args->keep_traces,
+           "Keep every edge's traced polyline, as --out-edges does (the memory figures then count them)");
        sub->callback([args] { run(*args); });
      }});
 

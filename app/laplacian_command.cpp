@@ -1,11 +1,11 @@
 // `iarap laplacian MESH`: writes one Laplace-Beltrami operator as a Matrix Market file and/or reports the
 // properties of the operators (paper Section 6, Table 3) as a table or JSON.
 #include "command_registry.h"
-#include "json_text.h"
 #include "iarap/core/errors.h"
 #include "iarap/io/read_mesh.h"
 #include "iarap/laplacian/laplacian_properties.h"
 #include "iarap/laplacian/laplacians.h"
+#include "json_text.h"
 
 #include <nlohmann/json.hpp>
 
@@ -35,8 +35,7 @@ void write_matrix_market(const std::string& path, const Eigen::SparseMatrix<doub
       target.parent_path() / ("." + target.filename().string() + ".tmp." + std::to_string(::getpid()));
   {
     std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    if (!out)
-      throw iarap::InputError(path + ": cannot create the temporary file " + temporary.string());
+    if (!out) throw iarap::InputError(path + ": cannot create the temporary file " + temporary.string());
     out << "%%MatrixMarket matrix coordinate real general\n% " << comment << "\n";
     out << L.rows() << " " << L.cols() << " " << L.nonZeros() << "\n";
     char line[96];
@@ -121,8 +120,7 @@ void run(const LaplacianArgs& args) {
       throw iarap::InputError(args.out + ": refusing to overwrite the input mesh");
   }
   const iarap::MeshData mesh = iarap::read_mesh(args.mesh);
-  for (const auto& note : mesh.notes)
-    std::cerr << "iarap: " << args.mesh << ": " << note << "\n";
+  for (const auto& note : mesh.notes) std::cerr << "iarap: " << args.mesh << ": " << note << "\n";
 
   std::vector<iarap::LaplacianKind> kinds;
   if (args.kind.empty())
@@ -130,8 +128,7 @@ void run(const LaplacianArgs& args) {
   else
     kinds.push_back(iarap::parse_laplacian_kind(args.kind));
   bool needs_intrinsic = false;
-  for (auto kind : kinds)
-    needs_intrinsic = needs_intrinsic || kind != iarap::LaplacianKind::Cotan;
+  for (auto kind : kinds) needs_intrinsic = needs_intrinsic || kind != iarap::LaplacianKind::Cotan;
   // Properties measure intrinsic adjacency for every kind, so the triangulation is always built for them.
   std::unique_ptr<iarap::IntrinsicDelaunay> idt;
   if (needs_intrinsic || args.properties || args.json)
@@ -145,15 +142,12 @@ void run(const LaplacianArgs& args) {
     std::cerr << "iarap: wrote " << args.out << " (" << L.rows() << " x " << L.cols() << ", " << L.nonZeros()
               << " entries)\n";
   }
-  if (!args.properties && !args.json)
-    return;
+  if (!args.properties && !args.json) return;
   std::vector<iarap::LaplacianProperties> rows;
-  for (auto kind : kinds)
-    rows.push_back(iarap::laplacian_properties(mesh.V, mesh.F, kind, idt.get()));
+  for (auto kind : kinds) rows.push_back(iarap::laplacian_properties(mesh.V, mesh.F, kind, idt.get()));
   if (args.json) {
     nlohmann::json array = nlohmann::json::array();
-    for (const auto& p : rows)
-      array.push_back(to_json(p));
+    for (const auto& p : rows) array.push_back(to_json(p));
     std::cout << iarap::cli::json_text(array);
   } else {
     print_table(rows);
@@ -170,7 +164,8 @@ const bool registered = iarap::cli::register_command(
            ->required()
            ->check(CLI::ExistingFile);
        sub->add_option("--kind", args->kind, "operator; without it --properties/--json report every kind")
-           ->check(CLI::IsMember({"cotan", "intrinsic", "iarap", "iarap-plus", "iarap-sym", "iarap-refined"}));
+           ->check(
+               CLI::IsMember({"cotan", "intrinsic", "iarap", "iarap-plus", "iarap-sym", "iarap-refined"}));
        sub->add_option("--out", args->out, "write the operator as Matrix Market (coordinate real general)");
        sub->add_flag("--properties", args->properties, "print the property table");
        sub->add_flag("--json", args->json, "print the properties as a JSON array, one object per kind");

@@ -12,8 +12,7 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", "iarap " + iarap::version());
   auto& commands = iarap::cli::command_registry();
   std::sort(commands.begin(), commands.end(), [](const auto& a, const auto& b) { return a.name < b.name; });
-  for (const auto& command : commands)
-    command.setup(app);
+  for (const auto& command : commands) command.setup(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

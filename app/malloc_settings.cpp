@@ -29,7 +29,8 @@ namespace {
 
 constexpr const char* kHugePages = "glibc.malloc.hugetlb";
 // What the tool sets besides huge pages (see the top of the file), each unless the user set it.
-constexpr const char* kHeapSettings[] = {"glibc.malloc.mmap_threshold=33554432", "glibc.malloc.top_pad=67108864",
+constexpr const char* kHeapSettings[] = {"glibc.malloc.mmap_threshold=33554432",
+                                         "glibc.malloc.top_pad=67108864",
                                          "glibc.malloc.trim_threshold=134217728"};
 
 // False when /sys says "[never]" (or cannot be read): malloc's advice would change nothing.
@@ -64,14 +65,15 @@ bool sets_tunable(const char* tunables, const char* setting) {
 
 void use_malloc_settings(int, char** argv, char** envp) {
   const char* tunables = find_variable(envp, "GLIBC_TUNABLES");
-  if (tunables != nullptr && std::strstr(tunables, kHugePages) != nullptr) return; // chosen, or already re-executed
+  if (tunables != nullptr && std::strstr(tunables, kHugePages) != nullptr)
+    return; // chosen, or already re-executed
   const char* preload = find_variable(envp, "LD_PRELOAD");
   if (preload != nullptr && std::strstr(preload, "vgpreload") != nullptr) return; // running under valgrind
   if (!transparent_huge_pages_available()) return;
   static char entry[2048];
   const bool has_user_tunables = tunables != nullptr && *tunables != '\0';
-  int length = std::snprintf(entry, sizeof entry, "GLIBC_TUNABLES=%s%s%s=1", has_user_tunables ? tunables : "",
-                             has_user_tunables ? ":" : "", kHugePages);
+  int length = std::snprintf(entry, sizeof entry, "GLIBC_TUNABLES=%s%s%s=1",
+                             has_user_tunables ? tunables : "", has_user_tunables ? ":" : "", kHugePages);
   for (const char* setting : kHeapSettings)
     if (length > 0 && length < static_cast<int>(sizeof entry) && !sets_tunable(tunables, setting))
       length += std::snprintf(entry + length, sizeof entry - static_cast<size_t>(length), ":%s", setting);
@@ -89,6 +91,7 @@ void use_malloc_settings(int, char** argv, char** envp) {
   std::free(environment); // the exec failed: go on with ordinary pages
 }
 
-__attribute__((section(".preinit_array"), used)) void (*const set_malloc_settings)(int, char**, char**) = &use_malloc_settings;
+__attribute__((section(".preinit_array"),
+               used)) void (*const set_malloc_settings)(int, char**, char**) = &use_malloc_settings;
 
 } // namespace

@@ -9,9 +9,11 @@
 
 namespace {
 
-void prefer_passive_waits(int, char**, char**) { ::setenv("OMP_WAIT_POLICY", "passive", 0); }
+void prefer_passive_waits(int, char**, char**) {
+  ::setenv("OMP_WAIT_POLICY", "passive", 0);
+}
 
-__attribute__((section(".preinit_array"), used)) void (*const set_wait_policy)(int, char**, char**) =
-    &prefer_passive_waits;
+__attribute__((section(".preinit_array"),
+               used)) void (*const set_wait_policy)(int, char**, char**) = &prefer_passive_waits;
 
 } // namespace

@@ -97,7 +97,6 @@ void run_serve(const ServeArguments& args, bool host_given) {
                  "network.\n";
   }
 
-
   serve::PrivateTempDir temp;
   httplib::Server server;
   // A worker thread serves one connection until it closes or idles past the keep-alive timeout, so idle
@@ -121,8 +120,7 @@ void run_serve(const ServeArguments& args, bool host_given) {
   // Debian's httplib listens with a backlog of 5: a burst of more new connections (20 at once from a
   // script) overflowed it, and clients got resets or waited out SYN retries. Listening again on the
   // listening socket sets a new backlog (Linux).
-  if (listening != INVALID_SOCKET)
-    ::listen(listening, 128);
+  if (listening != INVALID_SOCKET) ::listen(listening, 128);
   if (!host_given || is_loopback(args.host)) {
     for (const char* name : {"127.0.0.1", "localhost", "[::1]"})
       config.allowed_hosts.push_back(std::string(name) + ":" + std::to_string(port));
@@ -140,8 +138,7 @@ void run_serve(const ServeArguments& args, bool host_given) {
   const bool clean = server.listen_after_bind();
   pthread_kill(signal_thread.native_handle(), SIGTERM); // wakes the signal thread if listening failed
   signal_thread.join();
-  if (!clean)
-    throw Error("the server stopped listening unexpectedly");
+  if (!clean) throw Error("the server stopped listening unexpectedly");
   std::cerr << "serve: stopped\n";
 }
 

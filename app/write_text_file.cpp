@@ -13,8 +13,7 @@ namespace iarap::cli {
 void write_text_file(const std::string& path, const std::string& text) {
   const std::string temp = path + ".tmp" + std::to_string(::getpid());
   std::FILE* file = std::fopen(temp.c_str(), "wb");
-  if (file == nullptr)
-    throw InputError(path + ": cannot write: " + std::strerror(errno));
+  if (file == nullptr) throw InputError(path + ": cannot write: " + std::strerror(errno));
   const bool written = std::fwrite(text.data(), 1, text.size(), file) == text.size();
   const int saved_errno = errno;
   const bool closed = std::fclose(file) == 0;

@@ -38,8 +38,7 @@ Problem make_problem(const std::string& path) {
   p.targets.resize(p.fixed.size(), 3);
   for (Eigen::Index k = 0; k < p.fixed.size(); ++k) {
     p.targets.row(k) = V.row(p.fixed(k));
-    if (top[static_cast<size_t>(k)])
-      p.targets(k, 1) += 0.1 * diag;
+    if (top[static_cast<size_t>(k)]) p.targets(k, 1) += 0.1 * diag;
   }
   return p;
 }

@@ -30,11 +30,15 @@ double seconds_for(const Eigen::MatrixXi& F) {
 void BM_HighValenceDisc(benchmark::State& state) {
   iarap::set_thread_count(1);
   const Eigen::MatrixXi F = decreasing_disc(static_cast<int>(state.range(0)));
-  for (auto _ : state)
-    benchmark::DoNotOptimize(iarap::edge_topology(F, static_cast<int>(F.rows()) + 1));
+  for (auto _ : state) benchmark::DoNotOptimize(iarap::edge_topology(F, static_cast<int>(F.rows()) + 1));
   state.SetComplexityN(state.range(0));
 }
-BENCHMARK(BM_HighValenceDisc)->Arg(50000)->Arg(100000)->Arg(200000)->Unit(benchmark::kMillisecond)->Complexity();
+BENCHMARK(BM_HighValenceDisc)
+    ->Arg(50000)
+    ->Arg(100000)
+    ->Arg(200000)
+    ->Unit(benchmark::kMillisecond)
+    ->Complexity();
 
 // 50K and 200K alternately in every iteration, so that other load on the machine hits both alike.
 void BM_ValenceRatio200KOver50K(benchmark::State& state) {

@@ -18,8 +18,7 @@ std::vector<Eigen::Matrix3d> matrices(Kind kind) {
   std::normal_distribution<double> n;
   auto random = [&] {
     Eigen::Matrix3d A;
-    for (int i = 0; i < 9; ++i)
-      A(i) = n(rng);
+    for (int i = 0; i < 9; ++i) A(i) = n(rng);
     return A;
   };
   std::vector<Eigen::Matrix3d> out(1024);
@@ -32,8 +31,7 @@ std::vector<Eigen::Matrix3d> matrices(Kind kind) {
     case NearRotation: {
       Eigen::HouseholderQR<Eigen::Matrix3d> qr(A);
       Eigen::Matrix3d Q = qr.householderQ();
-      if (Q.determinant() < 0)
-        Q.col(0) = -Q.col(0);
+      if (Q.determinant() < 0) Q.col(0) = -Q.col(0);
       S = Q * (Eigen::Matrix3d::Identity() + 0.05 * random());
       break;
     }
@@ -58,7 +56,8 @@ void BM_PolarRotation(benchmark::State& state) {
 }
 
 // Guesses for polar_rotation_near: the optimal rotation of S turned by 0.02 rad about a random axis, the
-// guess a local step has in the middle of an ARAP solve (its rotations move by about that much per iteration).
+// guess a local step has in the middle of an ARAP solve (its rotations move by about that much per
+// iteration).
 std::vector<Eigen::Matrix3d> nearby_guesses(const std::vector<Eigen::Matrix3d>& S) {
   std::mt19937 rng(7);
   std::normal_distribution<double> n;
@@ -99,8 +98,7 @@ void BM_JacobiSvdRotation(benchmark::State& state) {
   for (auto _ : state) {
     const Eigen::JacobiSVD<Eigen::Matrix3d> svd(S[i++ & 1023], Eigen::ComputeFullU | Eigen::ComputeFullV);
     Eigen::Matrix3d U = svd.matrixU();
-    if (U.determinant() * svd.matrixV().determinant() < 0)
-      U.col(2) = -U.col(2);
+    if (U.determinant() * svd.matrixV().determinant() < 0) U.col(2) = -U.col(2);
     benchmark::DoNotOptimize(Eigen::Matrix3d(U * svd.matrixV().transpose()));
   }
   state.SetItemsProcessed(state.iterations());
@@ -108,8 +106,7 @@ void BM_JacobiSvdRotation(benchmark::State& state) {
 
 void kinds(benchmark::internal::Benchmark* b) {
   b->ArgName("kind(0=general,1=near-rotation,2=spd,3=rank2)");
-  for (int k = 0; k < 4; ++k)
-    b->Arg(k);
+  for (int k = 0; k < 4; ++k) b->Arg(k);
 }
 
 } // namespace

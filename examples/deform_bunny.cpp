@@ -6,10 +6,10 @@
 // Built by the top-level CMake build (target deform_bunny, run by CTest as example_deform_bunny), or
 // alone against an installed iarap: cmake -S examples -B build-example -DCMAKE_PREFIX_PATH=<prefix>.
 #include <iarap/core/errors.h>
+#include <iarap/core/version.h>
 #include <iarap/io/read_mesh.h>
 #include <iarap/io/write_mesh.h>
 #include <iarap/solver/arap.h>
-#include <iarap/core/version.h>
 
 #include <iostream>
 #include <vector>
@@ -39,8 +39,7 @@ int main(int argc, char** argv) {
       const bool moved = k >= bottom.size();
       fixed(static_cast<Eigen::Index>(k)) = moved ? top[k - bottom.size()] : bottom[k];
       targets.row(static_cast<Eigen::Index>(k)) = mesh.V.row(fixed(static_cast<Eigen::Index>(k)));
-      if (moved)
-        targets(static_cast<Eigen::Index>(k), 0) += 0.1 * diagonal;
+      if (moved) targets(static_cast<Eigen::Index>(k), 0) += 0.1 * diagonal;
     }
 
     std::cout << "iarap " << iarap::version() << ": " << mesh.V.rows() << " vertices, " << mesh.F.rows()

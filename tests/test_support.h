@@ -3,8 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cstdlib>
-#include <iostream>
 #include <filesystem>
+#include <iostream>
 #include <string>
 #include <unistd.h>
 
@@ -51,7 +51,8 @@ inline std::string shared_mesh_in_loop(const std::string& name) {
 
 // A fresh temporary directory for one test's outputs.
 inline std::filesystem::path temp_dir(const std::string& tag) {
-  auto dir = std::filesystem::temp_directory_path() / ("iarap_test_" + tag + "_" + std::to_string(::getpid()));
+  auto dir =
+      std::filesystem::temp_directory_path() / ("iarap_test_" + tag + "_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   return dir;
 }
@@ -60,10 +61,10 @@ inline std::filesystem::path temp_dir(const std::string& tag) {
 
 // Declares `const std::string var` = the path of shared mesh `name`; skips the test when it is absent, or
 // fails it when IARAP_REQUIRE_SHARED_MESHES=1.
-#define IARAP_SHARED_MESH_OR_SKIP(var, name)                                                                   \
-  const std::string var = ::iarap::test::shared_mesh_path(name);                                              \
-  if (var.empty()) {                                                                                           \
-    if (::iarap::test::shared_meshes_required())                                                               \
-      FAIL() << "shared mesh " << (name) << " is missing and IARAP_REQUIRE_SHARED_MESHES=1";                    \
-    GTEST_SKIP() << "shared mesh " << (name) << " not found (../shared/meshes or $IARAP_SHARED_MESHES)";        \
+#define IARAP_SHARED_MESH_OR_SKIP(var, name)                                                                 \
+  const std::string var = ::iarap::test::shared_mesh_path(name);                                             \
+  if (var.empty()) {                                                                                         \
+    if (::iarap::test::shared_meshes_required())                                                             \
+      FAIL() << "shared mesh " << (name) << " is missing and IARAP_REQUIRE_SHARED_MESHES=1";                 \
+    GTEST_SKIP() << "shared mesh " << (name) << " not found (../shared/meshes or $IARAP_SHARED_MESHES)";     \
   }

@@ -68,8 +68,7 @@ std::string safe_label(const std::string& name) {
 // A mesh name without its extension, safe as a file name.
 std::string file_stem(const std::string& name) {
   std::string stem = safe_label(name);
-  if (const std::size_t dot = stem.rfind('.'); dot != std::string::npos && dot > 0)
-    stem.resize(dot);
+  if (const std::size_t dot = stem.rfind('.'); dot != std::string::npos && dot > 0) stem.resize(dot);
   return stem;
 }
 
@@ -89,8 +88,7 @@ std::string replace_all(std::string text, const std::string& from, const std::st
 
 std::string read_file_bytes(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
-  if (!in)
-    throw Error("cannot read back " + path.filename().string());
+  if (!in) throw Error("cannot read back " + path.filename().string());
   std::ostringstream bytes;
   bytes << in.rdbuf();
   return bytes.str();
@@ -98,8 +96,9 @@ std::string read_file_bytes(const std::filesystem::path& path) {
 
 const char* const json_type_hint = "this route takes a JSON body with Content-Type: application/json "
                                    "(curl: -H 'Content-Type: application/json')";
-const char* const raw_file_hint = "send the file's bytes as the body with a Content-Type other than a form's, "
-                                  "e.g. curl --data-binary @mesh.off -H 'Content-Type: application/octet-stream'";
+const char* const raw_file_hint =
+    "send the file's bytes as the body with a Content-Type other than a form's, "
+    "e.g. curl --data-binary @mesh.off -H 'Content-Type: application/octet-stream'";
 
 bool is_form(const std::string& content_type) {
   return content_type.rfind("application/x-www-form-urlencoded", 0) == 0 ||
@@ -119,8 +118,7 @@ void require_json_content(const httplib::Request& req) {
 // File bodies (uploads, saved sessions) are the raw bytes with any Content-Type but a form's: a form
 // encodes the bytes, and curl's default -d / --data-binary type is one.
 void require_raw_file(const httplib::Request& req) {
-  if (is_form(req.get_header_value("Content-Type")))
-    throw HttpError(415, raw_file_hint);
+  if (is_form(req.get_header_value("Content-Type"))) throw HttpError(415, raw_file_hint);
 }
 
 ArapMethod method_param(const httplib::Request& req) {
@@ -130,11 +128,9 @@ ArapMethod method_param(const httplib::Request& req) {
 json state_json(const ServeConfig& config, const ServeState& state) {
   json j;
   j["meshes"] = json::array();
-  for (const auto& mesh : config.meshes)
-    j["meshes"].push_back(mesh.name);
+  for (const auto& mesh : config.meshes) j["meshes"].push_back(mesh.name);
   j["methods"] = json::array();
-  for (const ArapMethod method : all_methods)
-    j["methods"].push_back(arap_method_name(method));
+  for (const ArapMethod method : all_methods) j["methods"].push_back(arap_method_name(method));
   j["limits"] = {{"max_json_bytes", config.max_json_bytes},
                  {"max_upload_bytes", config.max_upload_bytes},
                  {"max_iterations", config.max_iterations}};
@@ -154,9 +150,8 @@ json state_json(const ServeConfig& config, const ServeState& state) {
 }
 
 SolveRequest parse_solve_request(const json& body, int max_iterations) {
-  require_known_fields(body,
-                       {"method", "iterations", "tolerance", "transform", "handle_targets", "cell_energy",
-                        "accelerator", "window", "gradient_tolerance"});
+  require_known_fields(body, {"method", "iterations", "tolerance", "transform", "handle_targets",
+                              "cell_energy", "accelerator", "window", "gradient_tolerance"});
   SolveRequest request;
   request.method = parse_arap_method(string_field(body, "method", "iarap"));
   request.iterations = integer_field(body, "iterations", 5, 1, max_iterations);
@@ -195,8 +190,7 @@ std::string solve_frame(const SolveRequest& request, const SolveResult& result) 
   const ArapReport& report = result.report;
   BinaryFrame frame;
   frame.add("positions", result.positions);
-  if (request.cell_energy)
-    frame.add("cell_energy", result.cell_energy);
+  if (request.cell_energy) frame.add("cell_energy", result.cell_energy);
   return frame.encode({{"method", arap_method_name(request.method)},
                        {"accelerator", arap_accelerator_name(report.accelerator)},
                        {"iterations", report.iterations},
@@ -215,8 +209,7 @@ std::string solve_frame(const SolveRequest& request, const SolveResult& result) 
 
 // Messages may quote client data (a parser's last token, a file's line): at most 600 characters go back.
 void send_error(httplib::Response& res, std::string message, int status) {
-  if (message.size() > 600)
-    message = message.substr(0, 600) + "... (cut)";
+  if (message.size() > 600) message = message.substr(0, 600) + "... (cut)";
   send_json(res, {{"error", message}}, status);
 }
 
@@ -266,10 +259,9 @@ namespace {
 // The message of an error status httplib answers itself (no handler ran): 404, 413 with the limit of the
 // route, and 415 for a form body httplib refused as too large for a form (8 KiB) when it is within the
 // route's limit (curl --data-binary sends a form's type unless told otherwise).
-httplib::Server::HandlerResponse answer_transport_error(const ServeConfig& config, const httplib::Request& req,
-                                                        httplib::Response& res) {
-  if (!res.body.empty())
-    return httplib::Server::HandlerResponse::Unhandled;
+httplib::Server::HandlerResponse answer_transport_error(const ServeConfig& config,
+                                                        const httplib::Request& req, httplib::Response& res) {
+  if (!res.body.empty()) return httplib::Server::HandlerResponse::Unhandled;
   const bool upload = req.path == "/api/upload";
   const std::size_t limit = upload ? config.max_upload_bytes : config.max_json_bytes;
   std::string message = "HTTP " + std::to_string(res.status);
@@ -277,18 +269,21 @@ httplib::Server::HandlerResponse answer_transport_error(const ServeConfig& confi
     message = "not found: " + safe_label(req.path);
   } else if (res.status == 400) {
     // httplib refuses a POST without Content-Length (e.g. `curl -X POST URL`) before any route runs.
-    message = "malformed HTTP request: a " + safe_label(req.method) +
-              " needs a Content-Length header (send a body, e.g. curl -d '{}' -H 'Content-Type: application/json')";
+    message =
+        "malformed HTTP request: a " + safe_label(req.method) +
+        " needs a Content-Length header (send a body, e.g. curl -d '{}' -H 'Content-Type: application/json')";
   } else if (res.status == 413) {
     const std::string length = req.get_header_value("Content-Length");
     const bool within = !length.empty() && length.size() < 19 &&
-                        length.find_first_not_of("0123456789") == std::string::npos && std::stoull(length) <= limit;
+                        length.find_first_not_of("0123456789") == std::string::npos &&
+                        std::stoull(length) <= limit;
     if (is_form(req.get_header_value("Content-Type")) && within) {
       res.status = 415;
       message = upload || req.path == "/api/scenario/load" ? raw_file_hint : json_type_hint;
     } else {
       message = std::string("request body too large; the limit for ") +
-                (upload ? "mesh uploads" : "JSON bodies and scenario files") + " is " + byte_limit_text(limit);
+                (upload ? "mesh uploads" : "JSON bodies and scenario files") + " is " +
+                byte_limit_text(limit);
     }
   }
   send_error(res, message, res.status);
@@ -354,17 +349,16 @@ void register_routes(httplib::Server& server, const ServeConfig& config, ServeSt
     if (ext != "obj" && ext != "off" && ext != "ply" && ext != "stl")
       throw HttpError(400, "upload name \"" + name + "\" must end in .obj, .off, .ply or .stl");
     require_raw_file(req);
-    if (req.body.empty())
-      throw HttpError(400, "upload body is empty; send the mesh file's bytes");
+    if (req.body.empty()) throw HttpError(400, "upload body is empty; send the mesh file's bytes");
     if (req.body.size() > config.max_upload_bytes)
-      throw HttpError(413, "upload has " + std::to_string(req.body.size()) + " bytes; the limit for file uploads is " +
+      throw HttpError(413, "upload has " + std::to_string(req.body.size()) +
+                               " bytes; the limit for file uploads is " +
                                byte_limit_text(config.max_upload_bytes));
     ScopedFile file(temp.unique_path("upload", ext));
     {
       std::ofstream out(file.path(), std::ios::binary);
       out.write(req.body.data(), static_cast<std::streamsize>(req.body.size()));
-      if (!out)
-        throw Error("cannot store the upload in the server's temporary folder");
+      if (!out) throw Error("cannot store the upload in the server's temporary folder");
     }
     MeshData mesh;
     try {
@@ -417,14 +411,12 @@ void register_routes(httplib::Server& server, const ServeConfig& config, ServeSt
   routes.post("/api/cancel", [&](const httplib::Request&, httplib::Response& res) {
     SolveProgress& p = state.progress();
     const bool running = p.running.load();
-    if (running)
-      p.cancel_requested = true;
+    if (running) p.cancel_requested = true;
     send_json(res, {{"cancelling", running}});
   });
 
   routes.post("/api/reset", [&](const httplib::Request& req, httplib::Response& res) {
-    if (!req.body.empty())
-      require_known_fields(json_body(req, config), {});
+    if (!req.body.empty()) require_known_fields(json_body(req, config), {});
     state.reset();
     send_json(res, state_json(config, state));
   });
@@ -435,8 +427,9 @@ void register_routes(httplib::Server& server, const ServeConfig& config, ServeSt
     const SolveRequest request = parse_target_request(json_body(req, config), config.max_iterations);
     const ConstraintTargets targets = state.constraint_targets(request.method, request);
     const std::string mesh = state.mesh_summary().name;
-    const SavedSession saved = save_session(
-        targets, request.transform, "saved by iarap serve from " + mesh + ", method " + arap_method_name(request.method));
+    const SavedSession saved =
+        save_session(targets, request.transform,
+                     "saved by iarap serve from " + mesh + ", method " + arap_method_name(request.method));
     const std::string file = file_stem(mesh) + (saved.is_scenario ? "_scenario.json" : "_constraints.txt");
     res.set_header("Content-Disposition", "attachment; filename=\"" + file + "\"");
     send_file(res, saved.text, saved.is_scenario ? "application/json" : "text/plain");
@@ -489,8 +482,7 @@ void register_routes(httplib::Server& server, const ServeConfig& config, ServeSt
 
   server.Get("/.*", [&config](const httplib::Request& req, httplib::Response& res) {
     const std::optional<StaticFile> file = resolve_static_file(config.app_dir, req.path);
-    if (!file)
-      throw HttpError(404, "not found: " + safe_label(req.path));
+    if (!file) throw HttpError(404, "not found: " + safe_label(req.path));
     res.set_header("Cache-Control", "no-cache");
     res.set_header("X-Content-Type-Options", "nosniff");
     send_file(res, read_file_bytes(file->path), file->content_type);

@@ -27,8 +27,7 @@ void BinaryFrame::add(const std::string& name, const std::vector<std::uint32_t>&
 std::string BinaryFrame::encode(nlohmann::json header) const {
   header["arrays"] = arrays_;
   std::string json = header.dump();
-  while ((4 + json.size()) % 4 != 0)
-    json.push_back(' ');
+  while ((4 + json.size()) % 4 != 0) json.push_back(' ');
   const auto length = static_cast<std::uint32_t>(json.size());
   std::string body(4, '\0');
   for (int k = 0; k < 4; ++k)

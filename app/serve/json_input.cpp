@@ -8,10 +8,8 @@
 namespace iarap::serve {
 
 std::string short_description(const nlohmann::json& value) {
-  if (value.is_array())
-    return "an array of " + std::to_string(value.size()) + " elements";
-  if (value.is_object())
-    return "an object of " + std::to_string(value.size()) + " members";
+  if (value.is_array()) return "an array of " + std::to_string(value.size()) + " elements";
+  if (value.is_object()) return "an object of " + std::to_string(value.size()) + " members";
   if (value.is_string()) {
     const std::string& text = value.get_ref<const std::string&>();
     return text.size() <= 32 ? nlohmann::json(text).dump()
@@ -47,15 +45,15 @@ void check_json_limits(const std::string& text, const JsonLimits& limits) {
       ++values;
     }
     if (values > limits.max_values)
-      throw HttpError(400, "JSON holds more than " + std::to_string(limits.max_values) +
-                               " values (at byte " + std::to_string(i) + ")");
+      throw HttpError(400, "JSON holds more than " + std::to_string(limits.max_values) + " values (at byte " +
+                               std::to_string(i) + ")");
   }
 }
 
 nlohmann::json parse_json_object(const std::string& body, std::size_t max_bytes) {
   if (body.size() > max_bytes) {
-    throw HttpError(413, "request body has " + std::to_string(body.size()) + " bytes; the limit for JSON bodies is " +
-                             byte_limit_text(max_bytes));
+    throw HttpError(413, "request body has " + std::to_string(body.size()) +
+                             " bytes; the limit for JSON bodies is " + byte_limit_text(max_bytes));
   }
   check_json_limits(body);
   nlohmann::json object;
@@ -74,12 +72,10 @@ nlohmann::json parse_json_object(const std::string& body, std::size_t max_bytes)
 void require_known_fields(const nlohmann::json& object, std::initializer_list<const char*> allowed) {
   for (const auto& item : object.items()) {
     bool known = false;
-    for (const char* name : allowed)
-      known = known || item.key() == name;
+    for (const char* name : allowed) known = known || item.key() == name;
     if (!known) {
       std::string names;
-      for (const char* name : allowed)
-        names += (names.empty() ? "" : ", ") + std::string(name);
+      for (const char* name : allowed) names += (names.empty() ? "" : ", ") + std::string(name);
       throw HttpError(400, "unknown field " + short_description(item.key()) + "; expected " + names);
     }
   }
@@ -89,10 +85,8 @@ namespace {
 
 const nlohmann::json* array_member(const nlohmann::json& object, const char* field) {
   const auto it = object.find(field);
-  if (it == object.end())
-    return nullptr;
-  if (!it->is_array())
-    throw HttpError(400, std::string(field) + " must be an array, got " + it->type_name());
+  if (it == object.end()) return nullptr;
+  if (!it->is_array()) throw HttpError(400, std::string(field) + " must be an array, got " + it->type_name());
   return &*it;
 }
 
@@ -100,8 +94,7 @@ const nlohmann::json* array_member(const nlohmann::json& object, const char* fie
 
 Eigen::VectorXi integer_array_field(const nlohmann::json& object, const char* field) {
   const nlohmann::json* array = array_member(object, field);
-  if (array == nullptr)
-    return {};
+  if (array == nullptr) return {};
   Eigen::VectorXi values(static_cast<Eigen::Index>(array->size()));
   for (std::size_t i = 0; i < array->size(); ++i) {
     const nlohmann::json& value = (*array)[i];
@@ -123,8 +116,7 @@ Eigen::VectorXi integer_array_field(const nlohmann::json& object, const char* fi
 
 std::vector<double> number_array_field(const nlohmann::json& object, const char* field) {
   const nlohmann::json* array = array_member(object, field);
-  if (array == nullptr)
-    return {};
+  if (array == nullptr) return {};
   std::vector<double> values(array->size());
   for (std::size_t i = 0; i < array->size(); ++i) {
     const nlohmann::json& value = (*array)[i];
@@ -140,8 +132,7 @@ std::vector<double> number_array_field(const nlohmann::json& object, const char*
 
 int integer_field(const nlohmann::json& object, const char* field, int fallback, int min, int max) {
   const auto it = object.find(field);
-  if (it == object.end())
-    return fallback;
+  if (it == object.end()) return fallback;
   const bool integer = it->is_number_integer() || it->is_number_unsigned();
   const double value = it->is_number() ? it->get<double>() : 0.0;
   if (!integer || value < min || value > max) {
@@ -153,8 +144,7 @@ int integer_field(const nlohmann::json& object, const char* field, int fallback,
 
 double number_field(const nlohmann::json& object, const char* field, double fallback) {
   const auto it = object.find(field);
-  if (it == object.end())
-    return fallback;
+  if (it == object.end()) return fallback;
   if (!it->is_number() || !std::isfinite(it->get<double>()))
     throw HttpError(400, std::string(field) + " must be a finite number, got " + short_description(*it));
   return it->get<double>();
@@ -162,8 +152,7 @@ double number_field(const nlohmann::json& object, const char* field, double fall
 
 std::string string_field(const nlohmann::json& object, const char* field, const std::string& fallback) {
   const auto it = object.find(field);
-  if (it == object.end())
-    return fallback;
+  if (it == object.end()) return fallback;
   if (!it->is_string())
     throw HttpError(400, std::string(field) + " must be a string, got " + short_description(*it));
   return it->get<std::string>();
@@ -171,8 +160,7 @@ std::string string_field(const nlohmann::json& object, const char* field, const 
 
 bool bool_field(const nlohmann::json& object, const char* field, bool fallback) {
   const auto it = object.find(field);
-  if (it == object.end())
-    return fallback;
+  if (it == object.end()) return fallback;
   if (!it->is_boolean())
     throw HttpError(400, std::string(field) + " must be true or false, got " + short_description(*it));
   return it->get<bool>();

@@ -14,7 +14,7 @@ namespace iarap::serve {
 // Bounds on a JSON text checked before it is parsed: nlohmann's parser recurses once per nesting level
 // (100,000 nested arrays overflowed the stack) and builds a 16-byte node per value.
 struct JsonLimits {
-  int max_depth = 32;                        // the API's bodies nest 2 levels, scenario files 5
+  int max_depth = 32;                            // the API's bodies nest 2 levels, scenario files 5
   std::size_t max_values = std::size_t{1} << 22; // 4M values: a selection of every vertex of a 4M-vertex mesh
 };
 

@@ -12,8 +12,7 @@ namespace iarap::serve {
 PrivateTempDir::PrivateTempDir() {
   std::error_code error;
   std::filesystem::path base = std::filesystem::temp_directory_path(error);
-  if (error)
-    base = "/tmp";
+  if (error) base = "/tmp";
   std::string pattern = (base / "iarap-serve-XXXXXX").string();
   std::vector<char> buffer(pattern.begin(), pattern.end());
   buffer.push_back('\0');

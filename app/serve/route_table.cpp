@@ -19,8 +19,7 @@ void RouteTable::post(const std::string& path, httplib::Server::Handler handler)
 void RouteTable::answer_other_methods_with_405() {
   for (const auto& [path, methods] : methods_) {
     std::string allow;
-    for (const std::string& method : methods)
-      allow += (allow.empty() ? "" : ", ") + method;
+    for (const std::string& method : methods) allow += (allow.empty() ? "" : ", ") + method;
     const auto refuse = [path = path, allow](const httplib::Request& req, httplib::Response& res) {
       res.set_header("Allow", allow);
       throw HttpError(405, req.method + " is not allowed on " + path + "; use " + allow);
@@ -28,10 +27,8 @@ void RouteTable::answer_other_methods_with_405() {
     const auto has = [&methods = methods](const char* method) {
       return std::find(methods.begin(), methods.end(), method) != methods.end();
     };
-    if (!has("GET"))
-      server_.Get(path, refuse);
-    if (!has("POST"))
-      server_.Post(path, refuse);
+    if (!has("GET")) server_.Get(path, refuse);
+    if (!has("POST")) server_.Post(path, refuse);
     server_.Put(path, refuse);
     server_.Delete(path, refuse);
     server_.Patch(path, refuse);

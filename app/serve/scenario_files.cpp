@@ -18,7 +18,9 @@ namespace {
 
 using nlohmann::json;
 
-std::vector<int> to_list(const Eigen::VectorXi& v) { return std::vector<int>(v.data(), v.data() + v.size()); }
+std::vector<int> to_list(const Eigen::VectorXi& v) {
+  return std::vector<int>(v.data(), v.data() + v.size());
+}
 
 // The 3 x 3 part of an affine map is a rotation when R^T R = I and det R = 1 up to the rounding of the
 // browser's double maths (quaternion to matrix: a few ulps).
@@ -31,8 +33,7 @@ bool is_rigid(const Eigen::Matrix4d& M) {
 std::string scenario_text(const ConstraintTargets& targets, const Eigen::Matrix4d& M,
                           const std::string& description) {
   json scenario = {{"description", description}};
-  if (targets.fixed.size() > 0)
-    scenario["fixed"] = {{"indices", to_list(targets.fixed)}};
+  if (targets.fixed.size() > 0) scenario["fixed"] = {{"indices", to_list(targets.fixed)}};
   if (targets.handle.size() > 0) {
     // target = R v + t: the scenario's rotation about the centre (0, 0, 0), then its translation.
     const Eigen::AngleAxisd rotation(Eigen::Matrix3d(M.topLeftCorner<3, 3>()));
@@ -71,8 +72,7 @@ std::string constraints_text(const ConstraintTargets& targets, const std::string
 SavedSession save_session(const ConstraintTargets& targets, const std::optional<Eigen::Matrix4d>& transform,
                           const std::string& description) {
   const Eigen::Matrix4d M = transform.value_or(Eigen::Matrix4d::Identity());
-  if (targets.anchored_at_rest && is_rigid(M))
-    return {scenario_text(targets, M, description), true};
+  if (targets.anchored_at_rest && is_rigid(M)) return {scenario_text(targets, M, description), true};
   return {constraints_text(targets, description), false};
 }
 

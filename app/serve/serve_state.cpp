@@ -27,8 +27,7 @@ std::vector<float> to_float_rows(const Eigen::MatrixXd& X) {
 
 Eigen::MatrixXd gather_rows(const Eigen::MatrixXd& X, const Eigen::VectorXi& rows) {
   Eigen::MatrixXd out(rows.size(), X.cols());
-  for (Eigen::Index i = 0; i < rows.size(); ++i)
-    out.row(i) = X.row(rows[i]);
+  for (Eigen::Index i = 0; i < rows.size(); ++i) out.row(i) = X.row(rows[i]);
   return out;
 }
 
@@ -42,8 +41,7 @@ void check_index_set(const Eigen::VectorXi& set, const char* name, int vertex_co
                        " vertices (0-based indices)");
     }
     const auto [it, inserted] = seen.emplace(set[i], std::string(name) + "[" + std::to_string(i) + "]");
-    if (!inserted)
-      throw InputError(where + " repeats " + it->second);
+    if (!inserted) throw InputError(where + " repeats " + it->second);
   }
 }
 
@@ -81,8 +79,7 @@ void ServeState::load_mesh(const std::string& name, MeshData mesh) {
   const MeshReport report = check_mesh(mesh.V, mesh.F);
   if (!report.usable()) {
     std::string message = name + ": mesh not usable for ARAP:";
-    for (const auto& error : report.errors)
-      message += "\n  " + error;
+    for (const auto& error : report.errors) message += "\n  " + error;
     throw TopologyError(message);
   }
   std::lock_guard<std::mutex> lock(mutex_);
@@ -111,8 +108,7 @@ bool ServeState::has_mesh() const {
 }
 
 void ServeState::require_mesh() const {
-  if (!mesh_)
-    throw HttpError(409, "no mesh loaded; load one of the server's meshes or upload one first");
+  if (!mesh_) throw HttpError(409, "no mesh loaded; load one of the server's meshes or upload one first");
 }
 
 MeshSummary ServeState::mesh_summary() const {
@@ -158,11 +154,9 @@ void ServeState::use_sets(const Eigen::VectorXi& fixed, const Eigen::VectorXi& h
 
 int ServeState::record_revision() {
   Revision revision{next_revision_++, fixed_, handle_, {}};
-  for (std::size_t m = 0; m < methods_.size(); ++m)
-    revision.anchors[m] = methods_[m].anchor;
+  for (std::size_t m = 0; m < methods_.size(); ++m) revision.anchors[m] = methods_[m].anchor;
   history_.push_back(std::move(revision));
-  if (history_.size() > history_limit)
-    history_.pop_front();
+  if (history_.size() > history_limit) history_.pop_front();
   return history_.back().id;
 }
 
@@ -171,8 +165,7 @@ int ServeState::set_constraints(const Eigen::VectorXi& fixed, const Eigen::Vecto
   require_mesh();
   check_sets(fixed, handle);
   use_sets(fixed, handle);
-  for (MethodState& state : methods_)
-    state.anchor = gather_rows(state.U, constrained_);
+  for (MethodState& state : methods_) state.anchor = gather_rows(state.U, constrained_);
   return record_revision();
 }
 
@@ -186,8 +179,7 @@ void ServeState::restore_constraints(int revision) {
                              std::to_string(history_limit) + " of this mesh are)");
   }
   use_sets(it->fixed, it->handle);
-  for (std::size_t m = 0; m < methods_.size(); ++m)
-    methods_[m].anchor = it->anchors[m];
+  for (std::size_t m = 0; m < methods_.size(); ++m) methods_[m].anchor = it->anchors[m];
   // The restored state becomes the newest, so that it outlives the revisions undone past it.
   Revision restored = *it;
   history_.erase(it);
@@ -221,8 +213,7 @@ int ServeState::load_constraints(const Eigen::VectorXi& fixed, const Eigen::Vect
 ConstraintTargets ServeState::constraint_targets(ArapMethod method, const SolveRequest& request) const {
   std::lock_guard<std::mutex> lock(mutex_);
   require_mesh();
-  if (constrained_.size() == 0)
-    throw HttpError(409, "no fixed or handle vertices; select some first");
+  if (constrained_.size() == 0) throw HttpError(409, "no fixed or handle vertices; select some first");
   const MethodState& state = state_of(method);
   ConstraintTargets out;
   out.fixed = fixed_;
@@ -244,8 +235,7 @@ Eigen::MatrixXd ServeState::targets_for(const MethodState& state, const SolveReq
     throw InputError("give either transform or handle_targets, not both");
   if (request.transform) {
     const Eigen::Matrix4d& M = *request.transform;
-    if (!M.allFinite())
-      throw InputError("transform has a non-finite entry");
+    if (!M.allFinite()) throw InputError("transform has a non-finite entry");
     const double scale =
         M.topLeftCorner<3, 3>().cwiseAbs().maxCoeff() + M.topRightCorner<3, 1>().cwiseAbs().maxCoeff();
     // The last row of an affine map is exactly 0 0 0 1 up to the rounding of the client's float maths.
@@ -317,8 +307,7 @@ void ServeState::reset() {
     state.U = mesh_->V;
     state.anchor = gather_rows(state.U, constrained_);
   }
-  if (constrained_.size() > 0)
-    record_revision();
+  if (constrained_.size() > 0) record_revision();
 }
 
 std::vector<float> ServeState::positions(std::optional<ArapMethod> method) const {
@@ -347,8 +336,7 @@ MeshSnapshot ServeState::snapshot(std::optional<ArapMethod> method) const {
 std::shared_ptr<const IntrinsicOverlay> ServeState::intrinsic_overlay() {
   std::lock_guard<std::mutex> lock(mutex_);
   require_mesh();
-  if (overlay_)
-    return overlay_;
+  if (overlay_) return overlay_;
   const IntrinsicDelaunay intrinsic = intrinsic_delaunay(mesh_->V, mesh_->F);
   const TracedEdges& traces = intrinsic.traces;
   auto overlay = std::make_shared<IntrinsicOverlay>();

@@ -114,8 +114,9 @@ public:
 
   // Precomputes the method on first use, refactorizes after a constraint change, then runs arap_solve from
   // the method's current U as one call that reports every iteration to progress() and stops early on a
-  // cancel (keeping the last finished iterate). Throws HttpError 409 without constrained vertices, InputError for a target shape or
-  // value at fault, TopologyError / SolverError from the solver; the state is unchanged then.
+  // cancel (keeping the last finished iterate). Throws HttpError 409 without constrained vertices, InputError
+  // for a target shape or value at fault, TopologyError / SolverError from the solver; the state is unchanged
+  // then.
   SolveResult solve(const SolveRequest& request);
 
   // Read without the session mutex (see SolveProgress).

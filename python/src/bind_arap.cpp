@@ -118,8 +118,7 @@ py::object report_py(const ArapSolver& solver) {
     solve_ms = solver.solve_ms();
     timings = solver.with_data([](const ArapData& d) { return d.timings; });
   }
-  if (!report)
-    return py::none();
+  if (!report) return py::none();
   py::dict d;
   d["iterations"] = report->iterations;
   d["converged"] = report->converged;
@@ -155,8 +154,7 @@ py::array_t<double> rotations_py(const ArapSolver& solver) {
   auto o = out.mutable_unchecked<3>();
   for (std::size_t v = 0; v < R.size(); ++v)
     for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j)
-        o(static_cast<py::ssize_t>(v), i, j) = R[v](i, j);
+      for (int j = 0; j < 3; ++j) o(static_cast<py::ssize_t>(v), i, j) = R[v](i, j);
   return out;
 }
 

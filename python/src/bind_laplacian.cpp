@@ -31,14 +31,12 @@ py::object laplacian_py(const py::object& V, const py::object& F, const std::str
     const bool shared = return_mass && mass_choice.intrinsic && which != LaplacianKind::Cotan &&
                         which != LaplacianKind::IarapRefined;
     std::optional<IntrinsicDelaunay> idt;
-    if (shared)
-      idt = intrinsic_delaunay(positions, faces);
+    if (shared) idt = intrinsic_delaunay(positions, faces);
     L = laplacian(positions, faces, which, idt ? &*idt : nullptr);
     if (return_mass)
       M = mass_matrix(positions, faces, mass_choice.kind, mass_choice.intrinsic, idt ? &*idt : nullptr);
   }
-  if (!return_mass)
-    return to_csr(L);
+  if (!return_mass) return to_csr(L);
   return py::make_tuple(to_csr(L), to_csr(M));
 }
 
@@ -89,8 +87,7 @@ non-manifold mesh ("intrinsic").)");
     kinds[k] = laplacian_kind_name(all_laplacian_kinds()[k]);
   m.attr("LAPLACIAN_KINDS") = kinds;
   py::tuple mass_kinds(mass_kind_names().size());
-  for (std::size_t k = 0; k < mass_kind_names().size(); ++k)
-    mass_kinds[k] = mass_kind_names()[k];
+  for (std::size_t k = 0; k < mass_kind_names().size(); ++k) mass_kinds[k] = mass_kind_names()[k];
   m.attr("MASS_KINDS") = mass_kinds;
 }
 

@@ -15,8 +15,7 @@ namespace {
 std::string shape_text(const py::array& a) {
   std::ostringstream out;
   out << "(";
-  for (py::ssize_t d = 0; d < a.ndim(); ++d)
-    out << (d ? ", " : "") << a.shape(d);
+  for (py::ssize_t d = 0; d < a.ndim(); ++d) out << (d ? ", " : "") << a.shape(d);
   out << (a.ndim() == 1 ? ",)" : ")");
   return out.str();
 }
@@ -43,15 +42,13 @@ bool is_integer_kind(char kind) {
 std::vector<std::int64_t> integer_values(const py::array& a, const std::string& name, const char* what,
                                          const std::function<std::string(std::size_t)>& where) {
   const char kind = a.dtype().kind();
-  if (a.size() == 0 && kind == 'f')
-    return {}; // np.array([]) is float64: an empty list of indices
+  if (a.size() == 0 && kind == 'f') return {}; // np.array([]) is float64: an empty list of indices
   if (!is_integer_kind(kind))
     throw InputError(name + " must hold integer " + what + ", got dtype " + dtype_text(a));
   std::vector<std::int64_t> values(static_cast<std::size_t>(a.size()));
   if (kind == 'u' && a.itemsize() == 8) {
     const auto c = py::array_t<std::uint64_t, py::array::c_style | py::array::forcecast>::ensure(a);
-    if (!c)
-      throw py::error_already_set();
+    if (!c) throw py::error_already_set();
     for (std::size_t k = 0; k < values.size(); ++k) {
       const std::uint64_t value = c.data()[k];
       if (value > static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max()))
@@ -61,8 +58,7 @@ std::vector<std::int64_t> integer_values(const py::array& a, const std::string& 
     return values;
   }
   const auto c = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(a);
-  if (!c)
-    throw py::error_already_set();
+  if (!c) throw py::error_already_set();
   std::copy(c.data(), c.data() + values.size(), values.begin());
   return values;
 }
@@ -81,8 +77,7 @@ template <typename Matrix> py::array_t<double> doubles_to_numpy(const Matrix& M)
   py::array_t<double> a({static_cast<py::ssize_t>(M.rows()), static_cast<py::ssize_t>(M.cols())});
   auto out = a.mutable_unchecked<2>();
   for (Eigen::Index i = 0; i < M.rows(); ++i)
-    for (Eigen::Index j = 0; j < M.cols(); ++j)
-      out(i, j) = M(i, j);
+    for (Eigen::Index j = 0; j < M.cols(); ++j) out(i, j) = M(i, j);
   return a;
 }
 
@@ -90,8 +85,7 @@ template <typename Matrix> py::array_t<std::int64_t> ints_to_numpy(const Matrix&
   py::array_t<std::int64_t> a({static_cast<py::ssize_t>(M.rows()), static_cast<py::ssize_t>(M.cols())});
   auto out = a.mutable_unchecked<2>();
   for (Eigen::Index i = 0; i < M.rows(); ++i)
-    for (Eigen::Index j = 0; j < M.cols(); ++j)
-      out(i, j) = M(i, j);
+    for (Eigen::Index j = 0; j < M.cols(); ++j) out(i, j) = M(i, j);
   return a;
 }
 
@@ -104,8 +98,7 @@ template <typename Container> py::array_t<double> vector_to_numpy(const Containe
 template <typename Container> py::array_t<std::int64_t> index_vector_to_numpy(const Container& v) {
   py::array_t<std::int64_t> a(static_cast<py::ssize_t>(v.size()));
   std::int64_t* out = a.mutable_data();
-  for (std::size_t k = 0; k < static_cast<std::size_t>(v.size()); ++k)
-    out[k] = v.data()[k];
+  for (std::size_t k = 0; k < static_cast<std::size_t>(v.size()); ++k) out[k] = v.data()[k];
   return a;
 }
 
@@ -122,8 +115,7 @@ Eigen::MatrixXd to_points(const py::handle& object, const std::string& name, boo
   if (a.ndim() != 2 || a.shape(1) != 3 || (expected_rows >= 0 && a.shape(0) != expected_rows))
     throw InputError(name + " must be a " + expected + " array, got shape " + shape_text(a));
   auto c = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(a);
-  if (!c)
-    throw py::error_already_set();
+  if (!c) throw py::error_already_set();
   const auto in = c.unchecked<2>();
   Eigen::MatrixXd M(in.shape(0), 3);
   for (py::ssize_t i = 0; i < in.shape(0); ++i) {

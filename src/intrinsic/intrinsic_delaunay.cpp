@@ -33,8 +33,8 @@ IntrinsicTriangulation export_triangulation(const detail::SignpostTriangulation&
   out.face_area.resize(nf);
   detail::parallel_chunks(nf, 8192, [&](int begin, int end, int) {
     for (int f = begin; f < end; ++f) {
-      out.face_area(f) = triangle_area_from_lengths(tri.halfedge_length(3 * f), tri.halfedge_length(3 * f + 1),
-                                                    tri.halfedge_length(3 * f + 2));
+      out.face_area(f) = triangle_area_from_lengths(
+          tri.halfedge_length(3 * f), tri.halfedge_length(3 * f + 1), tri.halfedge_length(3 * f + 2));
       for (int k = 0; k < 3; ++k) {
         const int h = 3 * f + k;
         out.F(f, k) = tri.tail(h);
@@ -55,7 +55,8 @@ IntrinsicTriangulation export_triangulation(const detail::SignpostTriangulation&
       out.E(e, 1) = tri.edge_vertex[static_cast<size_t>(2 * e + 1)];
       out.length(e) = tri.length[static_cast<size_t>(e)];
       const int t = tri.twin[static_cast<size_t>(h)];
-      out.cot_weight(e) = 0.5 * (tri.cot[static_cast<size_t>(h)] + (t >= 0 ? tri.cot[static_cast<size_t>(t)] : 0.0));
+      out.cot_weight(e) =
+          0.5 * (tri.cot[static_cast<size_t>(h)] + (t >= 0 ? tri.cot[static_cast<size_t>(t)] : 0.0));
       out.is_boundary(e) = t < 0;
       out.original_edge(e) = tri.original_edge[static_cast<size_t>(e)];
     }
@@ -77,8 +78,8 @@ IntrinsicTriangulation export_triangulation(const detail::SignpostTriangulation&
 
 namespace detail {
 
-FlippedTriangulation flip_phase(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const IntrinsicOptions& options,
-                                SignpostInput* input) {
+FlippedTriangulation flip_phase(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
+                                const IntrinsicOptions& options, SignpostInput* input) {
   const auto t0 = std::chrono::steady_clock::now();
   FlippedTriangulation out;
   out.tri = build_signpost_triangulation(V, F, options.mollify, options.mollify_epsilon, out.fans,
@@ -87,11 +88,13 @@ FlippedTriangulation flip_phase(const Eigen::MatrixXd& V, const Eigen::MatrixXi&
   out.input = input_triangulation(out.tri);
   out.stats = flip_to_delaunay(out.tri, options.delaunay_tolerance);
   if (!options.refine_boundary) { // refine_obtuse_boundary counts the obtuse boundary edges itself
-    out.refine.obtuse_before = out.refine.obtuse_after = count_obtuse_boundary_edges(out.tri, options.delaunay_tolerance);
+    out.refine.obtuse_before = out.refine.obtuse_after =
+        count_obtuse_boundary_edges(out.tri, options.delaunay_tolerance);
   } else {
     int boundary_edges = 0;
     for (const auto& h : out.input.halfedge) boundary_edges += h.twin < 0;
-    const int cap = options.max_boundary_insertions >= 0 ? options.max_boundary_insertions : 4 * boundary_edges + 100;
+    const int cap =
+        options.max_boundary_insertions >= 0 ? options.max_boundary_insertions : 4 * boundary_edges + 100;
     out.refine = refine_obtuse_boundary(out.tri, out.input, options.delaunay_tolerance, cap);
   }
   out.non_delaunay_after = out.refine.inserted > 0 ? count_non_delaunay(out.tri, options.delaunay_tolerance)

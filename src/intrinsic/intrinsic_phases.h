@@ -22,8 +22,8 @@ struct FlippedTriangulation {
 
 // Phase 1: builds the signpost triangulation of (V, F) and flips it to Delaunay (TopologyError on bad input).
 // `input`, when given, is signpost_input(V, F, options.refine_boundary), which the build takes over.
-FlippedTriangulation flip_phase(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const IntrinsicOptions& options,
-                                SignpostInput* input = nullptr);
+FlippedTriangulation flip_phase(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
+                                const IntrinsicOptions& options, SignpostInput* input = nullptr);
 
 // The exported intrinsic triangulation with its traced edges.
 struct TracedTriangulation {

@@ -14,7 +14,9 @@ Eigen::VectorXi segment_offsets(const CompactTraces& traces, int num_edges) {
   start(0) = 0;
   for (int e = 0; e < num_edges; ++e) {
     const int k = traces.job[static_cast<size_t>(e)];
-    start(e + 1) = start(e) + (k < 0 ? 1 : traces.start[static_cast<size_t>(k) + 1] - traces.start[static_cast<size_t>(k)] - 1);
+    start(e + 1) =
+        start(e) +
+        (k < 0 ? 1 : traces.start[static_cast<size_t>(k) + 1] - traces.start[static_cast<size_t>(k)] - 1);
   }
   return start;
 }
@@ -72,8 +74,8 @@ void throw_segment_error(int segment) {
                     " has end points on no common input face (more than 3 vertices in b)");
 }
 
-Segments build_segments(const Eigen::MatrixXd& V, const IntrinsicTriangulation& tri, const CompactTraces& traces,
-                        bool assemble_B) {
+Segments build_segments(const Eigen::MatrixXd& V, const IntrinsicTriangulation& tri,
+                        const CompactTraces& traces, bool assemble_B) {
   const int ne = static_cast<int>(tri.E.rows());
   Segments seg;
   seg.edge_start = segment_offsets(traces, ne);

@@ -14,8 +14,8 @@ namespace iarap::detail {
 // non-zeros that sum to 0. weight = cot_weight(e) * length(e) / |s| (Eq. 11); a segment shorter than
 // 1e-12 |e| (a trace grazing a vertex) gets weight 0, since its b b^T / |s| term would be unbounded.
 // B is assembled only when asked.
-Segments build_segments(const Eigen::MatrixXd& V, const IntrinsicTriangulation& tri, const CompactTraces& traces,
-                        bool assemble_B);
+Segments build_segments(const Eigen::MatrixXd& V, const IntrinsicTriangulation& tri,
+                        const CompactTraces& traces, bool assemble_B);
 
 // The segments of every intrinsic edge as offsets: edge e owns segments start[e] .. start[e + 1).
 Eigen::VectorXi segment_offsets(const CompactTraces& traces, int num_edges);
@@ -50,8 +50,8 @@ inline double segment_weight(double edge_cot_weight, double edge_length, double 
 // parallel over edges; then throws SolverError naming the first segment whose end points share no face.
 // The one walk over the traces behind build_segments and the solver's traced_iarap_elements.
 template <class Visit>
-void for_each_segment(const Eigen::MatrixXd& V, const IntrinsicTriangulation& tri, const CompactTraces& traces,
-                      const Eigen::VectorXi& start, const Visit& visit) {
+void for_each_segment(const Eigen::MatrixXd& V, const IntrinsicTriangulation& tri,
+                      const CompactTraces& traces, const Eigen::VectorXi& start, const Visit& visit) {
   const int ne = static_cast<int>(tri.E.rows());
   const RowPositions rows = V;
   int bad_segment = start(ne);

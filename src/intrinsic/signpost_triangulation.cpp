@@ -18,7 +18,9 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-std::string edge_name(int a, int b) { return "(" + std::to_string(a) + ", " + std::to_string(b) + ")"; }
+std::string edge_name(int a, int b) {
+  return "(" + std::to_string(a) + ", " + std::to_string(b) + ")";
+}
 
 // d[k] = 2 l_a l_b cos(angle opposite halfedge k) by the law of cosines, with l[k] the length of halfedge
 // 3f + k; returns 4 x the face's area.
@@ -29,10 +31,10 @@ double face_terms(const double (&l)[3], double (&d)[3]) {
   return four_area;
 }
 
-// Writes the corner angle at the tail of each halfedge of the face to a[0..2] (face_terms gave d and four_area).
-// atan2 keeps needles accurate where acos fails; the corner at the tail of halfedge k faces halfedge k + 1.
-// The largest angle (facing the longest side, at least pi/3) is pi minus the other two: no accuracy lost,
-// one atan2 saved per face.
+// Writes the corner angle at the tail of each halfedge of the face to a[0..2] (face_terms gave d and
+// four_area). atan2 keeps needles accurate where acos fails; the corner at the tail of halfedge k faces
+// halfedge k + 1. The largest angle (facing the longest side, at least pi/3) is pi minus the other two: no
+// accuracy lost, one atan2 saved per face.
 void corner_angles(const double (&l)[3], const double (&d)[3], double four_area, double* a) {
   const int longest = l[0] >= l[1] ? (l[0] >= l[2] ? 0 : 2) : (l[1] >= l[2] ? 1 : 2);
   const int big = (longest + 2) % 3, k1 = (big + 1) % 3, k2 = (big + 2) % 3;
@@ -76,8 +78,8 @@ void check_signpost_input(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
   if (bad_face < nf) {
     for (int k = 0; k < 3; ++k)
       if (F(bad_face, k) < 0 || F(bad_face, k) >= nv)
-        throw InputError("face " + std::to_string(bad_face) + " uses vertex " + std::to_string(F(bad_face, k)) +
-                         "; mesh has " + std::to_string(nv));
+        throw InputError("face " + std::to_string(bad_face) + " uses vertex " +
+                         std::to_string(F(bad_face, k)) + "; mesh has " + std::to_string(nv));
     throw TopologyError("face " + std::to_string(bad_face) + " repeats a vertex");
   }
   if (!V.allFinite()) throw InputError("vertex coordinates contain NaN or Inf");
@@ -105,7 +107,8 @@ void SignpostTriangulation::update_face_geometry(int f) {
   corner_angles(l, d, four_area, angle.data() + 3 * static_cast<size_t>(f));
 }
 
-SignpostInput signpost_input(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, bool room_for_boundary_splits) {
+SignpostInput signpost_input(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
+                             bool room_for_boundary_splits) {
   check_signpost_input(V, F);
   const int nf = static_cast<int>(F.rows());
   auto topology = std::make_shared<const EdgeTopology>(edge_topology(F, static_cast<int>(V.rows())));
@@ -117,7 +120,8 @@ SignpostInput signpost_input(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
   input.length.reserve(static_cast<size_t>(ne) + 2 * splits);
   input.length.resize(static_cast<size_t>(ne));
 #pragma omp parallel for num_threads(loop_thread_count()) schedule(static)
-  for (int e = 0; e < ne; ++e) input.length[static_cast<size_t>(e)] = input_distance(V, topo.E(e, 0), topo.E(e, 1));
+  for (int e = 0; e < ne; ++e)
+    input.length[static_cast<size_t>(e)] = input_distance(V, topo.E(e, 0), topo.E(e, 1));
   auto C = std::make_shared<Eigen::MatrixXd>(nf, 3);
   input.angle.reserve(3 * (static_cast<size_t>(nf) + splits));
   input.angle.resize(static_cast<size_t>(3 * nf));
@@ -229,7 +233,10 @@ SignpostTriangulation build_signpost_triangulation(const Eigen::MatrixXd& V, con
   const double eps = mollify_epsilon * length_sum / std::max(ne, 1);
   double delta = 0.0;
   int bad_face = nf;
-#pragma omp parallel for num_threads(loop_thread_count()) schedule(static) reduction(max : delta) reduction(min : bad_face)
+#pragma omp parallel for num_threads(loop_thread_count()) schedule(static) reduction(max                     \
+                                                                                     : delta)                \
+    reduction(min                                                                                            \
+              : bad_face)
   for (int f = 0; f < nf; ++f) {
     for (int k = 0; k < 3; ++k) {
       const double a = tri.halfedge_length(3 * f + k), b = tri.halfedge_length(3 * f + (k + 1) % 3),
@@ -267,7 +274,8 @@ SignpostTriangulation build_signpost_triangulation(const Eigen::MatrixXd& V, con
   fans_out.entry.resize(static_cast<size_t>(3 * nf));
   {
     std::vector<int> fill(start.begin(), start.end() - 1);
-    for (int h = 0; h < 3 * nf; ++h) fans_out.entry[static_cast<size_t>(fill[static_cast<size_t>(tri.tail(h))]++)] = {0.0, h};
+    for (int h = 0; h < 3 * nf; ++h)
+      fans_out.entry[static_cast<size_t>(fill[static_cast<size_t>(tri.tail(h))]++)] = {0.0, h};
   }
   tri.phi.assign(static_cast<size_t>(3 * nf), -1.0);
   tri.vertex_angle_sum.assign(static_cast<size_t>(nv), 0.0);
@@ -311,9 +319,9 @@ SignpostTriangulation build_signpost_triangulation(const Eigen::MatrixXd& V, con
       // An interior vertex (most of them): its one closed fan visits each halfedge leaving it once, so the
       // sweep is a loop of known length from its lowest halfedge (where the general sweep below starts too).
       // Each step waits for the load of the next twin; with a known trip count the processor runs ahead into
-      // the next vertices meanwhile, where a loop that ends on the loaded value stalls on it (beetle: signpost
-      // input and build 0.95-0.975 of their time). Back at the first halfedge before the end, or not at it
-      // after, the vertex has several closed fans: non-manifold, reported below.
+      // the next vertices meanwhile, where a loop that ends on the loaded value stalls on it (beetle:
+      // signpost input and build 0.95-0.975 of their time). Back at the first halfedge before the end, or not
+      // at it after, the vertex has several closed fans: non-manifold, reported below.
       bool interior = last > first;
       for (int k = first; k < last; ++k)
         interior &= tri.twin[static_cast<size_t>(fans_out.entry[static_cast<size_t>(k)].halfedge)] >= 0;
@@ -362,7 +370,8 @@ SignpostTriangulation build_signpost_triangulation(const Eigen::MatrixXd& V, con
   }
   if (bad_vertex < nv) {
     int fans = 0;
-    for (int h = 0; h < 3 * nf; ++h) fans += tri.tail(h) == bad_vertex && tri.twin[static_cast<size_t>(h)] < 0;
+    for (int h = 0; h < 3 * nf; ++h)
+      fans += tri.tail(h) == bad_vertex && tri.twin[static_cast<size_t>(h)] < 0;
     throw TopologyError("non-manifold vertex " + std::to_string(bad_vertex) + ": a closed fan of faces and " +
                         std::to_string(std::max(fans, 1)) +
                         " more fans meet there (two surfaces touching at a point)");
@@ -377,7 +386,8 @@ InputTriangulation input_triangulation(const SignpostTriangulation& unflipped) {
 #pragma omp parallel for num_threads(loop_thread_count()) schedule(static)
   for (int h = 0; h < nh; ++h)
     input.halfedge[static_cast<size_t>(h)] = {unflipped.tail(h), unflipped.twin[static_cast<size_t>(h)],
-                                              unflipped.halfedge_length(h), unflipped.angle[static_cast<size_t>(h)]};
+                                              unflipped.halfedge_length(h),
+                                              unflipped.angle[static_cast<size_t>(h)]};
   input.edge_halfedge = unflipped.edge_halfedge;
   return input;
 }
@@ -389,7 +399,8 @@ bool flip_edge(SignpostTriangulation& tri, int e) {
   if (t < 0) return false;
   const int f0 = h / 3, f1 = t / 3;
   if (f0 == f1) return false;
-  // Before: f0 = (a, b, c) with h = a->b, h1 = b->c, h2 = c->a; f1 = (b, a, d) with t = b->a, t1 = a->d, t2 = d->b.
+  // Before: f0 = (a, b, c) with h = a->b, h1 = b->c, h2 = c->a; f1 = (b, a, d) with t = b->a, t1 = a->d, t2 =
+  // d->b.
   const int h1 = next_halfedge(h), h2 = prev_halfedge(h), t1 = next_halfedge(t), t2 = prev_halfedge(t);
   const int a = tri.tail(h), b = tri.tail(t), c = tri.tail(h2), d = tri.tail(t2);
   const int e_bc = tri.edge[static_cast<size_t>(h1)], e_ca = tri.edge[static_cast<size_t>(h2)];
@@ -458,7 +469,8 @@ bool flip_edge(SignpostTriangulation& tri, int e) {
     return angle >= theta ? angle - theta : angle;
   };
   // Corner angles: those at a and b are sums of the old ones and the diagonal splits those at c and d, so
-  // only f0's new angles at c and d need an atan2 (from f0's area, as in update_face_geometry): two per flip, not six.
+  // only f0's new angles at c and d need an atan2 (from f0's area, as in update_face_geometry): two per flip,
+  // not six.
   const double angle_a = tri.angle[static_cast<size_t>(h)] + tri.angle[static_cast<size_t>(t1)];
   const double angle_b = tri.angle[static_cast<size_t>(h1)] + tri.angle[static_cast<size_t>(t)];
   const double angle_c = tri.angle[static_cast<size_t>(h2)], angle_d = tri.angle[static_cast<size_t>(t2)];
@@ -469,7 +481,8 @@ bool flip_edge(SignpostTriangulation& tri, int e) {
   const double four_area = write_face_cotangents(tri, f0, l0, terms0);
   const double c0 = upper_half_angle(four_area, terms0[1]);
   const double d0 = upper_half_angle(four_area, terms0[0]);
-  const double slots[6] = {c0, angle_a, d0, std::max(angle_d - d0, 0.0), angle_b, std::max(angle_c - c0, 0.0)};
+  const double slots[6] = {
+      c0, angle_a, d0, std::max(angle_d - d0, 0.0), angle_b, std::max(angle_c - c0, 0.0)};
   for (int k = 0; k < 3; ++k) {
     tri.angle[static_cast<size_t>(3 * f0 + k)] = slots[k];
     tri.angle[static_cast<size_t>(3 * f1 + k)] = slots[3 + k];
@@ -572,8 +585,8 @@ namespace {
 // Where a point at parameter t along intrinsic boundary halfedge h lies on the input: the input boundary
 // halfedge and its parameter. Intrinsic boundary edges are never flipped, so h is a piece of one input
 // boundary halfedge, from tail point to head point.
-std::pair<int, double> locate_on_input_boundary(const SignpostTriangulation& tri, const InputTriangulation& input,
-                                                int h, double t) {
+std::pair<int, double> locate_on_input_boundary(const SignpostTriangulation& tri,
+                                                const InputTriangulation& input, int h, double t) {
   auto position = [&](int v, int hb_hint) -> std::pair<int, double> {
     if (v >= tri.num_input_vertices) {
       const size_t q = static_cast<size_t>(v - tri.num_input_vertices);
@@ -584,8 +597,10 @@ std::pair<int, double> locate_on_input_boundary(const SignpostTriangulation& tri
   const int a = tri.tail(h), b = tri.head(h);
   // The input boundary halfedge carrying h: known from an inserted end, else the input edge a -> b.
   int hb = -1;
-  if (a >= tri.num_input_vertices) hb = tri.inserted_halfedge[static_cast<size_t>(a - tri.num_input_vertices)];
-  else if (b >= tri.num_input_vertices) hb = tri.inserted_halfedge[static_cast<size_t>(b - tri.num_input_vertices)];
+  if (a >= tri.num_input_vertices)
+    hb = tri.inserted_halfedge[static_cast<size_t>(a - tri.num_input_vertices)];
+  else if (b >= tri.num_input_vertices)
+    hb = tri.inserted_halfedge[static_cast<size_t>(b - tri.num_input_vertices)];
   else {
     const int e = tri.original_edge[static_cast<size_t>(tri.edge[static_cast<size_t>(h)])];
     hb = input.edge_halfedge[static_cast<size_t>(e)];
@@ -601,7 +616,8 @@ void split_boundary_edge(SignpostTriangulation& tri, const InputTriangulation& i
   const int h1 = next_halfedge(h), h2 = prev_halfedge(h);
   const int i = tri.tail(h), j = tri.head(h), k = tri.tail(h2);
   const int e_jk = tri.edge[static_cast<size_t>(h1)], e_ki = tri.edge[static_cast<size_t>(h2)];
-  const double l_ij = tri.length[static_cast<size_t>(e)], l_jk = tri.halfedge_length(h1), l_ki = tri.halfedge_length(h2);
+  const double l_ij = tri.length[static_cast<size_t>(e)], l_jk = tri.halfedge_length(h1),
+               l_ki = tri.halfedge_length(h2);
   const double kx = (l_ki * l_ki - l_jk * l_jk + l_ij * l_ij) / (2 * l_ij);
   const double ky = std::sqrt(std::max(l_ki * l_ki - kx * kx, 0.0));
   const double l_pk = std::hypot(kx - t * l_ij, ky);
@@ -629,7 +645,8 @@ void split_boundary_edge(SignpostTriangulation& tri, const InputTriangulation& i
   const int x_jk = tri.twin[static_cast<size_t>(h1)], x_ki = tri.twin[static_cast<size_t>(h2)];
   const double phi_ij = tri.phi[static_cast<size_t>(h)], phi_ki = tri.phi[static_cast<size_t>(h2)];
   const double phi_jk = tri.phi[static_cast<size_t>(h1)];
-  const int s_ip = 3 * f, s_pk = 3 * f + 1, s_ki = 3 * f + 2, s_pj = 3 * g, s_jk = 3 * g + 1, s_kp = 3 * g + 2;
+  const int s_ip = 3 * f, s_pk = 3 * f + 1, s_ki = 3 * f + 2, s_pj = 3 * g, s_jk = 3 * g + 1,
+            s_kp = 3 * g + 2;
   auto moved = [&](int x) { return x == h1 ? s_jk : x == h2 ? s_ki : x; };
   auto set = [&](int slot, int vertex, int edge_id, int twin_slot, double phi) {
     tri.corner_vertex[static_cast<size_t>(slot)] = vertex;
@@ -655,13 +672,17 @@ void split_boundary_edge(SignpostTriangulation& tri, const InputTriangulation& i
   }
   tri.update_face_geometry(f);
   tri.update_face_geometry(g);
-  // Signposts at p: 0 along the boundary towards j, then counter-clockwise; at k: from k -> i by the new corner.
+  // Signposts at p: 0 along the boundary towards j, then counter-clockwise; at k: from k -> i by the new
+  // corner.
   tri.phi[static_cast<size_t>(s_pk)] = tri.angle[static_cast<size_t>(s_pj)];
-  tri.vertex_angle_sum[static_cast<size_t>(p)] = tri.angle[static_cast<size_t>(s_pj)] + tri.angle[static_cast<size_t>(s_pk)];
+  tri.vertex_angle_sum[static_cast<size_t>(p)] =
+      tri.angle[static_cast<size_t>(s_pj)] + tri.angle[static_cast<size_t>(s_pk)];
   double phi_kp = phi_ki + tri.angle[static_cast<size_t>(s_ki)];
   const double theta_k = tri.vertex_angle_sum[static_cast<size_t>(k)];
-  if (tri.boundary_vertex[static_cast<size_t>(k)]) phi_kp = std::min(phi_kp, theta_k);
-  else if (phi_kp >= theta_k) phi_kp -= theta_k;
+  if (tri.boundary_vertex[static_cast<size_t>(k)])
+    phi_kp = std::min(phi_kp, theta_k);
+  else if (phi_kp >= theta_k)
+    phi_kp -= theta_k;
   tri.phi[static_cast<size_t>(s_kp)] = phi_kp;
 }
 
@@ -675,7 +696,9 @@ RefineStats refine_obtuse_boundary(SignpostTriangulation& tri, const InputTriang
   std::vector<int> boundary;
   for (int e = 0; e < tri.num_edges(); ++e)
     if (tri.twin[static_cast<size_t>(tri.edge_halfedge[static_cast<size_t>(e)])] < 0) boundary.push_back(e);
-  auto obtuse = [&](int e) { return tri.cot[static_cast<size_t>(tri.edge_halfedge[static_cast<size_t>(e)])] < -tolerance; };
+  auto obtuse = [&](int e) {
+    return tri.cot[static_cast<size_t>(tri.edge_halfedge[static_cast<size_t>(e)])] < -tolerance;
+  };
   stats.obtuse_before = static_cast<int>(std::count_if(boundary.begin(), boundary.end(), obtuse));
   while (stats.inserted < max_insertions) {
     std::vector<int> candidates;
@@ -692,7 +715,8 @@ RefineStats refine_obtuse_boundary(SignpostTriangulation& tri, const InputTriang
       const double l_ij = tri.halfedge_length(h), l_jk = tri.halfedge_length(next_halfedge(h)),
                    l_ki = tri.halfedge_length(prev_halfedge(h));
       const double t = std::clamp((l_ki * l_ki - l_jk * l_jk + l_ij * l_ij) / (2 * l_ij * l_ij), 0.05, 0.95);
-      for (int x : {tri.edge[static_cast<size_t>(next_halfedge(h))], tri.edge[static_cast<size_t>(prev_halfedge(h))]})
+      for (int x :
+           {tri.edge[static_cast<size_t>(next_halfedge(h))], tri.edge[static_cast<size_t>(prev_halfedge(h))]})
         touched.push_back(x);
       split_boundary_edge(tri, input, e, t);
       boundary.push_back(tri.num_edges() - 2); // e_pj

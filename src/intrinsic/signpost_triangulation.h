@@ -20,28 +20,32 @@
 namespace iarap::detail {
 
 // The next and previous halfedge of h's face (h >= 0): one remainder, no second one to wrap around.
-inline int next_halfedge(int h) { return h % 3 == 2 ? h - 2 : h + 1; }
-inline int prev_halfedge(int h) { return h % 3 == 0 ? h + 2 : h - 1; }
+inline int next_halfedge(int h) {
+  return h % 3 == 2 ? h - 2 : h + 1;
+}
+inline int prev_halfedge(int h) {
+  return h % 3 == 0 ? h + 2 : h - 1;
+}
 
 struct SignpostTriangulation {
-  int num_vertices = 0;            // input vertices followed by inserted ones
+  int num_vertices = 0; // input vertices followed by inserted ones
   int num_input_vertices = 0;
-  std::vector<int> corner_vertex;  // 3F vertex at corner h (tail of halfedge h)
-  std::vector<int> twin;           // 3F opposite halfedge, -1 on boundary
-  std::vector<int> edge;           // 3F edge of halfedge
-  std::vector<int> edge_halfedge;  // #E one halfedge of each edge (the one whose tail is E(e,0))
-  std::vector<int> edge_vertex;    // 2 #E endpoints (E(e,0), E(e,1)) = (smaller, larger): edge-ordered
-                                   // passes read them without chasing edge_halfedge into face arrays
-  std::vector<double> length;      // #E intrinsic length
-  std::vector<double> phi;         // 3F direction of halfedge h at its tail, in [0, vertex_angle_sum)
-  std::vector<double> vertex_angle_sum;  // #V total angle around each vertex (Theta_v)
-  std::vector<char> boundary_vertex;     // #V
-  std::vector<int> original_edge;  // #E input edge this edge still is, -1 once flipped
+  std::vector<int> corner_vertex;       // 3F vertex at corner h (tail of halfedge h)
+  std::vector<int> twin;                // 3F opposite halfedge, -1 on boundary
+  std::vector<int> edge;                // 3F edge of halfedge
+  std::vector<int> edge_halfedge;       // #E one halfedge of each edge (the one whose tail is E(e,0))
+  std::vector<int> edge_vertex;         // 2 #E endpoints (E(e,0), E(e,1)) = (smaller, larger): edge-ordered
+                                        // passes read them without chasing edge_halfedge into face arrays
+  std::vector<double> length;           // #E intrinsic length
+  std::vector<double> phi;              // 3F direction of halfedge h at its tail, in [0, vertex_angle_sum)
+  std::vector<double> vertex_angle_sum; // #V total angle around each vertex (Theta_v)
+  std::vector<char> boundary_vertex;    // #V
+  std::vector<int> original_edge;       // #E input edge this edge still is, -1 once flipped
   // Per halfedge, kept up to date by flips and splits so that Delaunay tests, flips and the export never
   // recompute them: the corner angle at the tail of h inside its face, and the cotangent of the angle
   // opposite h. (Recomputing them took a third of the preprocess on large meshes: one atan2 per corner.)
-  std::vector<double> angle;       // 3F
-  std::vector<double> cot;         // 3F
+  std::vector<double> angle; // 3F
+  std::vector<double> cot;   // 3F
   double mollify_delta = 0.0;
   // Inserted vertex v = num_input_vertices + q lies on input boundary halfedge inserted_halfedge[q] at
   // parameter inserted_t[q] from its tail: a fixed barycentric point, not a degree of freedom.
@@ -69,11 +73,11 @@ struct VertexFans {
   struct Entry {
     Entry() {}
     Entry(double phi_, int halfedge_) : phi(phi_), halfedge(halfedge_) {}
-    double phi;   // signpost angle, increasing within a vertex
+    double phi; // signpost angle, increasing within a vertex
     int halfedge;
   };
-  std::vector<int> start;    // #V + 1
-  std::vector<Entry> entry;  // 3F
+  std::vector<int> start;   // #V + 1
+  std::vector<Entry> entry; // 3F
 };
 
 // What the build reads of the input before it flips anything, for a caller that needs part of it too and
@@ -90,7 +94,8 @@ struct SignpostInput {
 
 // Checks (V, F) as the build does (InputError for a bad index or coordinate, TopologyError for a face
 // repeating a vertex) and computes the SignpostInput. Non-finite entries of C mark degenerate faces.
-SignpostInput signpost_input(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, bool room_for_boundary_splits);
+SignpostInput signpost_input(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
+                             bool room_for_boundary_splits);
 
 // Builds the triangulation of the input mesh: validates manifoldness and orientation (TopologyError
 // naming the edge or vertex), computes edge lengths (mollified if asked and needed), vertex angle sums and
@@ -100,8 +105,8 @@ SignpostInput signpost_input(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
 // `input`, when given, is signpost_input(V, F, room_for_boundary_splits): the build takes its angles and
 // drops its references instead of computing them again.
 SignpostTriangulation build_signpost_triangulation(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
-                                                   bool mollify, double mollify_epsilon,
-                                                   VertexFans& fans, bool room_for_boundary_splits = false,
+                                                   bool mollify, double mollify_epsilon, VertexFans& fans,
+                                                   bool room_for_boundary_splits = false,
                                                    SignpostInput* input = nullptr);
 
 // The unflipped input as the tracer and the boundary refinement read it. The tracer's walk jumps between
@@ -113,9 +118,9 @@ struct InputTriangulation {
     Halfedge(int tail_, int twin_, double length_, double angle_)
         : tail(tail_), twin(twin_), length(length_), angle(angle_) {}
     int tail;
-    int twin;      // -1 on the boundary
+    int twin; // -1 on the boundary
     double length;
-    double angle;  // interior angle at the tail
+    double angle; // interior angle at the tail
   };
   std::vector<Halfedge> halfedge; // 3F, same numbering as SignpostTriangulation
   std::vector<int> edge_halfedge; // #E
@@ -140,7 +145,8 @@ struct FlipStats {
 // Flips until every interior edge satisfies cot a + cot b >= -tolerance (Bobenko & Springborn 2007).
 // With `seeds`, only those edges are checked at the start: the caller guarantees every other edge passes
 // (e.g. the edges of the faces a local change touched); non_delaunay_before then counts failing seeds.
-FlipStats flip_to_delaunay(SignpostTriangulation& tri, double tolerance, const std::vector<int>* seeds = nullptr);
+FlipStats flip_to_delaunay(SignpostTriangulation& tri, double tolerance,
+                           const std::vector<int>* seeds = nullptr);
 
 // Number of interior edges with cot a + cot b < -tolerance.
 int count_non_delaunay(const SignpostTriangulation& tri, double tolerance);

@@ -22,8 +22,12 @@ struct Vec2 {
   Vec2 operator-(Vec2 o) const { return {x - o.x, y - o.y}; }
   Vec2 operator*(double s) const { return {x * s, y * s}; }
 };
-double cross(Vec2 a, Vec2 b) { return a.x * b.y - a.y * b.x; }
-double norm(Vec2 a) { return std::sqrt(a.x * a.x + a.y * a.y); } // mesh-scale values: no hypot needed
+double cross(Vec2 a, Vec2 b) {
+  return a.x * b.y - a.y * b.x;
+}
+double norm(Vec2 a) {
+  return std::sqrt(a.x * a.x + a.y * a.y);
+} // mesh-scale values: no hypot needed
 
 // Position of the third corner of the face left of the directed segment pa -> pb, whose length is l_ab
 // (|pb - pa| up to rounding: dividing by l_ab keeps a square root and a division off the walk's critical
@@ -96,9 +100,11 @@ void trace_one(const InputTriangulation& input, const VertexFans& fans, const Ed
     const double r = cross(q0 - p, edge_vec) / denom;
     const double s = std::clamp(cross(q0 - p, dir) / denom, 0.0, 1.0);
     if (!(r < remaining - tol))
-      trace_failure(e, i, j, "the line ends inside input face " + std::to_string(x / 3) + " away from the end vertex");
+      trace_failure(e, i, j,
+                    "the line ends inside input face " + std::to_string(x / 3) + " away from the end vertex");
     const int tx = input[x].twin;
-    if (tx < 0) trace_failure(e, i, j, "the line leaves the surface through boundary halfedge " + std::to_string(x));
+    if (tx < 0)
+      trace_failure(e, i, j, "the line leaves the surface through boundary halfedge " + std::to_string(x));
     out.push_back({input.tail(x), input.head(x), tx / 3, s});
     p = p + dir * r;
     remaining -= r;
@@ -109,15 +115,19 @@ void trace_one(const InputTriangulation& input, const VertexFans& fans, const Ed
   if (start.c < 0) {
     const int first = fans.start[static_cast<size_t>(i)], last = fans.start[static_cast<size_t>(i + 1)];
     const auto fan = fans.entry.begin();
-    const auto above = std::upper_bound(fan + first, fan + last, phi,
-                                        [](double angle, const VertexFans::Entry& fan_entry) { return angle < fan_entry.phi; });
-    const VertexFans::Entry& corner = fans.entry[static_cast<size_t>(std::max(static_cast<int>(above - fan) - 1, first))];
+    const auto above =
+        std::upper_bound(fan + first, fan + last, phi, [](double angle, const VertexFans::Entry& fan_entry) {
+          return angle < fan_entry.phi;
+        });
+    const VertexFans::Entry& corner =
+        fans.entry[static_cast<size_t>(std::max(static_cast<int>(above - fan) - 1, first))];
     const int hin = corner.halfedge;
     const double alpha = std::clamp(phi - corner.phi, 0.0, input[hin].angle);
     const int u = input.head(hin), w = input.tail(prev_halfedge(hin));
     const double l_iu = input[hin].length;
     const Vec2 pu{l_iu, 0};
-    const Vec2 pw = third_corner(p, pu, l_iu, input[prev_halfedge(hin)].length, input[next_halfedge(hin)].length);
+    const Vec2 pw =
+        third_corner(p, pu, l_iu, input[prev_halfedge(hin)].length, input[next_halfedge(hin)].length);
     dir = {std::cos(alpha), std::sin(alpha)};
     out.push_back({i, -1, hin / 3, 0.0});
     Vec2 goal;
@@ -172,8 +182,8 @@ EdgesToTrace flipped_edges(const SignpostTriangulation& intrinsic) {
   flipped.num_input_vertices = intrinsic.num_input_vertices;
   flipped.inserted_halfedge = intrinsic.inserted_halfedge;
   flipped.inserted_t = intrinsic.inserted_t;
-  const size_t count = static_cast<size_t>(
-      std::count_if(intrinsic.original_edge.begin(), intrinsic.original_edge.end(), [](int o) { return o < 0; }));
+  const size_t count = static_cast<size_t>(std::count_if(
+      intrinsic.original_edge.begin(), intrinsic.original_edge.end(), [](int o) { return o < 0; }));
   for (auto* v : {&flipped.edge, &flipped.tail, &flipped.head}) v->reserve(count);
   for (auto* v : {&flipped.phi, &flipped.length}) v->reserve(count);
   for (int e = 0; e < intrinsic.num_edges(); ++e) {
@@ -188,16 +198,18 @@ EdgesToTrace flipped_edges(const SignpostTriangulation& intrinsic) {
   return flipped;
 }
 
-CompactTraces trace_edges(const InputTriangulation& input, const VertexFans& fans, const EdgesToTrace& flipped,
-                          const std::vector<int>& original_edge) {
+CompactTraces trace_edges(const InputTriangulation& input, const VertexFans& fans,
+                          const EdgesToTrace& flipped, const std::vector<int>& original_edge) {
   const int ne = static_cast<int>(original_edge.size());
   const int nk = static_cast<int>(flipped.edge.size());
   // The flipped edges are traced into per-thread buffers, then concatenated in edge order.
-  std::vector<int> count(static_cast<size_t>(nk)), owner(static_cast<size_t>(nk)), offset(static_cast<size_t>(nk));
+  std::vector<int> count(static_cast<size_t>(nk)), owner(static_cast<size_t>(nk)),
+      offset(static_cast<size_t>(nk));
   std::vector<std::vector<TracePoint>> buffers(static_cast<size_t>(chunk_workers()));
   // Room for 8 points per edge (a few on a mesh near Delaunay): reserved capacity that stays unused costs
   // no page faults, and growing by copies does.
-  for (auto& buffer : buffers) buffer.reserve(8 * static_cast<size_t>(nk / static_cast<int>(buffers.size()) + 1));
+  for (auto& buffer : buffers)
+    buffer.reserve(8 * static_cast<size_t>(nk / static_cast<int>(buffers.size()) + 1));
   std::string error;
   parallel_chunks(nk, 256, [&](int begin, int end, int worker) {
     auto& buffer = buffers[static_cast<size_t>(worker)];
@@ -220,20 +232,25 @@ CompactTraces trace_edges(const InputTriangulation& input, const VertexFans& fan
   CompactTraces compact;
   compact.start.resize(static_cast<size_t>(nk) + 1);
   compact.start[0] = 0;
-  for (int k = 0; k < nk; ++k) compact.start[static_cast<size_t>(k) + 1] = compact.start[static_cast<size_t>(k)] + count[static_cast<size_t>(k)];
+  for (int k = 0; k < nk; ++k)
+    compact.start[static_cast<size_t>(k) + 1] =
+        compact.start[static_cast<size_t>(k)] + count[static_cast<size_t>(k)];
   // One thread took the chunks in order (one thread allowed, or the other busy throughout): its buffer is
   // the result.
   bool in_order = true;
   for (int k = 0; k < nk && in_order; ++k)
-    in_order = owner[static_cast<size_t>(k)] == 0 && offset[static_cast<size_t>(k)] == compact.start[static_cast<size_t>(k)];
+    in_order = owner[static_cast<size_t>(k)] == 0 &&
+               offset[static_cast<size_t>(k)] == compact.start[static_cast<size_t>(k)];
   if (in_order && nk > 0) {
     compact.points = std::move(buffers[0]);
   } else {
     compact.points.resize(static_cast<size_t>(compact.start.back()));
     parallel_chunks(nk, 1024, [&](int begin, int end, int) {
       for (int k = begin; k < end; ++k) {
-        const TracePoint* from = buffers[static_cast<size_t>(owner[static_cast<size_t>(k)])].data() + offset[static_cast<size_t>(k)];
-        std::copy(from, from + count[static_cast<size_t>(k)], compact.points.begin() + compact.start[static_cast<size_t>(k)]);
+        const TracePoint* from = buffers[static_cast<size_t>(owner[static_cast<size_t>(k)])].data() +
+                                 offset[static_cast<size_t>(k)];
+        std::copy(from, from + count[static_cast<size_t>(k)],
+                  compact.points.begin() + compact.start[static_cast<size_t>(k)]);
       }
     });
   }

@@ -11,8 +11,8 @@ struct EdgesToTrace {
   int num_input_vertices = 0;
   std::vector<int> inserted_halfedge; // where inserted boundary points lie (SignpostTriangulation)
   std::vector<double> inserted_t;
-  std::vector<int> edge, tail, head;  // flipped edges in increasing order, oriented E(e,0) -> E(e,1)
-  std::vector<double> phi, length;    // signpost angle at the tail, intrinsic length
+  std::vector<int> edge, tail, head; // flipped edges in increasing order, oriented E(e,0) -> E(e,1)
+  std::vector<double> phi, length;   // signpost angle at the tail, intrinsic length
 };
 EdgesToTrace flipped_edges(const SignpostTriangulation& intrinsic);
 
@@ -28,9 +28,9 @@ struct TracePoint {
 // that is almost every edge, so this holds a fraction of TracedEdges' size (igea: 3% of the edges flip).
 // Segments are built from it directly; TracedEdges only when a caller asks for the polylines.
 struct CompactTraces {
-  std::vector<int> job;             // #E index k among the flipped edges, or -1
-  std::vector<int> unflipped_face;  // #E input face carrying an unflipped edge, -1 for flipped ones
-  std::vector<int> start;           // #flipped + 1 offsets into points
+  std::vector<int> job;            // #E index k among the flipped edges, or -1
+  std::vector<int> unflipped_face; // #E input face carrying an unflipped edge, -1 for flipped ones
+  std::vector<int> start;          // #flipped + 1 offsets into points
   std::vector<TracePoint> points;
 
   // Segments over all edges: one per unflipped edge, points - 1 per flipped one.
@@ -59,8 +59,8 @@ struct CompactTraces {
 // its head (SolverError naming the edge otherwise). `original_edge` tells the edges never flipped
 // (>= 0, the input edge they are). `fans` are the input's vertex fans (from build_signpost_triangulation).
 // Parallel over edges.
-CompactTraces trace_edges(const InputTriangulation& input, const VertexFans& fans, const EdgesToTrace& flipped,
-                          const std::vector<int>& original_edge);
+CompactTraces trace_edges(const InputTriangulation& input, const VertexFans& fans,
+                          const EdgesToTrace& flipped, const std::vector<int>& original_edge);
 
 // Every edge's points in CSR form (the public TracedEdges). E: the intrinsic edges (#E x 2).
 TracedEdges expand_traces(const CompactTraces& compact, const Eigen::MatrixXi& E);

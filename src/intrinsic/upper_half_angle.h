@@ -37,7 +37,8 @@ inline double upper_half_angle(double y, double x) {
   // atan(lo / hi) in [0, pi/4]; above tan(pi/8) by atan(t) = pi/4 + atan((t - 1) / (t + 1)). Every
   // selection is a product with an exact 0 / 1 or +-1 factor.
   const double reduce = one_if_greater(lo, kTanPiOver8 * hi);
-  const double u = (lo - reduce * hi) / (hi + reduce * lo + (1.0 - one_if_greater(hi, 0.0))); // 0 / 1 at the origin
+  const double u =
+      (lo - reduce * hi) / (hi + reduce * lo + (1.0 - one_if_greater(hi, 0.0))); // 0 / 1 at the origin
   const double s = u * u, s2 = s * s, s4 = s2 * s2, s8 = s4 * s4;
   // Q(s) by Estrin's scheme (shorter dependency chains than Horner's).
   const double q01 = -0.3333333333333333 + 0.19999999999995655 * s;
@@ -49,7 +50,7 @@ inline double upper_half_angle(double y, double x) {
   const double a = (u + u * s * q) + reduce * (kPi / 4);
   const double steep = one_if_greater(y, ax); // measured from the y axis: pi/2 - a
   const double b = steep * (kPi / 2) + (1.0 - 2.0 * steep) * a;
-  const double left = one_if_greater(0.0, x); // x < 0: pi - b
+  const double left = one_if_greater(0.0, x);                       // x < 0: pi - b
   return left * kPi + (1.0 - 2.0 * left) * b + ((x - x) + (y - y)); // NaN in, NaN out (min / max drop one)
 }
 

@@ -31,14 +31,12 @@ void write_file_atomically(const std::string& path, const std::string& contents)
   while (done < contents.size()) {
     const ssize_t n = ::write(fd, contents.data() + done, contents.size() - done);
     if (n < 0) {
-      if (errno == EINTR)
-        continue;
+      if (errno == EINTR) continue;
       fail("write failed");
     }
     done += static_cast<std::size_t>(n);
   }
-  if (::fsync(fd) != 0)
-    fail("fsync failed");
+  if (::fsync(fd) != 0) fail("fsync failed");
   // mkstemp creates 0600; keep the mode of the file being replaced, else the usual 0644
   // (reading the umask would need umask(), which is process-wide and racy).
   struct stat existing;

@@ -15,8 +15,7 @@ void FaceBuilder::reserve_triangles(std::size_t count) {
 }
 
 void FaceBuilder::fail(std::int64_t where, const std::string& message) const {
-  if (kind_ == Location::line)
-    fail_at_line(path_, where, message);
+  if (kind_ == Location::line) fail_at_line(path_, where, message);
   fail_at_offset(path_, where, message);
 }
 
@@ -50,8 +49,7 @@ void FaceBuilder::add_polygon(const std::vector<std::int64_t>& corners, std::int
     triangles_.push_back(
         static_cast<int>(std::min<std::int64_t>(corners[i + 1], std::numeric_limits<int>::max())));
   }
-  if (n > 3)
-    ++polygons_split_;
+  if (n > 3) ++polygons_split_;
   ++polygons_;
 }
 
@@ -67,11 +65,9 @@ void FaceBuilder::add_strip(const std::vector<std::int64_t>& strip, std::int64_t
       fail(where, "triangle strip " + std::to_string(strips_) + " uses vertex index " + std::to_string(c) +
                       " (only -1, the restart marker, may be negative)");
     note_max(c, where, true);
-    if (run == 0)
-      ++strip_runs_;
+    if (run == 0) ++strip_runs_;
     ++run;
-    if (run < 3)
-      continue;
+    if (run < 3) continue;
     const std::int64_t a = strip[i - 2], b = strip[i - 1];
     const std::int64_t k = run - 3; // triangle number within the run
     if (a == b || b == c || a == c) {
@@ -101,8 +97,7 @@ Eigen::MatrixXi FaceBuilder::finish(std::int64_t num_vertices, std::vector<std::
   const Eigen::Index nt = static_cast<Eigen::Index>(triangles_.size() / 3);
   Eigen::MatrixXi F(nt, 3);
   for (Eigen::Index t = 0; t < nt; ++t)
-    for (int k = 0; k < 3; ++k)
-      F(t, k) = triangles_[static_cast<std::size_t>(3 * t + k)];
+    for (int k = 0; k < 3; ++k) F(t, k) = triangles_[static_cast<std::size_t>(3 * t + k)];
   if (polygons_split_ > 0)
     notes.push_back("triangulated " + std::to_string(polygons_split_) +
                     " polygons with more than 3 corners as fans from their first corner; " +

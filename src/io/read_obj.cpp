@@ -22,8 +22,7 @@ MeshData read_obj(const std::string& path) {
   std::string_view line;
   while (lines.next(line)) {
     io_detail::split_tokens(line, tokens);
-    if (tokens.empty() || tokens[0][0] == '#')
-      continue;
+    if (tokens.empty() || tokens[0][0] == '#') continue;
     const std::string_view keyword = tokens[0];
     if (keyword == "v") {
       // v x y z [w] (and some exporters append r g b): the first three numbers are the position.
@@ -42,8 +41,7 @@ MeshData read_obj(const std::string& path) {
       const std::int64_t defined = static_cast<std::int64_t>(positions.size() / 3);
       for (std::size_t k = 1; k < tokens.size(); ++k) {
         const std::string_view corner = tokens[k];
-        if (corner[0] == '#')
-          break; // trailing comment
+        if (corner[0] == '#') break; // trailing comment
         // i, i/t, i//n, i/t/n: only the position index matters here.
         const std::string_view index_token = corner.substr(0, corner.find('/'));
         std::int64_t index;

@@ -18,11 +18,9 @@ bool next_content_line(io_detail::LineReader& lines, std::vector<std::string_vie
   std::string_view line;
   while (lines.next(line)) {
     const std::size_t hash = line.find('#');
-    if (hash != std::string_view::npos)
-      line = line.substr(0, hash);
+    if (hash != std::string_view::npos) line = line.substr(0, hash);
     io_detail::split_tokens(line, tokens);
-    if (!tokens.empty())
-      return true;
+    if (!tokens.empty()) return true;
   }
   return false;
 }
@@ -119,8 +117,8 @@ MeshData read_off(const std::string& path) {
       if (!io_detail::parse_int(token, index))
         fail_at_line(path, lines.line(),
                      "face " + std::to_string(f) + ": bad vertex index " + quote_token(token) + " (face " +
-                         std::to_string(f) + " declares " + std::to_string(n) + " corners and starts on line " +
-                         std::to_string(face_line) + ")");
+                         std::to_string(f) + " declares " + std::to_string(n) +
+                         " corners and starts on line " + std::to_string(face_line) + ")");
       corners.push_back(index);
     }
     faces.add_polygon(corners, face_line);

@@ -75,8 +75,7 @@ bool is_integer(Type t) {
 double read_binary(const unsigned char* p, Type t, bool swap) {
   unsigned char b[8];
   const std::size_t n = type_size(t);
-  for (std::size_t i = 0; i < n; ++i)
-    b[i] = swap ? p[n - 1 - i] : p[i];
+  for (std::size_t i = 0; i < n; ++i) b[i] = swap ? p[n - 1 - i] : p[i];
   switch (t) {
   case Type::int8: {
     std::int8_t v;
@@ -138,8 +137,7 @@ Role role_of(const std::string& path, const Element& e) {
   const auto find = [&](std::initializer_list<const char*> names) {
     for (std::size_t i = 0; i < e.properties.size(); ++i)
       for (const char* n : names)
-        if (e.properties[i].name == n)
-          return static_cast<int>(i);
+        if (e.properties[i].name == n) return static_cast<int>(i);
     return -1;
   };
   if (e.name == "vertex") {
@@ -182,15 +180,13 @@ MeshData read_ply(const std::string& path) {
   std::vector<Element> elements;
   while (lines.next(line)) {
     io_detail::split_tokens(line, tokens);
-    if (tokens.empty() || tokens[0] == "comment" || tokens[0] == "obj_info")
-      continue;
+    if (tokens.empty() || tokens[0] == "comment" || tokens[0] == "obj_info") continue;
     if (tokens[0] == "end_header") {
       have_end = true;
       break;
     }
     if (tokens[0] == "format") {
-      if (tokens.size() != 3)
-        fail_at_line(path, lines.line(), "format line needs an encoding and a version");
+      if (tokens.size() != 3) fail_at_line(path, lines.line(), "format line needs an encoding and a version");
       if (tokens[1] == "ascii")
         encoding = Encoding::ascii;
       else if (tokens[1] == "binary_little_endian")
@@ -208,38 +204,31 @@ MeshData read_ply(const std::string& path) {
       e.header_line = lines.line();
       elements.push_back(std::move(e));
     } else if (tokens[0] == "property") {
-      if (elements.empty())
-        fail_at_line(path, lines.line(), "property before any element");
+      if (elements.empty()) fail_at_line(path, lines.line(), "property before any element");
       Property p;
       bool ok;
       if (tokens.size() >= 2 && tokens[1] == "list") {
         ok = tokens.size() == 5 && parse_type(tokens[2], p.count_type) && parse_type(tokens[3], p.type);
-        if (ok)
-          p.name = std::string(tokens[4]);
+        if (ok) p.name = std::string(tokens[4]);
         p.is_list = true;
       } else {
         ok = tokens.size() == 3 && parse_type(tokens[1], p.type);
-        if (ok)
-          p.name = std::string(tokens[2]);
+        if (ok) p.name = std::string(tokens[2]);
       }
-      if (!ok)
-        fail_at_line(path, lines.line(), "bad property line " + quote_token(line));
+      if (!ok) fail_at_line(path, lines.line(), "bad property line " + quote_token(line));
       elements.back().properties.push_back(std::move(p));
     } else {
       fail_at_line(path, lines.line(), "unknown header keyword " + quote_token(tokens[0]));
     }
   }
-  if (!have_end)
-    fail_at_line(path, lines.line(), "file ends inside the header (no end_header)");
-  if (!have_format)
-    fail_at_line(path, lines.line(), "header has no format line");
+  if (!have_end) fail_at_line(path, lines.line(), "file ends inside the header (no end_header)");
+  if (!have_format) fail_at_line(path, lines.line(), "header has no format line");
 
   std::vector<Role> roles;
   int vertex_elements = 0;
   for (const Element& e : elements) {
     roles.push_back(role_of(path, e));
-    if (roles.back().kind == Role::vertex)
-      ++vertex_elements;
+    if (roles.back().kind == Role::vertex) ++vertex_elements;
   }
   if (vertex_elements != 1)
     fail_at_line(path, lines.line(), "header must declare exactly one element vertex");
@@ -257,10 +246,8 @@ MeshData read_ply(const std::string& path) {
       const Role& r = roles[ei];
       const std::int64_t cap =
           static_cast<std::int64_t>(lines.remaining_bytes() / 2); // >= 2 bytes per record
-      if (r.kind == Role::vertex)
-        positions.reserve(static_cast<std::size_t>(3 * std::min(e.count, cap)));
-      if (r.kind == Role::face)
-        faces.reserve_triangles(static_cast<std::size_t>(std::min(e.count, cap)));
+      if (r.kind == Role::vertex) positions.reserve(static_cast<std::size_t>(3 * std::min(e.count, cap)));
+      if (r.kind == Role::face) faces.reserve_triangles(static_cast<std::size_t>(std::min(e.count, cap)));
       double xyz[3] = {0, 0, 0};
       for (std::int64_t i = 0; i < e.count; ++i) {
         do {
@@ -287,12 +274,9 @@ MeshData read_ply(const std::string& path) {
               fail_at_line(path, lines.line(),
                            e.name + " " + std::to_string(i) + ": bad value " + quote_token(tok) +
                                " for property " + p.name);
-            if (pos == r.x)
-              xyz[0] = value;
-            if (pos == r.y)
-              xyz[1] = value;
-            if (pos == r.z)
-              xyz[2] = value;
+            if (pos == r.x) xyz[0] = value;
+            if (pos == r.y) xyz[1] = value;
+            if (pos == r.z) xyz[2] = value;
             continue;
           }
           const std::string_view count_tok = take(p);
@@ -306,12 +290,10 @@ MeshData read_ply(const std::string& path) {
                              std::to_string(n) + " items but the line has " +
                              std::to_string(tokens.size() - t));
           const bool wanted = pos == r.list;
-          if (wanted)
-            list.resize(static_cast<std::size_t>(n));
+          if (wanted) list.resize(static_cast<std::size_t>(n));
           for (std::int64_t k = 0; k < n; ++k) {
             const std::string_view tok = tokens[t++];
-            if (!wanted)
-              continue;
+            if (!wanted) continue;
             if (!io_detail::parse_int(tok, list[static_cast<std::size_t>(k)]))
               fail_at_line(path, lines.line(),
                            e.name + " " + std::to_string(i) + ": bad vertex index " + quote_token(tok));
@@ -321,15 +303,11 @@ MeshData read_ply(const std::string& path) {
           fail_at_line(path, lines.line(),
                        e.name + " " + std::to_string(i) + ": " + std::to_string(tokens.size() - t) +
                            " values more than the header declares");
-        if (r.kind == Role::vertex)
-          positions.insert(positions.end(), xyz, xyz + 3);
-        if (r.kind == Role::face)
-          faces.add_polygon(list, lines.line());
-        if (r.kind == Role::tristrips)
-          faces.add_strip(list, lines.line());
+        if (r.kind == Role::vertex) positions.insert(positions.end(), xyz, xyz + 3);
+        if (r.kind == Role::face) faces.add_polygon(list, lines.line());
+        if (r.kind == Role::tristrips) faces.add_strip(list, lines.line());
       }
-      if (r.kind == Role::vertex)
-        num_vertices = e.count;
+      if (r.kind == Role::vertex) num_vertices = e.count;
     }
     while (lines.next(line)) {
       io_detail::split_tokens(line, tokens);
@@ -358,10 +336,8 @@ MeshData read_ply(const std::string& path) {
                        "header declares " + std::to_string(e.count) + " " + e.name + " records of at least " +
                            std::to_string(min_record) + " bytes but only " + std::to_string(remaining) +
                            " bytes follow");
-      if (r.kind == Role::vertex)
-        positions.reserve(static_cast<std::size_t>(3 * e.count));
-      if (r.kind == Role::face)
-        faces.reserve_triangles(static_cast<std::size_t>(e.count));
+      if (r.kind == Role::vertex) positions.reserve(static_cast<std::size_t>(3 * e.count));
+      if (r.kind == Role::face) faces.reserve_triangles(static_cast<std::size_t>(e.count));
       const auto need = [&](std::size_t n, std::int64_t i) {
         if (n > size - pos)
           fail_at_offset(path, static_cast<std::int64_t>(pos),
@@ -371,8 +347,7 @@ MeshData read_ply(const std::string& path) {
       double xyz[3] = {0, 0, 0};
       for (std::int64_t i = 0; i < e.count; ++i) {
         const std::size_t record_start = pos;
-        if (!has_list)
-          need(fixed, i);
+        if (!has_list) need(fixed, i);
         for (std::size_t pi = 0; pi < e.properties.size(); ++pi) {
           const Property& p = e.properties[pi];
           const int ppos = static_cast<int>(pi);
@@ -396,8 +371,7 @@ MeshData read_ply(const std::string& path) {
           pos += cn;
           const std::size_t n = static_cast<std::size_t>(count_value);
           const std::size_t item = type_size(p.type);
-          if (n > (size - pos) / item)
-            need(n * item, i);
+          if (n > (size - pos) / item) need(n * item, i);
           if (ppos == r.list) {
             list.resize(n);
             for (std::size_t k = 0; k < n; ++k)
@@ -405,15 +379,11 @@ MeshData read_ply(const std::string& path) {
           }
           pos += n * item;
         }
-        if (r.kind == Role::vertex)
-          positions.insert(positions.end(), xyz, xyz + 3);
-        if (r.kind == Role::face)
-          faces.add_polygon(list, static_cast<std::int64_t>(record_start));
-        if (r.kind == Role::tristrips)
-          faces.add_strip(list, static_cast<std::int64_t>(record_start));
+        if (r.kind == Role::vertex) positions.insert(positions.end(), xyz, xyz + 3);
+        if (r.kind == Role::face) faces.add_polygon(list, static_cast<std::int64_t>(record_start));
+        if (r.kind == Role::tristrips) faces.add_strip(list, static_cast<std::int64_t>(record_start));
       }
-      if (r.kind == Role::vertex)
-        num_vertices = e.count;
+      if (r.kind == Role::vertex) num_vertices = e.count;
     }
     if (pos != size)
       fail_at_offset(path, static_cast<std::int64_t>(pos),

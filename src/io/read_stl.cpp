@@ -33,14 +33,10 @@ MeshData weld_corners(const std::vector<double>& corners) {
     for (int k = 0; k < 3; ++k) {
       const double x = key(a, k), y = key(b, k);
       const bool xn = std::isnan(x), yn = std::isnan(y);
-      if (xn != yn)
-        return yn;
-      if (xn)
-        continue;
-      if (x < y)
-        return true;
-      if (y < x)
-        return false;
+      if (xn != yn) return yn;
+      if (xn) continue;
+      if (x < y) return true;
+      if (y < x) return false;
     }
     return a < b;
   };
@@ -104,15 +100,13 @@ std::vector<double> read_ascii_corners(const std::string& path, const std::strin
   std::int64_t facet = 0;
   while (lines.next(line)) {
     io_detail::split_tokens(line, tokens);
-    if (tokens.empty())
-      continue;
+    if (tokens.empty()) continue;
     const std::string_view w = tokens[0];
     const auto expect = [&](const char* what) {
       fail_at_line(path, lines.line(), std::string("expected ") + what + ", found " + quote_token(w));
     };
     if (!started) {
-      if (w != "solid")
-        expect("'solid'");
+      if (w != "solid") expect("'solid'");
       started = true;
       continue;
     }
@@ -126,8 +120,7 @@ std::vector<double> read_ascii_corners(const std::string& path, const std::strin
         expect("'facet' or 'endsolid'");
       break;
     case State::facet:
-      if (w != "outer" || tokens.size() < 2 || tokens[1] != "loop")
-        expect("'outer loop'");
+      if (w != "outer" || tokens.size() < 2 || tokens[1] != "loop") expect("'outer loop'");
       loop.clear();
       state = State::in_loop;
       break;
@@ -160,23 +153,19 @@ std::vector<double> read_ascii_corners(const std::string& path, const std::strin
       }
       break;
     case State::after_loop:
-      if (w != "endfacet")
-        expect("'endfacet'");
+      if (w != "endfacet") expect("'endfacet'");
       ++facet;
       state = State::solid;
       break;
     case State::done:
       // Some files hold several solids back to back.
-      if (w != "solid")
-        expect("end of file or another 'solid'");
+      if (w != "solid") expect("end of file or another 'solid'");
       state = State::solid;
       break;
     }
   }
-  if (!started)
-    fail_at_line(path, lines.line(), "empty file");
-  if (state != State::done)
-    fail_at_line(path, lines.line(), "file ends inside a solid (no 'endsolid')");
+  if (!started) fail_at_line(path, lines.line(), "empty file");
+  if (state != State::done) fail_at_line(path, lines.line(), "file ends inside a solid (no 'endsolid')");
   return corners;
 }
 

@@ -17,8 +17,7 @@ template <typename T> void append_little_endian(std::string& out, T value) {
   unsigned char first;
   std::memcpy(&first, &one, 1);
   if (first != 1)
-    for (std::size_t i = 0; i < sizeof(T) / 2; ++i)
-      std::swap(b[i], b[sizeof(T) - 1 - i]);
+    for (std::size_t i = 0; i < sizeof(T) / 2; ++i) std::swap(b[i], b[sizeof(T) - 1 - i]);
   out.append(reinterpret_cast<const char*>(b), sizeof(T));
 }
 
@@ -42,12 +41,10 @@ void write_ply(const std::string& path, const Eigen::MatrixXd& V, const Eigen::M
     io_detail::append_face_lines(out, F, "3 ", 0);
   } else {
     for (Eigen::Index v = 0; v < V.rows(); ++v)
-      for (int k = 0; k < 3; ++k)
-        append_little_endian(out, V(v, k));
+      for (int k = 0; k < 3; ++k) append_little_endian(out, V(v, k));
     for (Eigen::Index f = 0; f < F.rows(); ++f) {
       append_little_endian(out, static_cast<std::uint8_t>(3));
-      for (int k = 0; k < 3; ++k)
-        append_little_endian(out, static_cast<std::int32_t>(F(f, k)));
+      for (int k = 0; k < 3; ++k) append_little_endian(out, static_cast<std::int32_t>(F(f, k)));
     }
   }
   io_detail::write_file_atomically(path, out);

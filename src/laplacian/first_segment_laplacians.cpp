@@ -31,8 +31,7 @@ std::vector<FirstSegment> first_segments(const Eigen::MatrixXd& V, const Intrins
   result.reserve(static_cast<size_t>(2 * T.E.rows()));
   for (int e = 0; e < static_cast<int>(T.E.rows()); ++e) {
     const int i0 = T.E(e, 0), i1 = T.E(e, 1);
-    if (i0 == i1)
-      continue; // loop: its intrinsic flux w (f_i - f_i) is zero
+    if (i0 == i1) continue; // loop: its intrinsic flux w (f_i - f_i) is zero
     const int first = traces.start[static_cast<size_t>(e)],
               last = traces.start[static_cast<size_t>(e) + 1] - 1;
     if (last - first < 1)
@@ -51,8 +50,7 @@ std::vector<FirstSegment> first_segments(const Eigen::MatrixXd& V, const Intrins
       const double t = c < 0 ? 0.0 : traces.t[p];
       FirstSegment s{i, c < 0 ? 2 : 3, {i, a, std::max(c, 0)}, {1.0, -(1.0 - t), -t}, 0.0};
       Eigen::RowVector3d point = V.row(a);
-      if (c >= 0)
-        point = (1.0 - t) * V.row(a) + t * V.row(c);
+      if (c >= 0) point = (1.0 - t) * V.row(a) + t * V.row(c);
       const double length = (point - V.row(i)).norm();
       if (!(length > 0.0))
         throw TopologyError("intrinsic edge " + std::to_string(e) + " (" + std::to_string(i0) + ", " +
@@ -72,8 +70,7 @@ Eigen::SparseMatrix<double> assemble(const Eigen::MatrixXd& V, const IntrinsicDe
   const std::vector<FirstSegment> segments = first_segments(V, idt);
   std::vector<Eigen::Triplet<double>> triplets;
   triplets.reserve(entries_per_segment * segments.size());
-  for (const FirstSegment& s : segments)
-    emit(s, triplets);
+  for (const FirstSegment& s : segments) emit(s, triplets);
   Eigen::SparseMatrix<double> L(V.rows(), V.rows());
   L.setFromTriplets(triplets.begin(), triplets.end());
   return L;
@@ -84,8 +81,7 @@ Eigen::SparseMatrix<double> assemble(const Eigen::MatrixXd& V, const IntrinsicDe
 Eigen::SparseMatrix<double> iarap_plus_laplacian(const Eigen::MatrixXd& V, const IntrinsicDelaunay& idt) {
   // Row i gets omega (f_i - f_p) = omega beta^T f: the finite-volume flux through *e_ij, f_j replaced by f_p.
   return assemble(V, idt, 3, [](const FirstSegment& s, std::vector<Eigen::Triplet<double>>& triplets) {
-    for (int k = 0; k < s.n; ++k)
-      triplets.emplace_back(s.i, s.index[k], s.omega * s.beta[k]);
+    for (int k = 0; k < s.n; ++k) triplets.emplace_back(s.i, s.index[k], s.omega * s.beta[k]);
   });
 }
 

@@ -9,8 +9,7 @@ Eigen::SparseMatrix<double> intrinsic_cotan_laplacian(const IntrinsicTriangulati
   triplets.reserve(static_cast<size_t>(4 * T.E.rows()));
   for (Eigen::Index e = 0; e < T.E.rows(); ++e) {
     const int i = T.E(e, 0), j = T.E(e, 1);
-    if (i == j)
-      continue; // a loop's flux w (f_i - f_i) vanishes
+    if (i == j) continue; // a loop's flux w (f_i - f_i) vanishes
     const double w = T.cot_weight(e);
     // Parallel edges between i and j are summed by setFromTriplets.
     triplets.emplace_back(i, j, -w);

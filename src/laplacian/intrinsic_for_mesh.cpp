@@ -9,8 +9,7 @@ namespace iarap::detail {
 namespace {
 
 void require(bool ok, const std::string& what) {
-  if (!ok)
-    throw InputError("precomputed intrinsic Delaunay triangulation does not match the mesh: " + what);
+  if (!ok) throw InputError("precomputed intrinsic Delaunay triangulation does not match the mesh: " + what);
 }
 
 } // namespace

@@ -163,8 +163,7 @@ std::vector<int> locality_probes(const IntrinsicDelaunay* idt, int num_vertices)
       }
   }
   std::vector<int> order(static_cast<size_t>(num_vertices));
-  for (int v = 0; v < num_vertices; ++v)
-    order[static_cast<size_t>(v)] = v;
+  for (int v = 0; v < num_vertices; ++v) order[static_cast<size_t>(v)] = v;
   std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
     return crossings[static_cast<size_t>(a)] > crossings[static_cast<size_t>(b)];
   });
@@ -172,8 +171,7 @@ std::vector<int> locality_probes(const IntrinsicDelaunay* idt, int num_vertices)
   for (int v : order)
     if (static_cast<int>(probes.size()) < kProbes && crossings[static_cast<size_t>(v)] > 0)
       probes.push_back(v);
-  if (probes.empty() && num_vertices > 0)
-    probes = {0, num_vertices / 2, num_vertices - 1};
+  if (probes.empty() && num_vertices > 0) probes = {0, num_vertices / 2, num_vertices - 1};
   return probes;
 }
 
@@ -189,8 +187,7 @@ Eigen::MatrixXd moved_probe(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, 
         altitude = std::min(altitude, (b - a).cross(d - a).norm() / (d - b).norm());
       }
   Eigen::MatrixXd moved = V;
-  if (std::isfinite(altitude))
-    moved.row(k) += kProbeStep * altitude * Eigen::RowVector3d(0.48, 0.6, 0.64);
+  if (std::isfinite(altitude)) moved.row(k) += kProbeStep * altitude * Eigen::RowVector3d(0.48, 0.6, 0.64);
   return moved;
 }
 
@@ -201,8 +198,7 @@ double leak_outside_ring(const Eigen::SparseMatrix<double>& L, const Eigen::Spar
   ring[static_cast<size_t>(k)] = 1;
   for (Eigen::Index f = 0; f < F.rows(); ++f)
     if (F(f, 0) == k || F(f, 1) == k || F(f, 2) == k)
-      for (int c = 0; c < 3; ++c)
-        ring[static_cast<size_t>(F(f, c))] = 1;
+      for (int c = 0; c < 3; ++c) ring[static_cast<size_t>(F(f, c))] = 1;
   const Eigen::SparseMatrix<double> change = L_moved - L;
   double leak = 0.0;
   for (int col = 0; col < change.outerSize(); ++col)
@@ -220,8 +216,7 @@ std::pair<std::vector<long long>, std::vector<long long>> boundary_keys(const Ei
   Eigen::MatrixXi boundary(topology.E.rows(), 2);
   Eigen::Index count = 0;
   for (Eigen::Index e = 0; e < topology.E.rows(); ++e)
-    if (topology.face_count(e) == 1)
-      boundary.row(count++) = topology.E.row(e);
+    if (topology.face_count(e) == 1) boundary.row(count++) = topology.E.row(e);
   std::vector<long long> obtuse;
   if (idt) {
     const IntrinsicTriangulation& T = idt->triangulation;
@@ -239,20 +234,17 @@ std::pair<std::vector<long long>, std::vector<long long>> boundary_keys(const Ei
 double linear_precision_residual(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
                                  const Eigen::SparseMatrix<double>& L, double scale) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  if (V.rows() < 3)
-    return nan;
+  if (V.rows() < 3) return nan;
   const double diagonal = (V.colwise().maxCoeff() - V.colwise().minCoeff()).norm();
   const Eigen::RowVector3d centroid = V.colwise().mean();
   const Eigen::MatrixXd centred = V.rowwise() - centroid;
   Eigen::JacobiSVD<Eigen::MatrixXd> svd(centred.transpose() * centred, Eigen::ComputeFullU);
   const Eigen::Matrix3d frame = svd.matrixU(); // columns: in-plane directions, then the normal
-  if ((centred * frame.col(2)).cwiseAbs().maxCoeff() > kFlatTolerance * diagonal)
-    return nan;
+  if ((centred * frame.col(2)).cwiseAbs().maxCoeff() > kFlatTolerance * diagonal) return nan;
   const EdgeTopology topology = edge_topology(F, static_cast<int>(V.rows()));
   std::vector<char> interior(static_cast<size_t>(V.rows()), 0);
   for (Eigen::Index f = 0; f < F.rows(); ++f)
-    for (int k = 0; k < 3; ++k)
-      interior[static_cast<size_t>(F(f, k))] = 1;
+    for (int k = 0; k < 3; ++k) interior[static_cast<size_t>(F(f, k))] = 1;
   for (Eigen::Index e = 0; e < topology.E.rows(); ++e)
     if (topology.face_count(e) == 1)
       interior[static_cast<size_t>(topology.E(e, 0))] = interior[static_cast<size_t>(topology.E(e, 1))] = 0;
@@ -260,8 +252,7 @@ double linear_precision_residual(const Eigen::MatrixXd& V, const Eigen::MatrixXi
   const Eigen::MatrixXd Lxy = L * xy;
   double residual = 0.0;
   for (Eigen::Index i = 0; i < V.rows(); ++i)
-    if (interior[static_cast<size_t>(i)])
-      residual = std::max(residual, Lxy.row(i).cwiseAbs().maxCoeff());
+    if (interior[static_cast<size_t>(i)]) residual = std::max(residual, Lxy.row(i).cwiseAbs().maxCoeff());
   return residual / (scale * diagonal);
 }
 
@@ -282,12 +273,10 @@ LaplacianProperties laplacian_properties(const Eigen::MatrixXd& V, const Eigen::
   for (int col = 0; col < L.outerSize(); ++col)
     for (Eigen::SparseMatrix<double>::InnerIterator it(L, col); it; ++it) {
       row_sum(it.row()) += it.value();
-      if (it.row() == it.col())
-        scale = std::max(scale, std::abs(it.value()));
+      if (it.row() == it.col()) scale = std::max(scale, std::abs(it.value()));
     }
   p.diagonal_max_abs = scale;
-  if (scale == 0.0)
-    scale = 1.0; // an empty operator: relative figures become absolute
+  if (scale == 0.0) scale = 1.0; // an empty operator: relative figures become absolute
   p.row_sum_max_abs = V.rows() == 0 ? 0.0 : row_sum.cwiseAbs().maxCoeff();
 
   const Eigen::SparseMatrix<double> Lt = L.transpose();
@@ -312,8 +301,7 @@ LaplacianProperties laplacian_properties(const Eigen::MatrixXd& V, const Eigen::
   p.positive_weights = p.negative_offdiag_count == 0;
 
   p.sparsity_within_input_adjacency = within(L, adjacency_keys(edge_topology(F, static_cast<int>(n)).E, n));
-  if (idt)
-    p.sparsity_within_intrinsic_adjacency = within(L, adjacency_keys(idt->triangulation.E, n));
+  if (idt) p.sparsity_within_intrinsic_adjacency = within(L, adjacency_keys(idt->triangulation.E, n));
   p.weakly_local = p.sparsity_within_input_adjacency || p.sparsity_within_intrinsic_adjacency;
   // Strong locality, measured (see the header): rebuild the operator with one probe vertex moved.
   const auto known = std::find_if(all_laplacian_kinds().begin(), all_laplacian_kinds().end(),

@@ -12,8 +12,8 @@
 namespace iarap {
 
 const std::vector<LaplacianKind>& all_laplacian_kinds() {
-  static const std::vector<LaplacianKind> kinds{LaplacianKind::Cotan, LaplacianKind::Intrinsic,
-                                                LaplacianKind::Iarap, LaplacianKind::IarapPlus,
+  static const std::vector<LaplacianKind> kinds{LaplacianKind::Cotan,    LaplacianKind::Intrinsic,
+                                                LaplacianKind::Iarap,    LaplacianKind::IarapPlus,
                                                 LaplacianKind::IarapSym, LaplacianKind::IarapRefined};
   return kinds;
 }
@@ -38,16 +38,14 @@ std::string laplacian_kind_name(LaplacianKind kind) {
 
 LaplacianKind parse_laplacian_kind(const std::string& name) {
   for (LaplacianKind kind : all_laplacian_kinds())
-    if (laplacian_kind_name(kind) == name)
-      return kind;
+    if (laplacian_kind_name(kind) == name) return kind;
   throw InputError("unknown Laplacian kind '" + name +
                    "'; expected cotan, intrinsic, iarap, iarap-plus, iarap-sym or iarap-refined");
 }
 
 Eigen::SparseMatrix<double> laplacian(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, LaplacianKind kind,
                                       const IntrinsicDelaunay* precomputed) {
-  if (kind == LaplacianKind::Cotan)
-    return cotan_laplacian(V, F);
+  if (kind == LaplacianKind::Cotan) return cotan_laplacian(V, F);
   if (kind == LaplacianKind::IarapRefined) {
     // Its own triangulation: the refined one has inserted boundary points a precomputed plain one lacks.
     IntrinsicOptions options;

@@ -20,13 +20,11 @@ Eigen::VectorXd lumped_vertex_areas(const Eigen::MatrixXi& F, const Eigen::Matri
       for (int k = 0; k < 3; ++k) {
         const double a2 = l(f, k) * l(f, k), b2 = l(f, (k + 1) % 3) * l(f, (k + 1) % 3),
                      c2 = l(f, (k + 2) % 3) * l(f, (k + 2) % 3);
-        if (a2 > b2 + c2)
-          obtuse = k;
+        if (a2 > b2 + c2) obtuse = k;
       }
       if (obtuse >= 0) {
         // Meyer et al.: the circumcentre leaves the triangle, so split by area, half to the obtuse corner.
-        for (int k = 0; k < 3; ++k)
-          share[k] = k == obtuse ? A / 2.0 : A / 4.0;
+        for (int k = 0; k < 3; ++k) share[k] = k == obtuse ? A / 2.0 : A / 4.0;
       } else {
         // Circumcentric cell of corner k: (|e_k,k+1|^2 cot(k+2) + |e_k,k+2|^2 cot(k+1)) / 8; the side
         // opposite corner m has length l(f, m).
@@ -39,8 +37,7 @@ Eigen::VectorXd lumped_vertex_areas(const Eigen::MatrixXi& F, const Eigen::Matri
         }
       }
     }
-    for (int k = 0; k < 3; ++k)
-      area(F(f, k)) += share[k];
+    for (int k = 0; k < 3; ++k) area(F(f, k)) += share[k];
   }
   return area;
 }
@@ -59,20 +56,17 @@ Eigen::SparseMatrix<double> mass_matrix(const Eigen::MatrixXd& V, const Eigen::M
     const IntrinsicTriangulation& T = detail::intrinsic_for_mesh(V, F, precomputed, storage).triangulation;
     Eigen::MatrixXd l(T.F.rows(), 3);
     for (Eigen::Index f = 0; f < T.F.rows(); ++f)
-      for (int k = 0; k < 3; ++k)
-        l(f, k) = T.length(T.FE(f, k));
+      for (int k = 0; k < 3; ++k) l(f, k) = T.length(T.FE(f, k));
     area = lumped_vertex_areas(T.F, l, num_vertices, kind);
   } else {
     Eigen::MatrixXd l(F.rows(), 3);
     for (Eigen::Index f = 0; f < F.rows(); ++f)
-      for (int k = 0; k < 3; ++k)
-        l(f, k) = (V.row(F(f, (k + 1) % 3)) - V.row(F(f, (k + 2) % 3))).norm();
+      for (int k = 0; k < 3; ++k) l(f, k) = (V.row(F(f, (k + 1) % 3)) - V.row(F(f, (k + 2) % 3))).norm();
     area = lumped_vertex_areas(F, l, num_vertices, kind);
   }
   Eigen::SparseMatrix<double> M(num_vertices, num_vertices);
   M.reserve(Eigen::VectorXi::Ones(num_vertices));
-  for (int i = 0; i < num_vertices; ++i)
-    M.insert(i, i) = area(i);
+  for (int i = 0; i < num_vertices; ++i) M.insert(i, i) = area(i);
   return M;
 }
 
@@ -82,12 +76,9 @@ const std::vector<std::string>& mass_kind_names() {
 }
 
 MassMatrixChoice parse_mass_kind(const std::string& name) {
-  if (name == "voronoi")
-    return {MassKind::Voronoi, false};
-  if (name == "barycentric")
-    return {MassKind::Barycentric, false};
-  if (name == "intrinsic")
-    return {MassKind::Voronoi, true};
+  if (name == "voronoi") return {MassKind::Voronoi, false};
+  if (name == "barycentric") return {MassKind::Barycentric, false};
+  if (name == "intrinsic") return {MassKind::Voronoi, true};
   throw InputError("unknown mass matrix kind '" + name + "'; expected voronoi, barycentric or intrinsic");
 }
 

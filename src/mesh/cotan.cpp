@@ -36,12 +36,12 @@ Eigen::MatrixXd face_cotangents(const Eigen::MatrixXd& V, const Eigen::MatrixXi&
   Eigen::MatrixXd C(F.rows(), 3);
   for (Eigen::Index f = 0; f < F.rows(); ++f) {
     double l[3];
-    for (int k = 0; k < 3; ++k)
-      l[k] = (V.row(F(f, (k + 1) % 3)) - V.row(F(f, (k + 2) % 3))).norm();
+    for (int k = 0; k < 3; ++k) l[k] = (V.row(F(f, (k + 1) % 3)) - V.row(F(f, (k + 2) % 3))).norm();
     // cotangent_from_lengths per corner, with the face's area computed once (it sorts its arguments, so
     // each corner's call would compute the same bits).
     const double four_area = 4.0 * triangle_area_from_lengths(l[0], l[1], l[2]);
-    for (int k = 0; k < 3; ++k) C(f, k) = cotangent_given_four_area(l[k], l[(k + 1) % 3], l[(k + 2) % 3], four_area);
+    for (int k = 0; k < 3; ++k)
+      C(f, k) = cotangent_given_four_area(l[k], l[(k + 1) % 3], l[(k + 2) % 3], four_area);
   }
   return C;
 }

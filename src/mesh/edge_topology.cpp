@@ -72,7 +72,8 @@ EdgeTopology edge_topology(const Eigen::MatrixXi& F, int num_vertices) {
     int distinct = 0;
     sort_bucket(bucket.data() + first, bucket.data() + last);
     for (int i = first; i < last; ++i)
-      distinct += i == first || bucket[static_cast<size_t>(i)].other != bucket[static_cast<size_t>(i - 1)].other;
+      distinct +=
+          i == first || bucket[static_cast<size_t>(i)].other != bucket[static_cast<size_t>(i - 1)].other;
     edge_start[static_cast<size_t>(v) + 1] = distinct;
   }
   for (size_t v = 0; v < nv; ++v) edge_start[v + 1] += edge_start[v];

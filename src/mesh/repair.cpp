@@ -18,13 +18,11 @@ Eigen::VectorXi weld_representatives(const Eigen::MatrixXd& V, double tolerance)
   const int n = static_cast<int>(V.rows());
   Eigen::VectorXi representative(n);
   std::iota(representative.data(), representative.data() + n, 0);
-  if (n == 0 || V.cols() != 3)
-    return representative;
+  if (n == 0 || V.cols() != 3) return representative;
 
   Eigen::RowVector3d lo = Eigen::RowVector3d::Constant(INFINITY);
   for (int v = 0; v < n; ++v)
-    if (V.row(v).allFinite())
-      lo = lo.cwiseMin(V.row(v));
+    if (V.row(v).allFinite()) lo = lo.cwiseMin(V.row(v));
   // Cell size: the tolerance, so any two points within it lie in the same or adjacent cells. A zero tolerance
   // (identical positions only) still needs a positive cell, taken tiny relative to the coordinates.
   const double bbox = bounding_box_diagonal(V);
@@ -35,12 +33,10 @@ Eigen::VectorXi weld_representatives(const Eigen::MatrixXd& V, double tolerance)
   std::vector<int> order;
   order.reserve(static_cast<std::size_t>(n));
   for (int v = 0; v < n; ++v)
-    if (V.row(v).allFinite())
-      order.push_back(v);
+    if (V.row(v).allFinite()) order.push_back(v);
   const auto position_less = [&](int a, int b) {
     for (int k = 0; k < 3; ++k)
-      if (V(a, k) != V(b, k))
-        return V(a, k) < V(b, k);
+      if (V(a, k) != V(b, k)) return V(a, k) < V(b, k);
     return a < b;
   };
   std::sort(order.begin(), order.end(), position_less);
@@ -57,8 +53,7 @@ Eigen::VectorXi weld_representatives(const Eigen::MatrixXd& V, double tolerance)
   std::vector<Key> keys;
   keys.reserve(static_cast<std::size_t>(n));
   for (int v = 0; v < n; ++v) {
-    if (!V.row(v).allFinite() || is_copy[static_cast<std::size_t>(v)])
-      continue;
+    if (!V.row(v).allFinite() || is_copy[static_cast<std::size_t>(v)]) continue;
     Key key;
     for (int k = 0; k < 3; ++k) {
       // Offsets from the minimum are at most bbox / cell; clamp so absurd ratios cannot overflow.
@@ -78,10 +73,10 @@ Eigen::VectorXi weld_representatives(const Eigen::MatrixXd& V, double tolerance)
         for (auto it = std::lower_bound(keys.begin(), keys.end(), from); it != keys.end() && *it <= to;
              ++it) {
           const int j = static_cast<int>((*it)[3]);
-          if (j <= i)
-            continue; // each pair once
+          if (j <= i) continue; // each pair once
           // Zero tolerance compares positions exactly (a norm of 1e-300 differences would underflow to 0).
-          const bool close = tolerance > 0 ? (V.row(i) - V.row(j)).stableNorm() <= tolerance : V.row(i) == V.row(j);
+          const bool close =
+              tolerance > 0 ? (V.row(i) - V.row(j)).stableNorm() <= tolerance : V.row(i) == V.row(j);
           if (close) {
             pair_a.push_back(i);
             pair_b.push_back(j);
@@ -89,8 +84,7 @@ Eigen::VectorXi weld_representatives(const Eigen::MatrixXd& V, double tolerance)
         }
       }
   }
-  if (pair_a.empty())
-    return representative;
+  if (pair_a.empty()) return representative;
   Eigen::MatrixXi pairs(static_cast<Eigen::Index>(pair_a.size()), 3);
   for (std::size_t p = 0; p < pair_a.size(); ++p)
     pairs.row(static_cast<Eigen::Index>(p)) << pair_a[p], pair_b[p], pair_b[p];
@@ -101,8 +95,7 @@ Eigen::VectorXi weld_representatives(const Eigen::MatrixXd& V, double tolerance)
   std::vector<int> smallest(static_cast<std::size_t>(count), -1);
   for (int v = 0; v < n; ++v) {
     int& s = smallest[static_cast<std::size_t>(component(v))];
-    if (s < 0)
-      s = v;
+    if (s < 0) s = v;
     representative(v) = s;
   }
   return representative;
@@ -165,13 +158,11 @@ RepairResult repair_mesh(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, con
 
   std::vector<char> used(static_cast<std::size_t>(nv), 0);
   for (int f : kept_faces)
-    for (int k = 0; k < 3; ++k)
-      used[static_cast<std::size_t>(representative(F(f, k)))] = 1;
+    for (int k = 0; k < 3; ++k) used[static_cast<std::size_t>(representative(F(f, k)))] = 1;
   std::vector<int> new_index(static_cast<std::size_t>(nv), -1);
   int count = 0, unreferenced = 0;
   for (int v = 0; v < nv; ++v) {
-    if (representative(v) != v)
-      continue;
+    if (representative(v) != v) continue;
     if (options.remove_unreferenced && !used[static_cast<std::size_t>(v)]) {
       ++unreferenced;
       continue;

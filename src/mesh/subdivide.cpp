@@ -23,8 +23,7 @@ void subdivide_midpoint(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, Eige
   const Eigen::Index ne = t.E.rows();
   Eigen::MatrixXd out(nv + ne, 3); // separate buffer: V_out may alias V
   out.topRows(nv) = V;
-  for (Eigen::Index e = 0; e < ne; ++e)
-    out.row(nv + e) = 0.5 * (V.row(t.E(e, 0)) + V.row(t.E(e, 1)));
+  for (Eigen::Index e = 0; e < ne; ++e) out.row(nv + e) = 0.5 * (V.row(t.E(e, 0)) + V.row(t.E(e, 1)));
   Eigen::MatrixXi faces(4 * F.rows(), 3);
   for (Eigen::Index f = 0; f < F.rows(); ++f) {
     const int a = F(f, 0), b = F(f, 1), c = F(f, 2);

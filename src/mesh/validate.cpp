@@ -6,8 +6,8 @@
 #include "iarap/mesh/normalize_scale.h"
 #include "iarap/mesh/repair.h"
 
-#include <algorithm>
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <vector>
@@ -25,8 +25,7 @@ constexpr double delaunay_tolerance = 1e-12;
 // Connected groups of the pairs (a_i, b_i) over n items, through vertex_components on degenerate "faces".
 Eigen::VectorXi group_pairs(const std::vector<int>& a, const std::vector<int>& b, int n, int* count) {
   Eigen::MatrixXi pairs(static_cast<Eigen::Index>(a.size()), 3);
-  for (std::size_t i = 0; i < a.size(); ++i)
-    pairs.row(static_cast<Eigen::Index>(i)) << a[i], b[i], b[i];
+  for (std::size_t i = 0; i < a.size(); ++i) pairs.row(static_cast<Eigen::Index>(i)) << a[i], b[i], b[i];
   return vertex_components(pairs, n, count);
 }
 
@@ -40,8 +39,7 @@ int non_orientable_components(const Eigen::MatrixXi& G, const EdgeTopology& t, i
   std::vector<int> stack;
   int bad = 0;
   for (int seed = 0; seed < ng; ++seed) {
-    if (flip[static_cast<std::size_t>(seed)] >= 0)
-      continue;
+    if (flip[static_cast<std::size_t>(seed)] >= 0) continue;
     flip[static_cast<std::size_t>(seed)] = 0;
     stack.assign(1, seed);
     bool orientable = true;
@@ -50,8 +48,7 @@ int non_orientable_components(const Eigen::MatrixXi& G, const EdgeTopology& t, i
       stack.pop_back();
       for (int k = 0; k < 3; ++k) {
         const int e = t.FE(g, k);
-        if (t.face_count(e) != 2)
-          continue;
+        if (t.face_count(e) != 2) continue;
         const int side = t.EF(e, 0) == g ? 0 : 1;
         const int h = t.EF(e, 1 - side), kh = t.EK(e, 1 - side);
         const bool same_direction = G(g, (k + 1) % 3) == G(h, (kh + 1) % 3);
@@ -62,8 +59,7 @@ int non_orientable_components(const Eigen::MatrixXi& G, const EdgeTopology& t, i
           stack.push_back(h);
         } else if (have != want && orientable) {
           orientable = false;
-          if (bad == 0 && first_bad)
-            *first_bad = h;
+          if (bad == 0 && first_bad) *first_bad = h;
         }
       }
     }
@@ -79,14 +75,12 @@ std::string plural(int n, const char* one, const char* many) {
 } // namespace
 
 double bounding_box_diagonal(const Eigen::MatrixXd& V) {
-  if (V.cols() != 3)
-    return 0.0;
+  if (V.cols() != 3) return 0.0;
   Eigen::RowVector3d lo = Eigen::RowVector3d::Constant(INFINITY),
                      hi = Eigen::RowVector3d::Constant(-INFINITY);
   bool any = false;
   for (Eigen::Index v = 0; v < V.rows(); ++v) {
-    if (!V.row(v).allFinite())
-      continue;
+    if (!V.row(v).allFinite()) continue;
     lo = lo.cwiseMin(V.row(v));
     hi = hi.cwiseMax(V.row(v));
     any = true;
@@ -109,15 +103,13 @@ MeshReport check_mesh(const Eigen::MatrixXd& V_in, const Eigen::MatrixXi& F) {
     return r;
   }
   const int nv = r.vertices, nf = r.faces;
-  if (nf == 0)
-    r.errors.push_back("mesh has no faces");
+  if (nf == 0) r.errors.push_back("mesh has no faces");
 
   // ---- coordinates
   int first_bad_vertex = -1;
   for (int v = 0; v < nv; ++v)
     if (!V.row(v).allFinite()) {
-      if (r.non_finite_coordinates++ == 0)
-        first_bad_vertex = v;
+      if (r.non_finite_coordinates++ == 0) first_bad_vertex = v;
     }
   if (r.non_finite_coordinates > 0)
     r.errors.push_back(plural(r.non_finite_coordinates, "vertex has", "vertices have") +
@@ -141,13 +133,10 @@ MeshReport check_mesh(const Eigen::MatrixXd& V_in, const Eigen::MatrixXi& F) {
         }
       }
     }
-    if (!in_range)
-      continue;
-    for (int k = 0; k < 3; ++k)
-      used[static_cast<std::size_t>(F(f, k))] = 1;
+    if (!in_range) continue;
+    for (int k = 0; k < 3; ++k) used[static_cast<std::size_t>(F(f, k))] = 1;
     if (F(f, 0) == F(f, 1) || F(f, 1) == F(f, 2) || F(f, 0) == F(f, 2)) {
-      if (r.repeated_vertex_faces++ == 0)
-        first_repeat_face = f;
+      if (r.repeated_vertex_faces++ == 0) first_repeat_face = f;
       continue;
     }
     good.push_back(f);
@@ -163,8 +152,7 @@ MeshReport check_mesh(const Eigen::MatrixXd& V_in, const Eigen::MatrixXi& F) {
         std::to_string(F(first_repeat_face, 1)) + ", " + std::to_string(F(first_repeat_face, 2)) + ")");
   int first_unused = -1;
   for (int v = 0; v < nv; ++v)
-    if (!used[static_cast<std::size_t>(v)] && r.unreferenced_vertices++ == 0)
-      first_unused = v;
+    if (!used[static_cast<std::size_t>(v)] && r.unreferenced_vertices++ == 0) first_unused = v;
   if (r.unreferenced_vertices > 0)
     r.warnings.push_back(plural(r.unreferenced_vertices, "vertex is", "vertices are") +
                          " used by no face; first: vertex " + std::to_string(first_unused) +
@@ -172,8 +160,7 @@ MeshReport check_mesh(const Eigen::MatrixXd& V_in, const Eigen::MatrixXi& F) {
 
   const int ng = static_cast<int>(good.size());
   Eigen::MatrixXi G(ng, 3);
-  for (int g = 0; g < ng; ++g)
-    G.row(g) = F.row(good[static_cast<std::size_t>(g)]);
+  for (int g = 0; g < ng; ++g) G.row(g) = F.row(good[static_cast<std::size_t>(g)]);
 
   // ---- zero-area faces
   const double min_area = zero_area_factor * r.bbox_diagonal * r.bbox_diagonal;
@@ -181,13 +168,13 @@ MeshReport check_mesh(const Eigen::MatrixXd& V_in, const Eigen::MatrixXi& F) {
   for (int g = 0; g < ng; ++g) {
     const Eigen::RowVector3d a = V.row(G(g, 0)), b = V.row(G(g, 1)), c = V.row(G(g, 2));
     const double area = 0.5 * (b - a).cross(c - a).norm();
-    if (area <= min_area && r.zero_area_faces++ == 0)
-      first_flat = good[static_cast<std::size_t>(g)];
+    if (area <= min_area && r.zero_area_faces++ == 0) first_flat = good[static_cast<std::size_t>(g)];
   }
   if (r.zero_area_faces > 0)
     r.warnings.push_back(plural(r.zero_area_faces, "face has", "faces have") +
                          " zero area (<= 1e-12 x bbox diagonal^2); first: face " +
-                         std::to_string(first_flat) + " (repair drops them: `iarap deform --repair`, repair_mesh with remove_zero_area)");
+                         std::to_string(first_flat) +
+                         " (repair drops them: `iarap deform --repair`, repair_mesh with remove_zero_area)");
 
   // ---- edges: boundary, non-manifold, orientation, Delaunay
   const EdgeTopology t = edge_topology(G, nv);
@@ -197,18 +184,14 @@ MeshReport check_mesh(const Eigen::MatrixXd& V_in, const Eigen::MatrixXi& F) {
   int first_nm_edge = -1, first_flip_edge = -1;
   for (int e = 0; e < ne; ++e) {
     const int count = t.face_count(e);
-    if (count == 1)
-      ++r.boundary_edges;
-    if (count > 2 && r.non_manifold_edges++ == 0)
-      first_nm_edge = e;
-    if (count != 2)
-      continue;
+    if (count == 1) ++r.boundary_edges;
+    if (count > 2 && r.non_manifold_edges++ == 0) first_nm_edge = e;
+    if (count != 2) continue;
     const int f0 = t.EF(e, 0), f1 = t.EF(e, 1), k0 = t.EK(e, 0), k1 = t.EK(e, 1);
     // Each face runs along the edge from corner k+1 to corner k+2; consistent neighbours run opposite ways.
     if (G(f0, (k0 + 1) % 3) == G(f1, (k1 + 1) % 3) && r.inconsistently_oriented_edges++ == 0)
       first_flip_edge = e;
-    if (C(f0, k0) + C(f1, k1) < -delaunay_tolerance)
-      ++r.non_delaunay_edges;
+    if (C(f0, k0) + C(f1, k1) < -delaunay_tolerance) ++r.non_delaunay_edges;
   }
   const auto edge_name = [&](int e) {
     return "edge (" + std::to_string(t.E(e, 0)) + ", " + std::to_string(t.E(e, 1)) + ")";
@@ -221,17 +204,18 @@ MeshReport check_mesh(const Eigen::MatrixXd& V_in, const Eigen::MatrixXi& F) {
   r.non_orientable_components = non_orientable_components(G, t, &first_non_orientable_face);
   if (r.inconsistently_oriented_edges > 0) {
     const std::string where = "; first: " + edge_name(first_flip_edge) + " between faces " +
-                              std::to_string(good[static_cast<std::size_t>(t.EF(first_flip_edge, 0))]) + " and " +
+                              std::to_string(good[static_cast<std::size_t>(t.EF(first_flip_edge, 0))]) +
+                              " and " +
                               std::to_string(good[static_cast<std::size_t>(t.EF(first_flip_edge, 1))]);
     if (r.non_orientable_components > 0)
-      r.errors.push_back(
-          "the surface is non-orientable (" +
-          plural(r.non_orientable_components, "component has", "components have") +
-          " no consistent orientation, like a Moebius strip or a Klein bottle; first: the component of face " +
-          std::to_string(good[static_cast<std::size_t>(first_non_orientable_face)]) +
-          "): no choice of face orientations fixes it, and ARAP needs one; " +
-          plural(r.inconsistently_oriented_edges, "edge joins", "edges join") +
-          " faces oriented in the same direction" + where);
+      r.errors.push_back("the surface is non-orientable (" +
+                         plural(r.non_orientable_components, "component has", "components have") +
+                         " no consistent orientation, like a Moebius strip or a Klein bottle; first: the "
+                         "component of face " +
+                         std::to_string(good[static_cast<std::size_t>(first_non_orientable_face)]) +
+                         "): no choice of face orientations fixes it, and ARAP needs one; " +
+                         plural(r.inconsistently_oriented_edges, "edge joins", "edges join") +
+                         " faces oriented in the same direction" + where);
     else
       r.errors.push_back(plural(r.inconsistently_oriented_edges, "edge joins", "edges join") +
                          " inconsistently oriented faces" + where +
@@ -292,13 +276,15 @@ MeshReport check_mesh(const Eigen::MatrixXd& V_in, const Eigen::MatrixXi& F) {
   for (int v = 0; v < nv; ++v) {
     if (!pinched[static_cast<std::size_t>(v)]) continue;
     if (r.non_manifold_vertices++ == 0) first_pinched = v;
-    if (boundary_at[static_cast<std::size_t>(v)] == 2 * fan_count[static_cast<std::size_t>(v)] && open_pinched++ == 0)
+    if (boundary_at[static_cast<std::size_t>(v)] == 2 * fan_count[static_cast<std::size_t>(v)] &&
+        open_pinched++ == 0)
       first_open_pinched = v;
   }
   if (open_pinched > 0)
     r.warnings.push_back(plural(open_pinched, "vertex joins", "vertices join") +
                          " several open fans of faces (sheets touching at a point; handled as one rotation "
-                         "cell); first: vertex " + std::to_string(first_open_pinched));
+                         "cell); first: vertex " +
+                         std::to_string(first_open_pinched));
   if (r.non_manifold_vertices > open_pinched) {
     for (int v = 0; v < nv; ++v)
       if (pinched[static_cast<std::size_t>(v)] &&
@@ -316,8 +302,7 @@ MeshReport check_mesh(const Eigen::MatrixXd& V_in, const Eigen::MatrixXi& F) {
   const Eigen::VectorXi component = vertex_components(G, nv, &raw_components);
   std::vector<char> in_mesh(static_cast<std::size_t>(nv), 0);
   for (int g = 0; g < ng; ++g)
-    for (int k = 0; k < 3; ++k)
-      in_mesh[static_cast<std::size_t>(G(g, k))] = 1;
+    for (int k = 0; k < 3; ++k) in_mesh[static_cast<std::size_t>(G(g, k))] = 1;
   std::vector<int> dense(static_cast<std::size_t>(raw_components), -1); // component id among face components
   for (int v = 0; v < nv; ++v)
     if (in_mesh[static_cast<std::size_t>(v)] && dense[static_cast<std::size_t>(component(v))] < 0)
@@ -338,8 +323,7 @@ MeshReport check_mesh(const Eigen::MatrixXd& V_in, const Eigen::MatrixXi& F) {
   std::vector<std::int64_t> loops_in(static_cast<std::size_t>(r.components), 0),
       chi(static_cast<std::size_t>(r.components), 0);
   for (int v = 0; v < nv; ++v) {
-    if (!in_mesh[static_cast<std::size_t>(v)])
-      continue;
+    if (!in_mesh[static_cast<std::size_t>(v)]) continue;
     ++chi[static_cast<std::size_t>(comp(v))];
     if (on_boundary[static_cast<std::size_t>(v)] && !loop_seen[static_cast<std::size_t>(loop(v))]) {
       loop_seen[static_cast<std::size_t>(loop(v))] = 1;
@@ -349,10 +333,8 @@ MeshReport check_mesh(const Eigen::MatrixXd& V_in, const Eigen::MatrixXi& F) {
   }
 
   // ---- genus: chi = V - E + F per component, genus = (2 - chi - b) / 2
-  for (int e = 0; e < ne; ++e)
-    --chi[static_cast<std::size_t>(comp(t.E(e, 0)))];
-  for (int g = 0; g < ng; ++g)
-    ++chi[static_cast<std::size_t>(comp(G(g, 0)))];
+  for (int e = 0; e < ne; ++e) --chi[static_cast<std::size_t>(comp(t.E(e, 0)))];
+  for (int g = 0; g < ng; ++g) ++chi[static_cast<std::size_t>(comp(G(g, 0)))];
   // Only for an orientable manifold: a non-orientable surface of even 2 - chi - b (the Klein bottle: 0 - 0
   // + 2) would otherwise pass for an orientable one of genus (2 - chi - b) / 2.
   if (r.non_manifold_edges == 0 && r.non_manifold_vertices == 0 && r.non_orientable_components == 0) {
@@ -360,29 +342,27 @@ MeshReport check_mesh(const Eigen::MatrixXd& V_in, const Eigen::MatrixXi& F) {
     bool valid = true;
     for (int c = 0; c < r.components; ++c) {
       const std::int64_t twice = 2 - chi[static_cast<std::size_t>(c)] - loops_in[static_cast<std::size_t>(c)];
-      if (twice % 2 != 0 || twice < 0)
-        valid = false;
+      if (twice % 2 != 0 || twice < 0) valid = false;
       genus += twice / 2;
     }
-    if (valid)
-      r.genus = static_cast<int>(genus);
+    if (valid) r.genus = static_cast<int>(genus);
   }
 
   // ---- coincident vertices
   const Eigen::VectorXi representative = weld_representatives(V, coincident_factor * r.bbox_diagonal);
   int first_coincident = -1;
   for (int v = 0; v < nv; ++v)
-    if (representative(v) != v && r.coincident_vertices++ == 0)
-      first_coincident = v;
+    if (representative(v) != v && r.coincident_vertices++ == 0) first_coincident = v;
   if (r.coincident_vertices > 0)
     r.warnings.push_back(plural(r.coincident_vertices, "vertex coincides", "vertices coincide") +
                          " with an earlier vertex (within 1e-12 x bbox diagonal); first: vertex " +
                          std::to_string(first_coincident) + " at the position of vertex " +
-                         std::to_string(representative(first_coincident)) + " (repair welds them: `iarap deform --repair`, repair_mesh)");
+                         std::to_string(representative(first_coincident)) +
+                         " (repair welds them: `iarap deform --repair`, repair_mesh)");
   if (ng > 1 && r.components == ng)
-    r.warnings.push_back(
-        "the mesh falls apart into one component per face (" + std::to_string(ng) +
-        "): faces share no vertices, as in an unwelded triangle soup (STL); repair welds it (`iarap deform --repair`, repair_mesh)");
+    r.warnings.push_back("the mesh falls apart into one component per face (" + std::to_string(ng) +
+                         "): faces share no vertices, as in an unwelded triangle soup (STL); repair welds it "
+                         "(`iarap deform --repair`, repair_mesh)");
   r.bbox_diagonal *= scale;
   return r;
 }

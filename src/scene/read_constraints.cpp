@@ -28,8 +28,7 @@ std::vector<std::string> tokens_of(const std::string& text) {
   std::vector<std::string> tokens;
   std::istringstream in(text);
   std::string token;
-  while (in >> token)
-    tokens.push_back(token);
+  while (in >> token) tokens.push_back(token);
   return tokens;
 }
 
@@ -66,11 +65,9 @@ ConstraintSet parse_constraints(std::istream& in, const std::string& source, int
   int line = 0;
   while (std::getline(in, text)) {
     ++line;
-    if (const auto hash = text.find('#'); hash != std::string::npos)
-      text.erase(hash);
+    if (const auto hash = text.find('#'); hash != std::string::npos) text.erase(hash);
     const auto tokens = tokens_of(text);
-    if (tokens.empty())
-      continue;
+    if (tokens.empty()) continue;
     const std::string at = where(source, line);
     if (tokens.size() != 4) {
       throw InputError(at + "expected 'index x y z', found " + std::to_string(tokens.size()) + " token(s)");
@@ -96,10 +93,8 @@ ConstraintSet parse_constraints(std::istream& in, const std::string& source, int
                        std::to_string(found->second.line) + " to a different target");
     }
   }
-  if (in.bad())
-    throw InputError(source + ": read error after line " + std::to_string(line));
-  if (order.empty())
-    throw InputError(source + ": no constraints (expected lines 'index x y z')");
+  if (in.bad()) throw InputError(source + ": read error after line " + std::to_string(line));
+  if (order.empty()) throw InputError(source + ": no constraints (expected lines 'index x y z')");
   result.fixed.resize(static_cast<Eigen::Index>(order.size()));
   result.targets.resize(static_cast<Eigen::Index>(order.size()), 3);
   for (std::size_t k = 0; k < order.size(); ++k) {
@@ -113,8 +108,7 @@ ConstraintSet parse_constraints(std::istream& in, const std::string& source, int
 
 ConstraintSet read_constraints(const std::string& path, int num_vertices) {
   std::ifstream in(path);
-  if (!in)
-    throw InputError(path + ": cannot open constraints file");
+  if (!in) throw InputError(path + ": cannot open constraints file");
   return parse_constraints(in, path, num_vertices);
 }
 

@@ -26,20 +26,17 @@ struct Node {
 
   // A missing key or item is an input error that names it, never json's out_of_range.
   Node key(const std::string& name) const {
-    if (!value.is_object() || !value.contains(name))
-      fail("missing key '" + name + "'");
+    if (!value.is_object() || !value.contains(name)) fail("missing key '" + name + "'");
     return {value.at(name), path + "." + name};
   }
   Node item(std::size_t i) const {
-    if (!value.is_array() || i >= value.size())
-      fail("missing item [" + std::to_string(i) + "]");
+    if (!value.is_array() || i >= value.size()) fail("missing item [" + std::to_string(i) + "]");
     return {value.at(i), path + "[" + std::to_string(i) + "]"};
   }
   [[noreturn]] void fail(const std::string& what) const { throw InputError(path + ": " + what); }
 
   void require_object(std::initializer_list<const char*> allowed) const {
-    if (!value.is_object())
-      fail("expected an object, found " + std::string(value.type_name()));
+    if (!value.is_object()) fail("expected an object, found " + std::string(value.type_name()));
     for (const auto& [name, unused] : value.items()) {
       bool known = false;
       std::string list;
@@ -47,59 +44,47 @@ struct Node {
         known = known || name == a;
         list += std::string(list.empty() ? "" : ", ") + a;
       }
-      if (!known)
-        fail("unknown key '" + name + "' (allowed: " + list + ")");
+      if (!known) fail("unknown key '" + name + "' (allowed: " + list + ")");
     }
   }
   bool has(const char* name) const { return value.contains(name); }
 
   double number() const {
-    if (!value.is_number())
-      fail("expected a number, found " + std::string(value.type_name()));
+    if (!value.is_number()) fail("expected a number, found " + std::string(value.type_name()));
     const double x = value.get<double>();
-    if (!std::isfinite(x))
-      fail("number is not finite");
+    if (!std::isfinite(x)) fail("number is not finite");
     return x;
   }
   std::string string() const {
-    if (!value.is_string())
-      fail("expected a string, found " + std::string(value.type_name()));
+    if (!value.is_string()) fail("expected a string, found " + std::string(value.type_name()));
     return value.get<std::string>();
   }
   bool boolean() const {
-    if (!value.is_boolean())
-      fail("expected true or false, found " + std::string(value.type_name()));
+    if (!value.is_boolean()) fail("expected true or false, found " + std::string(value.type_name()));
     return value.get<bool>();
   }
   Eigen::Vector3d vector3() const {
-    if (!value.is_array() || value.size() != 3)
-      fail("expected an array of 3 numbers");
+    if (!value.is_array() || value.size() != 3) fail("expected an array of 3 numbers");
     return {item(0).number(), item(1).number(), item(2).number()};
   }
   int index() const {
-    if (!value.is_number_integer())
-      fail("expected a vertex index (integer), found " + value.dump());
+    if (!value.is_number_integer()) fail("expected a vertex index (integer), found " + value.dump());
     const auto i = value.get<long long>();
     if (i < 0 || i > std::numeric_limits<int>::max())
       fail("vertex index " + std::to_string(i) + " out of range");
     return static_cast<int>(i);
   }
   void for_each(const std::function<void(const Node&)>& visit) const {
-    if (!value.is_array())
-      fail("expected an array, found " + std::string(value.type_name()));
-    for (std::size_t i = 0; i < value.size(); ++i)
-      visit(item(i));
+    if (!value.is_array()) fail("expected an array, found " + std::string(value.type_name()));
+    for (std::size_t i = 0; i < value.size(); ++i) visit(item(i));
   }
 };
 
 int parse_axis(const Node& node) {
   const std::string name = node.string();
-  if (name == "x")
-    return 0;
-  if (name == "y")
-    return 1;
-  if (name == "z")
-    return 2;
+  if (name == "x") return 0;
+  if (name == "y") return 1;
+  if (name == "z") return 2;
   node.fail("axis must be \"x\", \"y\" or \"z\", found \"" + name + "\"");
 }
 
@@ -110,8 +95,7 @@ Region parse_region(const Node& node) {
     node.for_each([&](const Node& i) { region.indices.push_back(i.index()); });
     return region;
   }
-  if (!node.value.is_object())
-    node.fail("expected an index list or a region object");
+  if (!node.value.is_object()) node.fail("expected an index list or a region object");
   if (node.has("indices")) {
     node.require_object({"indices"});
     node.key("indices").for_each([&](const Node& i) { region.indices.push_back(i.index()); });
@@ -121,8 +105,7 @@ Region parse_region(const Node& node) {
     region.kind = bottom ? RegionKind::Bottom : RegionKind::Top;
     const Node fraction = node.key(bottom ? "bottom" : "top");
     region.fraction = fraction.number();
-    if (!(region.fraction > 0 && region.fraction <= 1))
-      fraction.fail("fraction must be in (0, 1]");
+    if (!(region.fraction > 0 && region.fraction <= 1)) fraction.fail("fraction must be in (0, 1]");
     region.axis = node.has("axis") ? parse_axis(node.key("axis")) : 1;
   } else if (node.has("box")) {
     node.require_object({"box"});
@@ -132,8 +115,7 @@ Region parse_region(const Node& node) {
     region.lo = box.key("min").vector3();
     region.hi = box.key("max").vector3();
     region.relative = box.has("relative") && box.key("relative").boolean();
-    if (!(region.lo.array() <= region.hi.array()).all())
-      box.fail("min exceeds max on some axis");
+    if (!(region.lo.array() <= region.hi.array()).all()) box.fail("min exceeds max on some axis");
   } else if (node.has("sphere")) {
     node.require_object({"sphere"});
     const Node sphere = node.key("sphere");
@@ -142,8 +124,7 @@ Region parse_region(const Node& node) {
     region.center = sphere.key("center").vector3();
     region.radius = sphere.key("radius").number();
     region.relative = sphere.has("relative") && sphere.key("relative").boolean();
-    if (region.radius < 0)
-      sphere.key("radius").fail("radius must be >= 0");
+    if (region.radius < 0) sphere.key("radius").fail("radius must be >= 0");
   } else {
     node.fail("a region needs one of \"indices\", \"bottom\", \"top\", \"box\", \"sphere\"");
   }
@@ -168,16 +149,13 @@ Handle parse_handle(const Node& node) {
   node.require_object({"name", "vertices", "translate", "translate_relative", "rotate"});
   Handle handle;
   handle.path = node.path;
-  if (node.has("name"))
-    handle.name = node.key("name").string();
-  if (!node.has("vertices"))
-    node.fail("a handle needs \"vertices\"");
+  if (node.has("name")) handle.name = node.key("name").string();
+  if (!node.has("vertices")) node.fail("a handle needs \"vertices\"");
   handle.vertices = parse_regions(node.key("vertices"));
   if (node.has("translate") && node.has("translate_relative")) {
     node.fail("give either \"translate\" or \"translate_relative\", not both");
   }
-  if (node.has("translate"))
-    handle.translation = node.key("translate").vector3();
+  if (node.has("translate")) handle.translation = node.key("translate").vector3();
   if (node.has("translate_relative")) {
     handle.translation = node.key("translate_relative").vector3();
     handle.translation_relative = true;
@@ -192,15 +170,13 @@ Handle parse_handle(const Node& node) {
       handle.rotation_axis = Eigen::Vector3d::Unit(parse_axis(axis));
     } else {
       handle.rotation_axis = axis.vector3();
-      if (handle.rotation_axis.norm() == 0)
-        axis.fail("rotation axis must be non-zero");
+      if (handle.rotation_axis.norm() == 0) axis.fail("rotation axis must be non-zero");
     }
     handle.rotation_degrees = rotate.key("degrees").number();
     if (rotate.has("center") && rotate.has("center_relative")) {
       rotate.fail("give either \"center\" or \"center_relative\", not both");
     }
-    if (rotate.has("center"))
-      handle.rotation_center = rotate.key("center").vector3();
+    if (rotate.has("center")) handle.rotation_center = rotate.key("center").vector3();
     if (rotate.has("center_relative")) {
       handle.rotation_center = rotate.key("center_relative").vector3();
       handle.rotation_center_relative = true;
@@ -225,12 +201,14 @@ Scenario parse_scenario(const std::string& text, const std::string& source) {
     const std::string message = e.what();
     const auto open = message.find('\'');
     const auto close = open == std::string::npos ? open : message.find('\'', open + 1);
-    if (close == std::string::npos)
-      throw InputError(source + ": " + message);
+    if (close == std::string::npos) throw InputError(source + ": " + message);
     const std::string number = message.substr(open + 1, close - open - 1);
     const auto at = text.find(number);
     const std::string line =
-        at == std::string::npos ? "" : ":" + std::to_string(1 + std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(at), '\n'));
+        at == std::string::npos
+            ? ""
+            : ":" + std::to_string(
+                        1 + std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(at), '\n'));
     throw InputError(source + line + ": number " + number +
                      " is beyond the range of a double (about 1.8e308); every number must be finite");
   }
@@ -238,10 +216,8 @@ Scenario parse_scenario(const std::string& text, const std::string& source) {
   root.require_object({"description", "fixed", "handles"});
   Scenario scenario;
   scenario.source = source;
-  if (root.has("description"))
-    scenario.description = root.key("description").string();
-  if (root.has("fixed"))
-    scenario.fixed = parse_regions(root.key("fixed"));
+  if (root.has("description")) scenario.description = root.key("description").string();
+  if (root.has("fixed")) scenario.fixed = parse_regions(root.key("fixed"));
   if (root.has("handles")) {
     root.key("handles").for_each([&](const Node& h) { scenario.handles.push_back(parse_handle(h)); });
   }
@@ -253,12 +229,10 @@ Scenario parse_scenario(const std::string& text, const std::string& source) {
 
 Scenario read_scenario(const std::string& path) {
   std::ifstream in(path);
-  if (!in)
-    throw InputError(path + ": cannot open scenario file");
+  if (!in) throw InputError(path + ": cannot open scenario file");
   std::ostringstream text;
   text << in.rdbuf();
-  if (in.bad())
-    throw InputError(path + ": read error");
+  if (in.bad()) throw InputError(path + ": read error");
   return parse_scenario(text.str(), path);
 }
 

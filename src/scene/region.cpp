@@ -11,8 +11,7 @@ BoundingBox bounding_box(const Eigen::MatrixXd& V) {
   bool any = false;
   for (Eigen::Index i = 0; i < V.rows(); ++i) {
     const Eigen::Vector3d p = V.row(i).transpose();
-    if (!p.allFinite())
-      continue;
+    if (!p.allFinite()) continue;
     box.min = any ? box.min.cwiseMin(p) : p;
     box.max = any ? box.max.cwiseMax(p) : p;
     any = true;
@@ -42,8 +41,7 @@ std::vector<int> select_by_rule(const Region& region, const Eigen::MatrixXd& V, 
     break;
   case RegionKind::Bottom:
   case RegionKind::Top: {
-    if (region.axis < 0 || region.axis > 2)
-      throw InputError(region.path + ": axis must be 0, 1 or 2");
+    if (region.axis < 0 || region.axis > 2) throw InputError(region.path + ": axis must be 0, 1 or 2");
     if (!(region.fraction > 0 && region.fraction <= 1)) {
       throw InputError(region.path + ": fraction " + std::to_string(region.fraction) + " not in (0, 1]");
     }
@@ -52,11 +50,9 @@ std::vector<int> select_by_rule(const Region& region, const Eigen::MatrixXd& V, 
     const double bottom_limit = box.min(a) + region.fraction * extent;
     const double top_limit = box.max(a) - region.fraction * extent;
     for (int i = 0; i < n; ++i) {
-      if (!V.row(i).allFinite())
-        continue; // a vertex with NaN/Inf has no place in any slab
+      if (!V.row(i).allFinite()) continue; // a vertex with NaN/Inf has no place in any slab
       const double x = V(i, a);
-      if (region.kind == RegionKind::Bottom ? x <= bottom_limit : x >= top_limit)
-        selected.push_back(i);
+      if (region.kind == RegionKind::Bottom ? x <= bottom_limit : x >= top_limit) selected.push_back(i);
     }
     break;
   }
@@ -67,16 +63,14 @@ std::vector<int> select_by_rule(const Region& region, const Eigen::MatrixXd& V, 
       throw InputError(region.path + ": box min exceeds max on some axis");
     for (int i = 0; i < n; ++i) {
       const Eigen::Vector3d p = V.row(i).transpose();
-      if ((p.array() >= lo.array()).all() && (p.array() <= hi.array()).all())
-        selected.push_back(i);
+      if ((p.array() >= lo.array()).all() && (p.array() <= hi.array()).all()) selected.push_back(i);
     }
     break;
   }
   case RegionKind::Sphere: {
     const Eigen::Vector3d c = region.relative ? from_box(region.center, box) : region.center;
     const double r = region.relative ? region.radius * box.diagonal() : region.radius;
-    if (!(region.radius >= 0))
-      throw InputError(region.path + ": sphere radius must be >= 0");
+    if (!(region.radius >= 0)) throw InputError(region.path + ": sphere radius must be >= 0");
     for (int i = 0; i < n; ++i) {
       if ((V.row(i).transpose() - c).stableNorm() <= r) // squares would overflow at 1e200
         selected.push_back(i);
@@ -93,8 +87,7 @@ std::vector<int> select_region(const Region& region, const Eigen::MatrixXd& V, c
   std::vector<int> selected = select_by_rule(region, V, box);
   std::sort(selected.begin(), selected.end());
   selected.erase(std::unique(selected.begin(), selected.end()), selected.end());
-  if (selected.empty())
-    throw InputError(region.path + ": selects no vertex");
+  if (selected.empty()) throw InputError(region.path + ": selects no vertex");
   return selected;
 }
 

@@ -54,12 +54,10 @@ ConstraintSet resolve_scenario(const Scenario& scenario, const Eigen::MatrixXd& 
   }
   for (std::size_t h = 0; h < scenario.handles.size(); ++h) {
     const Handle& handle = scenario.handles[h];
-    if (handle.vertices.empty())
-      throw InputError(handle.path + ": handle has no vertex regions");
+    if (handle.vertices.empty()) throw InputError(handle.path + ": handle has no vertex regions");
     const auto vertices = select_union(handle.vertices, V, box);
     Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
-    for (const int i : vertices)
-      centroid += V.row(i).transpose();
+    for (const int i : vertices) centroid += V.row(i).transpose();
     centroid /= static_cast<double>(vertices.size());
     Eigen::Vector3d center = centroid;
     if (handle.rotation_center) {
@@ -86,8 +84,7 @@ ConstraintSet resolve_scenario(const Scenario& scenario, const Eigen::MatrixXd& 
       origins.push_back(handle.path);
     }
   }
-  if (fixed.empty())
-    throw InputError(scenario.source + ": the scenario constrains no vertex");
+  if (fixed.empty()) throw InputError(scenario.source + ": the scenario constrains no vertex");
 
   ConstraintSet result;
   result.origins = std::move(origins);

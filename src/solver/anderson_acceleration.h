@@ -23,12 +23,12 @@ public:
 private:
   int window_;
   Eigen::Index size_;
-  int columns_ = 0;  // differences held, <= window_
-  int newest_ = -1;  // column of the newest difference (circular)
+  int columns_ = 0; // differences held, <= window_
+  int newest_ = -1; // column of the newest difference (circular)
   bool has_previous_ = false;
-  Eigen::MatrixXd dF_, dG_;   // size x window: differences, each pair scaled so that ||dF_j|| = 1
-  Eigen::MatrixXd gram_;      // window x window: dF^T dF
-  Eigen::VectorXd dF_f_;      // dF^T f_k, kept up to date from the Gram columns
+  Eigen::MatrixXd dF_, dG_; // size x window: differences, each pair scaled so that ||dF_j|| = 1
+  Eigen::MatrixXd gram_;    // window x window: dF^T dF
+  Eigen::VectorXd dF_f_;    // dF^T f_k, kept up to date from the Gram columns
   Eigen::VectorXd f_prev_, G_prev_, f_, df_;
 };
 

@@ -48,12 +48,9 @@ void check_positions(const Eigen::MatrixXd& U, Eigen::Index rows, const std::str
 } // namespace
 
 ArapMethod parse_arap_method(const std::string& name) {
-  if (name == "arap")
-    return ArapMethod::Arap;
-  if (name == "spokes-rims")
-    return ArapMethod::SpokesRims;
-  if (name == "iarap")
-    return ArapMethod::Iarap;
+  if (name == "arap") return ArapMethod::Arap;
+  if (name == "spokes-rims") return ArapMethod::SpokesRims;
+  if (name == "iarap") return ArapMethod::Iarap;
   throw InputError("unknown ARAP method '" + name + "'; expected arap, spokes-rims or iarap");
 }
 
@@ -70,14 +67,10 @@ std::string arap_method_name(ArapMethod method) {
 }
 
 ArapAccelerator parse_arap_accelerator(const std::string& name) {
-  if (name == "none")
-    return ArapAccelerator::None;
-  if (name == "anderson")
-    return ArapAccelerator::Anderson;
-  if (name == "lbfgs")
-    return ArapAccelerator::Lbfgs;
-  if (name == "newton")
-    return ArapAccelerator::Newton;
+  if (name == "none") return ArapAccelerator::None;
+  if (name == "anderson") return ArapAccelerator::Anderson;
+  if (name == "lbfgs") return ArapAccelerator::Lbfgs;
+  if (name == "newton") return ArapAccelerator::Newton;
   throw InputError("unknown ARAP accelerator '" + name + "'; expected anderson, lbfgs, newton or none");
 }
 
@@ -102,14 +95,13 @@ struct ConstraintLayout {
   std::vector<int> constrained_slot; // #V position in [fixed; pinned], or -1 for a free vertex
   std::vector<int> constrained;      // the constrained vertices in slot order
   std::vector<int> pinned;
-  std::vector<int> free;             // increasing
-  Eigen::VectorXi free_slot;         // #V position in free, or -1
+  std::vector<int> free;     // increasing
+  Eigen::VectorXi free_slot; // #V position in free, or -1
 };
 
 ConstraintLayout constraint_layout(const ArapData& data, const Eigen::VectorXi& fixed) {
   const int n = static_cast<int>(data.V.rows());
-  if (fixed.size() == 0)
-    throw InputError("ARAP: the constrained (fixed) vertex set is empty");
+  if (fixed.size() == 0) throw InputError("ARAP: the constrained (fixed) vertex set is empty");
   ConstraintLayout layout;
   layout.constrained_slot.assign(static_cast<size_t>(n), -1);
   std::vector<int>& slot = layout.constrained_slot;
@@ -132,14 +124,11 @@ ConstraintLayout constraint_layout(const ArapData& data, const Eigen::VectorXi& 
   for (int v = 0; v < n; ++v) {
     const int c = data.component(v);
     ++size_of[c];
-    if (first_of[c] < 0)
-      first_of[c] = v;
-    if (slot[v] >= 0)
-      ++constrained_in[c];
+    if (first_of[c] < 0) first_of[c] = v;
+    if (slot[v] >= 0) ++constrained_in[c];
   }
   for (int c = 0; c < data.component_count; ++c) {
-    if (constrained_in[c] > 0)
-      continue;
+    if (constrained_in[c] > 0) continue;
     if (!data.pin_unconstrained_components)
       throw SolverError(
           "ARAP: connected component " + std::to_string(c) + " (" + std::to_string(size_of[c]) +
@@ -181,7 +170,8 @@ void split_system(const Eigen::SparseMatrix<double>& L, const ConstraintLayout& 
     const int nc = static_cast<int>(columns.size());
     out.resize(static_cast<Eigen::Index>(layout.free.size()), nc);
     int nnz = 0;
-    for (int c = 0; c < nc; ++c) free_rows_of_column(L, columns[static_cast<size_t>(c)], layout.free_slot, [&](int, double) { ++nnz; });
+    for (int c = 0; c < nc; ++c)
+      free_rows_of_column(L, columns[static_cast<size_t>(c)], layout.free_slot, [&](int, double) { ++nnz; });
     out.resizeNonZeros(nnz);
     int k = 0;
     out.outerIndexPtr()[0] = 0;
@@ -202,8 +192,10 @@ void commit_layout(ArapData& data, const Eigen::VectorXi& fixed, ConstraintLayou
   data.solver = std::move(solver);
   data.L_fc = std::move(L_fc);
   data.fixed = fixed;
-  data.pinned = Eigen::Map<const Eigen::VectorXi>(layout.pinned.data(), static_cast<Eigen::Index>(layout.pinned.size()));
-  data.free = Eigen::Map<const Eigen::VectorXi>(layout.free.data(), static_cast<Eigen::Index>(layout.free.size()));
+  data.pinned = Eigen::Map<const Eigen::VectorXi>(layout.pinned.data(),
+                                                  static_cast<Eigen::Index>(layout.pinned.size()));
+  data.free =
+      Eigen::Map<const Eigen::VectorXi>(layout.free.data(), static_cast<Eigen::Index>(layout.free.size()));
   data.free_slot = std::move(layout.free_slot);
 }
 
@@ -218,7 +210,8 @@ enum class Beside {
   // factorization: CHOLMOD's supernodal factorization enters about 16,500 serialized OpenMP regions on
   // beetle, and inside an enclosing team libgomp allocates, initializes and frees a team for each one where
   // at the top level it reuses one (16,500 empty regions: 25 against 49 ms). On one thread of a region of
-  // two it took 54-56 ms against 35-38 ms here (iARAP precompute, 2 threads: 70 -> 53 ms). On the caller's thread
+  // two it took 54-56 ms against 35-38 ms here (iARAP precompute, 2 threads: 70 -> 53 ms). On the caller's
+  // thread
   // the factor is allocated from the caller's heap arena, which keeps the pages of what it freed (every
   // other thread gets an arena of its own: beetle, iARAP, 6600 against 5300 page faults per precompute).
   CallerOutsideOpenMP,
@@ -279,7 +272,8 @@ void run_beside(const std::function<void()>& side, const std::function<void()>& 
       std::thread helper;
       try {
         helper = std::thread([&] {
-          omp_set_num_threads(threads); // a new thread starts from OpenMP's initial settings, not the caller's
+          omp_set_num_threads(
+              threads); // a new thread starts from OpenMP's initial settings, not the caller's
           run_main();
         });
         beside = true;
@@ -305,11 +299,18 @@ void run_beside(const std::function<void()>& side, const std::function<void()>& 
 namespace {
 
 // iARAP's elements and its intrinsic summary from the traced triangulation (which is released).
-void take_traced_elements(const Eigen::MatrixXd& V, std::optional<detail::TracedTriangulation>& traced, ArapData& data) {
+void take_traced_elements(const Eigen::MatrixXd& V, std::optional<detail::TracedTriangulation>& traced,
+                          ArapData& data) {
   data.elements = detail::traced_iarap_elements(V, traced->triangulation, traced->traces);
   const IntrinsicTriangulation& t = traced->triangulation;
-  data.intrinsic = {t.flips,      t.non_delaunay_before,          t.non_delaunay_after,     t.mollify_delta,
-                    t.E.rows(),   traced->traces.segment_count(), t.obtuse_boundary_before, t.obtuse_boundary_after,
+  data.intrinsic = {t.flips,
+                    t.non_delaunay_before,
+                    t.non_delaunay_after,
+                    t.mollify_delta,
+                    t.E.rows(),
+                    traced->traces.segment_count(),
+                    t.obtuse_boundary_before,
+                    t.obtuse_boundary_after,
                     t.inserted_t.size()};
   traced.reset();
 }
@@ -347,18 +348,19 @@ ArapData arap_precompute(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, con
     const EdgeTopology topology = edge_topology(F, n);
     double build_ms = 0.0;
     auto start = Clock::now();
-    run_beside([&] {
-                 build_pattern(topology);
-                 analyze();
-               },
-               [&] {
-                 const auto t = Clock::now();
-                 const Eigen::MatrixXd C = face_cotangents(V, F);
-                 data.elements = options.method == ArapMethod::Arap ? arap_edge_elements(V, topology, C)
-                                                                    : spokes_rims_elements(V, F, C);
-                 build_ms = ms_since(t);
-               },
-               Beside::SecondTeamThread);
+    run_beside(
+        [&] {
+          build_pattern(topology);
+          analyze();
+        },
+        [&] {
+          const auto t = Clock::now();
+          const Eigen::MatrixXd C = face_cotangents(V, F);
+          data.elements = options.method == ArapMethod::Arap ? arap_edge_elements(V, topology, C)
+                                                             : spokes_rims_elements(V, F, C);
+          build_ms = ms_since(t);
+        },
+        Beside::SecondTeamThread);
     // What the build did not hide of the analysis counts as factorization time.
     data.timings.factor_ms = std::max(0.0, ms_since(start) - build_ms);
     data.timings.assembly_ms = build_ms;
@@ -446,10 +448,10 @@ ArapReport arap_solve(ArapData& data, const Eigen::MatrixXd& targets, Eigen::Mat
   const auto start = Clock::now();
   if (options.max_iterations < 0)
     throw InputError("ARAP: max_iterations must be >= 0, got " + std::to_string(options.max_iterations));
-  if (std::isnan(options.tolerance))
-    throw InputError("ARAP: tolerance is NaN");
+  if (std::isnan(options.tolerance)) throw InputError("ARAP: tolerance is NaN");
   if (!(options.gradient_tolerance >= 0))
-    throw InputError("ARAP: gradient_tolerance must be >= 0, got " + std::to_string(options.gradient_tolerance));
+    throw InputError("ARAP: gradient_tolerance must be >= 0, got " +
+                     std::to_string(options.gradient_tolerance));
   if (options.window < 0)
     throw InputError("ARAP: window must be >= 0, got " + std::to_string(options.window));
   check_positions(targets, data.fixed.size(), "targets");

@@ -23,14 +23,15 @@ namespace {
 // calls emit(key, value) for every pair in a fixed order; it runs twice (count, then place) so that no
 // list of pairs is stored: on a fresh heap the first touch of such temporaries cost more than the sort.
 template <class ForEachPair>
-void build_csr(int num_keys, const ForEachPair& for_each_pair, std::vector<int>& start, std::vector<int>& out) {
+void build_csr(int num_keys, const ForEachPair& for_each_pair, std::vector<int>& start,
+               std::vector<int>& out) {
   start.assign(static_cast<size_t>(num_keys) + 2, 0);
   for_each_pair([&](int key, int) { ++start[static_cast<size_t>(key) + 2]; });
-  for (int k = 0; k < num_keys; ++k)
-    start[static_cast<size_t>(k) + 2] += start[static_cast<size_t>(k) + 1];
+  for (int k = 0; k < num_keys; ++k) start[static_cast<size_t>(k) + 2] += start[static_cast<size_t>(k) + 1];
   out.resize(static_cast<size_t>(start[static_cast<size_t>(num_keys) + 1]));
   // start[key + 1] is where the next pair of key goes; once all are placed it is the end of key's run.
-  for_each_pair([&](int key, int value) { out[static_cast<size_t>(start[static_cast<size_t>(key) + 1]++)] = value; });
+  for_each_pair(
+      [&](int key, int value) { out[static_cast<size_t>(start[static_cast<size_t>(key) + 1]++)] = value; });
   start.pop_back();
 }
 
@@ -80,8 +81,7 @@ void set_segment_element(ArapElements& el, int x, const int* index, const double
 void set_rest_vector(const Eigen::MatrixXd& V, ArapElements& el, Eigen::Index e) {
   for (int d = 0; d < 3; ++d) {
     double s = 0.0;
-    for (int k = 0; k < 3; ++k)
-      s += el.b_value(e, k) * V(el.b_index(e, k), d);
+    for (int k = 0; k < 3; ++k) s += el.b_value(e, k) * V(el.b_index(e, k), d);
     el.s_hat(e, d) = s;
   }
 }
@@ -93,7 +93,8 @@ int intrinsic_cell_count(const Eigen::MatrixXi& E, int num_vertices) {
   for (Eigen::Index e = 0; e < E.rows(); ++e)
     for (int k = 0; k < 2; ++k) {
       if (E(e, k) < 0)
-        throw InputError("iARAP: intrinsic edge " + std::to_string(e) + " has endpoint " + std::to_string(E(e, k)));
+        throw InputError("iARAP: intrinsic edge " + std::to_string(e) + " has endpoint " +
+                         std::to_string(E(e, k)));
       cells = std::max(cells, E(e, k) + 1);
     }
   return cells;
@@ -116,8 +117,10 @@ void fill_streamed_layout(const Eigen::MatrixXd& V, ArapElements& el) {
   el.cell_entry.resize(el.cell_element.size());
 #pragma omp parallel for num_threads(loop_thread_count()) schedule(static)
   for (int c = 0; c < el.num_cells; ++c) {
-    ArapElements::CellEntry* entry = el.cell_entry.data() + el.cell_entry_start[static_cast<size_t>(position[static_cast<size_t>(c)])];
-    for (int k = el.cell_element_start[static_cast<size_t>(c)]; k < el.cell_element_start[static_cast<size_t>(c) + 1]; ++k, ++entry) {
+    ArapElements::CellEntry* entry =
+        el.cell_entry.data() + el.cell_entry_start[static_cast<size_t>(position[static_cast<size_t>(c)])];
+    for (int k = el.cell_element_start[static_cast<size_t>(c)];
+         k < el.cell_element_start[static_cast<size_t>(c) + 1]; ++k, ++entry) {
       const int e = el.cell_element[static_cast<size_t>(k)];
       for (int j = 0; j < 3; ++j) {
         entry->index[j] = position[static_cast<size_t>(el.b_index(e, j))];
@@ -154,8 +157,10 @@ void fill_streamed_layout(const Eigen::MatrixXd& V, ArapElements& el) {
     const int last = static_cast<int>(static_cast<long long>(el.num_cells) * (thread + 1) / threads);
     // Calls add(v, w_e (b_e)_v, s_hat_e) for every non-zero of every element of the cell at position p.
     auto for_each_contribution = [&](int p, const auto& add) {
-      const ArapElements::CellEntry* entry = el.cell_entry.data() + el.cell_entry_start[static_cast<size_t>(p)];
-      const ArapElements::CellEntry* end = el.cell_entry.data() + el.cell_entry_start[static_cast<size_t>(p) + 1];
+      const ArapElements::CellEntry* entry =
+          el.cell_entry.data() + el.cell_entry_start[static_cast<size_t>(p)];
+      const ArapElements::CellEntry* end =
+          el.cell_entry.data() + el.cell_entry_start[static_cast<size_t>(p) + 1];
       for (; entry != end; ++entry)
         for (int j = 0; j < 3; ++j)
           if (entry->value[j] != 0.0) add(entry->index[j], entry->w * entry->value[j], entry->s_hat);
@@ -208,10 +213,8 @@ void fill_streamed_layout(const Eigen::MatrixXd& V, ArapElements& el) {
 } // namespace
 
 void check_arap_mesh(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
-  if (V.cols() != 3)
-    throw InputError("ARAP: V must be #V x 3, got " + std::to_string(V.cols()) + " columns");
-  if (F.cols() != 3)
-    throw InputError("ARAP: F must be #F x 3, got " + std::to_string(F.cols()) + " columns");
+  if (V.cols() != 3) throw InputError("ARAP: V must be #V x 3, got " + std::to_string(V.cols()) + " columns");
+  if (F.cols() != 3) throw InputError("ARAP: F must be #F x 3, got " + std::to_string(F.cols()) + " columns");
   for (Eigen::Index v = 0; v < V.rows(); ++v)
     if (!V.row(v).allFinite())
       throw InputError("ARAP: vertex " + std::to_string(v) + " has a non-finite coordinate");
@@ -227,7 +230,8 @@ ArapElements arap_edge_elements(const Eigen::MatrixXd& V, const Eigen::MatrixXi&
   return arap_edge_elements(V, edge_topology(F, static_cast<int>(V.rows())), face_cotangents(V, F));
 }
 
-ArapElements arap_edge_elements(const Eigen::MatrixXd& V, const EdgeTopology& topo, const Eigen::MatrixXd& C) {
+ArapElements arap_edge_elements(const Eigen::MatrixXd& V, const EdgeTopology& topo,
+                                const Eigen::MatrixXd& C) {
   const int n = static_cast<int>(V.rows());
   check_face_cotangents(C);
   ArapElements el;
@@ -242,8 +246,7 @@ ArapElements arap_edge_elements(const Eigen::MatrixXd& V, const EdgeTopology& to
                           " faces; the mesh must be manifold");
     double w = 0.0; // Eq. 1: w_ij = (cot a + cot b) / 2, kept negative where the mesh is not Delaunay
     for (int s = 0; s < 2; ++s)
-      if (topo.EF(e, s) >= 0)
-        w += 0.5 * C(topo.EF(e, s), topo.EK(e, s));
+      if (topo.EF(e, s) >= 0) w += 0.5 * C(topo.EF(e, s), topo.EK(e, s));
     set_edge_vector(el, e, i, j);
     el.w(e) = w;
     el.face[static_cast<size_t>(e)] = topo.EF(e, 0);
@@ -261,7 +264,8 @@ ArapElements spokes_rims_elements(const Eigen::MatrixXd& V, const Eigen::MatrixX
   return spokes_rims_elements(V, F, face_cotangents(V, F));
 }
 
-ArapElements spokes_rims_elements(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const Eigen::MatrixXd& C) {
+ArapElements spokes_rims_elements(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
+                                  const Eigen::MatrixXd& C) {
   check_face_cotangents(C);
   ArapElements el;
   el.num_vertices = el.num_cells = static_cast<int>(V.rows());
@@ -274,8 +278,7 @@ ArapElements spokes_rims_elements(const Eigen::MatrixXd& V, const Eigen::MatrixX
       el.w(e) = 0.5 * C(f, k); // Eq. 2: cot of the angle opposite the edge, over 2 per cell term
       el.face[static_cast<size_t>(e)] = static_cast<int>(f);
       el.cell_start[e] = static_cast<int>(3 * e);
-      for (int c = 0; c < 3; ++c)
-        el.cell[3 * e + c] = F(f, c);
+      for (int c = 0; c < 3; ++c) el.cell[3 * e + c] = F(f, c);
     }
   el.cell_start[m] = static_cast<int>(3 * m);
   detail::finish_elements(V, el);
@@ -316,8 +319,8 @@ ArapElements iarap_elements(const Eigen::MatrixXd& V, const IntrinsicDelaunay& i
   if (bad < ns) {
     const int edge = seg.edge(bad);
     if (edge < 0 || edge >= E.rows())
-      throw InputError("iARAP: segment " + std::to_string(bad) + " names intrinsic edge " + std::to_string(edge) +
-                       "; the triangulation has " + std::to_string(E.rows()));
+      throw InputError("iARAP: segment " + std::to_string(bad) + " names intrinsic edge " +
+                       std::to_string(edge) + "; the triangulation has " + std::to_string(E.rows()));
     if (!std::isfinite(seg.weight(bad)))
       throw InputError("iARAP: segment " + std::to_string(bad) + " has a non-finite weight");
     for (int k = 0; k < 3; ++k)
@@ -353,8 +356,7 @@ void finish_elements(const Eigen::MatrixXd& V, ArapElements& el, bool has_rest_v
       el.num_cells,
       [&](const auto& emit) {
         for (Eigen::Index e = 0; e < m; ++e)
-          for (int c = el.cell_start[e]; c < el.cell_start[e + 1]; ++c)
-            emit(el.cell[c], static_cast<int>(e));
+          for (int c = el.cell_start[e]; c < el.cell_start[e + 1]; ++c) emit(el.cell[c], static_cast<int>(e));
       },
       el.cell_element_start, el.cell_element);
   fill_streamed_layout(V, el);
@@ -376,9 +378,11 @@ ArapElements traced_iarap_elements(const Eigen::MatrixXd& V, const IntrinsicTria
   // b = 0 is marked and squeezed out after, as iarap_elements leaves it out.
   std::vector<char> empty(static_cast<size_t>(ns), 0);
   for_each_segment(V, tri, traces, start, [&](int s, int e, const SegmentVector& segment) {
-    set_segment_element(el, s, segment.index, segment.value, segment.weight, segment.face, tri.E(e, 0), tri.E(e, 1));
+    set_segment_element(el, s, segment.index, segment.value, segment.weight, segment.face, tri.E(e, 0),
+                        tri.E(e, 1));
     for (int d = 0; d < 3; ++d) el.s_hat(s, d) = segment.s_hat(d);
-    empty[static_cast<size_t>(s)] = segment.value[0] == 0.0 && segment.value[1] == 0.0 && segment.value[2] == 0.0;
+    empty[static_cast<size_t>(s)] =
+        segment.value[0] == 0.0 && segment.value[1] == 0.0 && segment.value[2] == 0.0;
   });
   const auto empties = std::count(empty.begin(), empty.end(), 1);
   if (empties > 0) {
@@ -417,8 +421,7 @@ Eigen::SparseMatrix<double> element_system_matrix(const ArapElements& el) {
     for (int k = 0; k < 3; ++k)
       for (int l = 0; l < 3; ++l) {
         const double v = cw * (el.b_value(e, k) * el.b_value(e, l)); // bitwise symmetric
-        if (v != 0.0)
-          triplets.emplace_back(el.b_index(e, k), el.b_index(e, l), v);
+        if (v != 0.0) triplets.emplace_back(el.b_index(e, k), el.b_index(e, l), v);
       }
   }
   Eigen::SparseMatrix<double> L(el.num_vertices, el.num_vertices);

@@ -4,7 +4,8 @@
 
 namespace iarap {
 
-void arap_rhs_in_visit_order(const ArapElements& el, const std::vector<Eigen::Matrix3d>& R, Eigen::MatrixXd& rhs) {
+void arap_rhs_in_visit_order(const ArapElements& el, const std::vector<Eigen::Matrix3d>& R,
+                             Eigen::MatrixXd& rhs) {
   const int n = el.num_vertices;
   rhs.resize(n, 3);
   // rhs_v = sum_c R_c p_vc: each vertex gathers its own terms, so the loop is parallel without atomics.
@@ -22,7 +23,8 @@ void arap_rhs(const ArapElements& el, const std::vector<Eigen::Matrix3d>& R, Eig
   Eigen::MatrixXd rhs_visit;
   arap_rhs_in_visit_order(el, R_visit, rhs_visit);
   rhs.resize(rhs_visit.rows(), 3);
-  for (Eigen::Index p = 0; p < rhs_visit.rows(); ++p) rhs.row(el.visit_order[static_cast<size_t>(p)]) = rhs_visit.row(p);
+  for (Eigen::Index p = 0; p < rhs_visit.rows(); ++p)
+    rhs.row(el.visit_order[static_cast<size_t>(p)]) = rhs_visit.row(p);
 }
 
 } // namespace iarap

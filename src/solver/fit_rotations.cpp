@@ -26,13 +26,15 @@ inline void add_covariance(const ArapElements::CellEntry& x, const double (&s)[3
 }
 } // namespace
 
-void cell_covariances(const ArapElements& el, const ArapElements::ValueRows& U_rows, std::vector<Eigen::Matrix3d>& S) {
+void cell_covariances(const ArapElements& el, const ArapElements::ValueRows& U_rows,
+                      std::vector<Eigen::Matrix3d>& S) {
   S.resize(static_cast<size_t>(el.num_cells));
   const double* u = U_rows.data();
 #pragma omp parallel for schedule(dynamic, 256)
   for (int c = 0; c < el.num_cells; ++c) {
     Eigen::Matrix3d Sc = Eigen::Matrix3d::Zero();
-    for (int k = el.cell_entry_start[static_cast<size_t>(c)]; k < el.cell_entry_start[static_cast<size_t>(c) + 1]; ++k) {
+    for (int k = el.cell_entry_start[static_cast<size_t>(c)];
+         k < el.cell_entry_start[static_cast<size_t>(c) + 1]; ++k) {
       double s[3];
       element_vector(el.cell_entry[static_cast<size_t>(k)], u, s);
       add_covariance(el.cell_entry[static_cast<size_t>(k)], s, Sc);
@@ -121,7 +123,8 @@ double fit_rotations_in_visit_order(const ArapElements& el, const ArapElements::
           element_vector(x, u, s);
         double r2 = 0.0;
         for (int i = 0; i < 3; ++i) {
-          const double r = s[i] - (Rc[l](i, 0) * x.s_hat[0] + Rc[l](i, 1) * x.s_hat[1] + Rc[l](i, 2) * x.s_hat[2]);
+          const double r =
+              s[i] - (Rc[l](i, 0) * x.s_hat[0] + Rc[l](i, 1) * x.s_hat[1] + Rc[l](i, 2) * x.s_hat[2]);
           r2 += r * r;
         }
         energy += 0.5 * x.w * r2;

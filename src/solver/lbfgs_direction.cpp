@@ -11,8 +11,8 @@ LbfgsDirection::LbfgsDirection(int window)
     : window_(window), s_(static_cast<size_t>(window)), y_(static_cast<size_t>(window)),
       rho_(static_cast<size_t>(window)) {}
 
-bool LbfgsDirection::push(const Eigen::MatrixXd& x_next, const Eigen::MatrixXd& x, const Eigen::MatrixXd& g_next,
-                         const Eigen::MatrixXd& g) {
+bool LbfgsDirection::push(const Eigen::MatrixXd& x_next, const Eigen::MatrixXd& x,
+                          const Eigen::MatrixXd& g_next, const Eigen::MatrixXd& g) {
   spare_s_.resize(x.rows(), x.cols());
   spare_y_.resize(g.rows(), g.cols());
   const Eigen::Index n = x.size();
@@ -28,8 +28,7 @@ bool LbfgsDirection::push(const Eigen::MatrixXd& x_next, const Eigen::MatrixXd& 
     yy += yi * yi;
   }
   // Relative threshold: a pair whose curvature is rounding-level against |s| |y| carries no information.
-  if (!(sy > 1e-12 * std::sqrt(ss) * std::sqrt(yy)))
-    return false;
+  if (!(sy > 1e-12 * std::sqrt(ss) * std::sqrt(yy))) return false;
   newest_ = (newest_ + 1) % window_;
   const auto slot = static_cast<size_t>(newest_);
   s_[slot].swap(spare_s_);
@@ -47,7 +46,7 @@ Eigen::MatrixXd LbfgsDirection::direction(const Eigen::MatrixXd& g, const LocalG
     alpha[static_cast<size_t>(a)] = rho_[slot] * inner(s_[slot], q);
     q -= alpha[static_cast<size_t>(a)] * y_[slot];
   }
-  Eigen::MatrixXd r = problem.solve(q); // H_0 q
+  Eigen::MatrixXd r = problem.solve(q);   // H_0 q
   for (int a = pairs_ - 1; a >= 0; --a) { // oldest to newest
     const auto slot = static_cast<size_t>((newest_ - a + window_) % window_);
     const double beta = rho_[slot] * inner(y_[slot], r);

@@ -30,11 +30,11 @@ public:
 
 private:
   int window_;
-  int pairs_ = 0;  // held, <= window_
+  int pairs_ = 0;   // held, <= window_
   int newest_ = -1; // slot of the newest pair (circular)
   std::vector<Eigen::MatrixXd> s_, y_;
   Eigen::MatrixXd spare_s_, spare_y_; // the candidate pair; swapped into the ring when kept
-  std::vector<double> rho_; // 1 / (s^T y)
+  std::vector<double> rho_;           // 1 / (s^T y)
 };
 
 } // namespace iarap::detail

@@ -31,8 +31,7 @@ public:
     report_.initial_gradient_norm = gradient_norm;
     report_.local_ms += local_ms;
     report_.global_ms += global_ms;
-    if (!std::isfinite(energy))
-      throw SolverError("ARAP: the energy of the initial guess is not finite");
+    if (!std::isfinite(energy)) throw SolverError("ARAP: the energy of the initial guess is not finite");
     previous_ = energy;
     report_.converged = options_.gradient_tolerance > 0 && gradient_norm == 0.0;
     return report_.converged;
@@ -50,8 +49,9 @@ public:
     report_.global_ms_per_iteration.push_back(global_ms);
     report_.elapsed_ms.push_back(ms_since(start_));
     if (!std::isfinite(energy))
-      throw SolverError("ARAP: the energy became non-finite at iteration " + std::to_string(report_.iterations) +
-                        " (factorization " + factorization_name(factorization_) + ")");
+      throw SolverError("ARAP: the energy became non-finite at iteration " +
+                        std::to_string(report_.iterations) + " (factorization " +
+                        factorization_name(factorization_) + ")");
     const double previous = previous_;
     previous_ = energy;
     const bool energy_rule = options_.tolerance >= 0 &&
@@ -139,8 +139,8 @@ void run_anderson(LocalGlobalProblem& problem, const ArapSolveOptions& options, 
 }
 
 // Where a step along a descent direction d (slope = g . d < 0) from x ends: Armijo backtracking with lengths
-// 1, 1/2, 1/4 (a quasi-Newton or Newton step that needs more halving has a poor curvature model, and the plain
-// step costs no more than one more trial); when none passes, or d is not a descent direction, the plain
+// 1, 1/2, 1/4 (a quasi-Newton or Newton step that needs more halving has a poor curvature model, and the
+// plain step costs no more than one more trial); when none passes, or d is not a descent direction, the plain
 // local/global step (the rhs still belongs to x). The local step at the returned point is done.
 struct LineStep {
   Eigen::MatrixXd x;
@@ -216,7 +216,8 @@ void run_lbfgs(LocalGlobalProblem& problem, const ArapSolveOptions& options, dou
     x.swap(step.x);
     g.swap(g_next);
     report.accelerator_ms += ms_since(start);
-    if (progress.record(energy, g.norm(), quasi_newton && step.accepted, step.local_ms, step.global_ms)) return;
+    if (progress.record(energy, g.norm(), quasi_newton && step.accepted, step.local_ms, step.global_ms))
+      return;
   }
 }
 
@@ -238,9 +239,9 @@ double to_boundary(double dLd, double dLp, double pLp, double radius) {
 // the plain step's length and doubles while the model predicts the energy well, which walks out of such
 // regions at a growing pace. A step that achieves less than kAccept of the predicted decrease is replaced by
 // the plain local/global step (never an energy increase), and the radius shrinks.
-void run_newton(LocalGlobalProblem& problem, const ArapSolveOptions& options, double energy, Eigen::MatrixXd g,
-                ArapReport& report, Progress& progress) {
-  constexpr double kAccept = 0.1;            // rho above this: the step is taken
+void run_newton(LocalGlobalProblem& problem, const ArapSolveOptions& options, double energy,
+                Eigen::MatrixXd g, ArapReport& report, Progress& progress) {
+  constexpr double kAccept = 0.1;                // rho above this: the step is taken
   constexpr double kShrink = 0.25, kGrow = 0.75; // rho below / above: radius shrinks / grows (N&W Alg. 4.1)
   const int cg_limit = options.window;
   const double g0 = g.norm();
@@ -326,8 +327,7 @@ ArapReport run_local_global(LocalGlobalProblem& problem, const ArapSolveOptions&
   t = Clock::now();
   problem.assemble_rhs();
   Eigen::MatrixXd g = problem.gradient();
-  if (progress.begin(energy, g.norm(), local_ms, ms_since(t)))
-    return report;
+  if (progress.begin(energy, g.norm(), local_ms, ms_since(t))) return report;
   switch (report.accelerator) {
   case ArapAccelerator::None:
     run_plain(problem, options, progress);

@@ -19,8 +19,7 @@ LocalGlobalProblem::LocalGlobalProblem(ArapData& data, const Eigen::MatrixXd& ta
   U_c.topRows(data.fixed.size()) = targets;
   for (Eigen::Index k = 0; k < data.pinned.size(); ++k)
     U_c.row(data.fixed.size() + k) = U.row(data.pinned(k));
-  for (Eigen::Index k = 0; k < data.fixed.size(); ++k)
-    U.row(data.fixed(k)) = targets.row(k);
+  for (Eigen::Index k = 0; k < data.fixed.size(); ++k) U.row(data.fixed(k)) = targets.row(k);
   const ArapElements& el = data.elements;
   visit_rows(el, U, U_rows_);
   const std::vector<int> position = visit_positions(el);
@@ -148,7 +147,7 @@ void LocalGlobalProblem::solve_into(const Eigen::MatrixXd& b, Eigen::MatrixXd& x
 // negative curvature there, which the step's line search covers).
 void LocalGlobalProblem::prepare_hessian() {
   constexpr double kFloor = 1e-6;
-  if (!keep_covariances_) // else the last local step kept them
+  if (!keep_covariances_)                          // else the last local step kept them
     cell_covariances(data_.elements, U_rows_, S_); // U_rows_ holds the last local step's positions
   const auto n = static_cast<int>(S_.size());
   M_inverse_.resize(S_.size());
@@ -160,9 +159,9 @@ void LocalGlobalProblem::prepare_hessian() {
     P = 0.5 * (P + P.transpose()).eval();
     const Eigen::Matrix3d M = P.trace() * Eigen::Matrix3d::Identity() - P;
     // Usually M is safely positive definite and the floor inactive: positive leading minors (Sylvester) and
-    // det M >= kFloor tr(M)^3 give lambda_min >= det / lambda_max^2 >= kFloor lambda_max (lambda_max <= tr M),
-    // so the adjugate inverts it exactly, far cheaper than the eigendecomposition below (which took 6% of the
-    // instructions of a Newton solve on the bunny).
+    // det M >= kFloor tr(M)^3 give lambda_min >= det / lambda_max^2 >= kFloor lambda_max (lambda_max <= tr
+    // M), so the adjugate inverts it exactly, far cheaper than the eigendecomposition below (which took 6% of
+    // the instructions of a Newton solve on the bunny).
     Eigen::Matrix3d adjugate;
     adjugate << M(1, 1) * M(2, 2) - M(1, 2) * M(2, 1), M(0, 2) * M(2, 1) - M(0, 1) * M(2, 2),
         M(0, 1) * M(1, 2) - M(0, 2) * M(1, 1), M(1, 2) * M(2, 0) - M(1, 0) * M(2, 2),
@@ -192,8 +191,7 @@ void LocalGlobalProblem::prepare_hessian() {
 // dS_c = sum_e w_e (v^T b_e) s_hat_e^T (the covariance sweep run on v) through the relation above.
 Eigen::MatrixXd LocalGlobalProblem::hessian_product(const Eigen::MatrixXd& v) {
   // Only the free rows are written, so the constrained ones stay at the zero they got once.
-  if (v_rows_.rows() != U_.rows())
-    v_rows_.setZero(U_.rows(), 3);
+  if (v_rows_.rows() != U_.rows()) v_rows_.setZero(U_.rows(), 3);
   for (Eigen::Index r = 0; r < free_count(); ++r)
     v_rows_.row(free_position_[static_cast<size_t>(r)]) = v.row(r);
   cell_covariances(data_.elements, v_rows_, dS_); // dS_c

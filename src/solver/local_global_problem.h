@@ -60,20 +60,21 @@ private:
 
   ArapData& data_;
   Eigen::MatrixXd& U_;
-  Eigen::MatrixXd Lfc_Uc_;                 // #free x 3
+  Eigen::MatrixXd Lfc_Uc_; // #free x 3
   // The free rows of the symmetric L in visit order, as flat CSR: row r belongs to the free vertex at
   // position free_position_[r] (increasing) with free index free_index_[r]; its columns are visit positions.
   // The fused right-hand-side and gradient pass and the Hessian product stream them beside U_rows_.
   std::vector<int> free_position_, free_index_, L_row_start_, L_column_;
   std::vector<double> L_value_;
-  ArapElements::ValueRows U_rows_;         // the positions in visit order (U's are written back at the end)
-  std::vector<Eigen::Matrix3d> R_spare_;   // num_cells: where data.R goes back to the file's order
+  ArapElements::ValueRows U_rows_;       // the positions in visit order (U's are written back at the end)
+  std::vector<Eigen::Matrix3d> R_spare_; // num_cells: where data.R goes back to the file's order
   Eigen::VectorXd cell_energy_;
   Eigen::MatrixXd B_, X_, g_;
-  mutable Eigen::MatrixXd b_free_, x_free_; // a solve's right-hand side and solution in the factor's row order
+  mutable Eigen::MatrixXd b_free_,
+      x_free_; // a solve's right-hand side and solution in the factor's row order
   std::vector<Eigen::Matrix3d> S_, dS_, M_inverse_, dR_; // Hessian workspaces (per cell)
   bool keep_covariances_ = false;
-  ArapElements::ValueRows v_rows_;                 // a direction v on all vertices, 0 at constrained ones
+  ArapElements::ValueRows v_rows_; // a direction v on all vertices, 0 at constrained ones
   mutable int solves_ = 0;
 };
 

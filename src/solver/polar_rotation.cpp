@@ -45,8 +45,7 @@ Eigen::Matrix3d refine_rotation(const Eigen::Matrix3d& R, const Eigen::Matrix3d&
   const Eigen::Vector3d w = G.inverse() * a;
   const double angle = w.norm();
   // A singular G (rank <= 1: the optimum is not unique) or a large step: nothing to refine.
-  if (!(angle > 0.0) || !(angle < kRefineMaxAngle))
-    return R;
+  if (!(angle > 0.0) || !(angle < kRefineMaxAngle)) return R;
   return R * Eigen::AngleAxisd(angle, w / angle).toRotationMatrix();
 }
 
@@ -55,20 +54,17 @@ Eigen::Matrix3d rotation_by_svd(const Eigen::Matrix3d& X) {
   Eigen::Matrix3d U = svd.matrixU();
   const Eigen::Matrix3d& V = svd.matrixV();
   // Singular values are sorted decreasingly: flipping the last column costs the least (sigma_3).
-  if (U.determinant() * V.determinant() < 0)
-    U.col(2) = -U.col(2);
+  if (U.determinant() * V.determinant() < 0) U.col(2) = -U.col(2);
   return refine_rotation(U * V.transpose(), X);
 }
 
 } // namespace
 
 Eigen::Matrix3d polar_rotation(const Eigen::Matrix3d& S) {
-  if (!S.allFinite())
-    return Eigen::Matrix3d::Constant(std::numeric_limits<double>::quiet_NaN());
+  if (!S.allFinite()) return Eigen::Matrix3d::Constant(std::numeric_limits<double>::quiet_NaN());
   // Scaling by the largest entry (not the Frobenius norm) cannot underflow or overflow.
   const double scale = S.cwiseAbs().maxCoeff();
-  if (scale == 0.0)
-    return Eigen::Matrix3d::Identity();
+  if (scale == 0.0) return Eigen::Matrix3d::Identity();
   const Eigen::Matrix3d S0 = S / scale;
   Eigen::Matrix3d X = S0;
   const double n = X.norm();
@@ -79,8 +75,7 @@ Eigen::Matrix3d polar_rotation(const Eigen::Matrix3d& S) {
   if (X(0, 1) == X(1, 0) && X(0, 2) == X(2, 0) && X(1, 2) == X(2, 1) && X(0, 0) > 0 &&
       X(0, 0) * X(1, 1) - X(0, 1) * X(1, 0) > 0 && det > 0)
     return Eigen::Matrix3d::Identity();
-  if (!(det > kNewtonDeterminant * n * n * n))
-    return rotation_by_svd(X);
+  if (!(det > kNewtonDeterminant * n * n * n)) return rotation_by_svd(X);
 
   // Scaled Newton iteration X <- (g X + (g X)^{-T}) / 2 (Higham 1986); det X stays positive.
   double step = 1.0;
@@ -89,8 +84,7 @@ Eigen::Matrix3d polar_rotation(const Eigen::Matrix3d& S) {
     const Eigen::Matrix3d next = 0.5 * (g * X + C / (g * det));
     step = (next - X).norm();
     X = next;
-    if (step < kNewtonStep)
-      return refine_rotation(X, S0);
+    if (step < kNewtonStep) return refine_rotation(X, S0);
     C = cofactor(X);
     det = X.col(0).dot(C.col(0));
   }
@@ -122,7 +116,8 @@ Eigen::Vector4d quaternion_of(const Eigen::Matrix3d& R) {
 }
 
 // Newton on the rotation group from a nearby start converges quadratically: the error after a step is
-// about (step size)^2 * |S| / (sigma_2 + sigma_3), so once a step is below 1e-8 the one taken leaves rounding.
+// about (step size)^2 * |S| / (sigma_2 + sigma_3), so once a step is below 1e-8 the one taken leaves
+// rounding.
 constexpr double kGroupStep = 1e-8;
 // A start this far (radians of the first step) is not near: the full iteration decides instead.
 constexpr double kGroupFarStep = 0.5;
@@ -145,17 +140,17 @@ constexpr double kGroupDefinite = 1e-6;
 // guess need no test here: they make the first step's concavity test fail (comparisons with NaN are false),
 // and polar_rotation returns its non-finite answer. One reciprocal and multiplications, not a division
 // per entry: this runs once per cell and iteration.
-IARAP_INLINE_INTO_CLONES bool group_start(const Eigen::Matrix3d& S, const Eigen::Matrix3d& guess, double (&s)[9], double (&q)[4]) {
+IARAP_INLINE_INTO_CLONES bool group_start(const Eigen::Matrix3d& S, const Eigen::Matrix3d& guess,
+                                          double (&s)[9], double (&q)[4]) {
   double scale = 0.0;
   for (int k = 0; k < 9; ++k) scale = std::max(scale, std::abs(S(k)));
-  if (scale == 0.0)
-    return false;
-  if (S(0, 1) == S(1, 0) && S(0, 2) == S(2, 0) && S(1, 2) == S(2, 1))
-    return false;
+  if (scale == 0.0) return false;
+  if (S(0, 1) == S(1, 0) && S(0, 2) == S(2, 0) && S(1, 2) == S(2, 1)) return false;
   const Eigen::Vector4d start = quaternion_of(guess);
   // Written out, not Eigen's squaredNorm: inside the AVX2 clone below Eigen could sum in another order,
   // and the two clones must agree to the bit.
-  const double start_norm2 = start(0) * start(0) + start(1) * start(1) + start(2) * start(2) + start(3) * start(3);
+  const double start_norm2 =
+      start(0) * start(0) + start(1) * start(1) + start(2) * start(2) + start(3) * start(3);
   if (!(start_norm2 > 0.25)) // not a rotation
     return false;
   const double to_unit = 1.0 / std::sqrt(start_norm2), to_scaled = 1.0 / scale;
@@ -188,13 +183,13 @@ IARAP_INLINE_INTO_CLONES void rotation_of(const Lanes (&q)[4], Lanes (&R)[9]) {
 // unit quaternions q, updated in place). `converged` gets the lanes that converged; a lane that was running
 // and did not (the model not safely concave, the first step too long, no convergence within the step limit)
 // is for polar_rotation.
-IARAP_INLINE_INTO_CLONES void group_newton(const Lanes (&s)[9], Lanes (&q)[4], LaneMask& running, LaneMask& converged) {
+IARAP_INLINE_INTO_CLONES void group_newton(const Lanes (&s)[9], Lanes (&q)[4], LaneMask& running,
+                                           LaneMask& converged) {
   converged = LaneMask{};
   for (int step = 0; step < kGroupMaxSteps; ++step) {
     bool any = false;
     for (int l = 0; l < kLanes; ++l) any |= running[l] != 0;
-    if (!any)
-      break;
+    if (!any) break;
     Lanes R[9];
     rotation_of(q, R);
     // H = R^T S0 = (I + [w]x) T to first order, T symmetric: axial(H - H^T) = (tr(T) I - T) w.
@@ -204,7 +199,8 @@ IARAP_INLINE_INTO_CLONES void group_newton(const Lanes (&s)[9], Lanes (&q)[4], L
     const Lanes a0 = H[2][1] - H[1][2], a1 = H[0][2] - H[2][0], a2 = H[1][0] - H[0][1];
     const Lanes tr = H[0][0] + H[1][1] + H[2][2];
     const Lanes g00 = tr - H[0][0], g11 = tr - H[1][1], g22 = tr - H[2][2];
-    const Lanes g01 = -0.5 * (H[0][1] + H[1][0]), g02 = -0.5 * (H[0][2] + H[2][0]), g12 = -0.5 * (H[1][2] + H[2][1]);
+    const Lanes g01 = -0.5 * (H[0][1] + H[1][0]), g02 = -0.5 * (H[0][2] + H[2][0]),
+                g12 = -0.5 * (H[1][2] + H[2][1]);
     // Adjugate of the symmetric G, and its determinant: w = adj(G) a / det(G).
     const Lanes c00 = g11 * g22 - g12 * g12, c01 = g02 * g12 - g01 * g22, c02 = g01 * g12 - g02 * g11;
     const Lanes c11 = g00 * g22 - g02 * g02, c12 = g01 * g02 - g00 * g12, c22 = g00 * g11 - g01 * g01;
@@ -214,12 +210,12 @@ IARAP_INLINE_INTO_CLONES void group_newton(const Lanes (&s)[9], Lanes (&q)[4], L
     const LaneMask concave = (g00 > kGroupDefinite * size) & (c22 > kGroupDefinite * size * size) &
                              (detG > kGroupDefinite * size * size * size);
     const Lanes inverse = 1.0 / detG;
-    const Lanes w0 = (c00 * a0 + c01 * a1 + c02 * a2) * inverse, w1 = (c01 * a0 + c11 * a1 + c12 * a2) * inverse,
+    const Lanes w0 = (c00 * a0 + c01 * a1 + c02 * a2) * inverse,
+                w1 = (c01 * a0 + c11 * a1 + c12 * a2) * inverse,
                 w2 = (c02 * a0 + c12 * a1 + c22 * a2) * inverse;
     const Lanes length2 = w0 * w0 + w1 * w1 + w2 * w2;
     LaneMask take = running & concave;
-    if (step == 0)
-      take &= length2 < kGroupFarStep * kGroupFarStep;
+    if (step == 0) take &= length2 < kGroupFarStep * kGroupFarStep;
     // q <- q (1, w / 2): a rotation by 2 atan(|w| / 2) = |w| + O(|w|^3) about w, which keeps the
     // quadratic convergence; normalized so that q stays a unit quaternion.
     const Lanes qw = q[0], qx = q[1], qy = q[2], qz = q[3];
@@ -259,8 +255,7 @@ void polar_rotation_near(const Eigen::Matrix3d* S, const Eigen::Matrix3d* guess,
     LaneMask running = {};
     for (int l = 0; l < kLanes && first + l < count; ++l) {
       double s_row[9], q_row[4];
-      if (!group_start(S[first + l], guess[first + l], s_row, q_row))
-        continue;
+      if (!group_start(S[first + l], guess[first + l], s_row, q_row)) continue;
       running[l] = -1;
       for (int k = 0; k < 9; ++k) s[k][l] = s_row[k];
       for (int k = 0; k < 4; ++k) q[k][l] = q_row[k];

@@ -69,7 +69,8 @@ void cholmod_solve_into(cholmod_factor* factor, const Eigen::MatrixXd& B, SolveW
   b.xtype = CHOLMOD_REAL;
   b.dtype = CHOLMOD_DOUBLE;
   if (!cholmod_solve2(CHOLMOD_A, factor, &b, nullptr, &ws.X, nullptr, &ws.Y, &ws.E, ws.common))
-    throw SolverError("sparse Cholesky: CHOLMOD's solve failed (status " + std::to_string(ws.common->status) + ")");
+    throw SolverError("sparse Cholesky: CHOLMOD's solve failed (status " + std::to_string(ws.common->status) +
+                      ")");
 }
 
 // The hand-written solve's plan for llt's factor; null when the factor is not of the kind it reads
@@ -136,13 +137,11 @@ SparseCholesky::SparseCholesky(const Eigen::SparseMatrix<double>& A) : SparseCho
 }
 
 SparseCholesky::SparseCholesky(const SparseCholesky& other) : SparseCholesky() {
-  if (other.impl_ && other.impl_->kind != FactorizationKind::None)
-    factorize(other.impl_->A);
+  if (other.impl_ && other.impl_->kind != FactorizationKind::None) factorize(other.impl_->A);
 }
 
 SparseCholesky& SparseCholesky::operator=(const SparseCholesky& other) {
-  if (this != &other)
-    *this = SparseCholesky(other);
+  if (this != &other) *this = SparseCholesky(other);
   return *this;
 }
 
@@ -160,8 +159,7 @@ bool same_pattern(const Eigen::SparseMatrix<double>& a, const Eigen::SparseMatri
 } // namespace
 
 void SparseCholesky::analyze(const Eigen::SparseMatrix<double>& pattern) {
-  if (!impl_)
-    impl_ = std::make_unique<Impl>();
+  if (!impl_) impl_ = std::make_unique<Impl>();
   *impl_ = Impl{};
   if (pattern.rows() != pattern.cols() || pattern.rows() == 0 || !pattern.isCompressed())
     return; // factorize() reports a non-square matrix; nothing to analyze for an empty one
@@ -173,12 +171,10 @@ void SparseCholesky::analyze(const Eigen::SparseMatrix<double>& pattern) {
 }
 
 void SparseCholesky::factorize(const Eigen::SparseMatrix<double>& A) {
-  if (!impl_)
-    impl_ = std::make_unique<Impl>();
+  if (!impl_) impl_ = std::make_unique<Impl>();
   // Reuse the symbolic analysis only for exactly the analyzed pattern.
   std::unique_ptr<CholmodLlt> analyzed;
-  if (impl_->llt && same_pattern(impl_->analyzed, A))
-    analyzed = std::move(impl_->llt);
+  if (impl_->llt && same_pattern(impl_->analyzed, A)) analyzed = std::move(impl_->llt);
   *impl_ = Impl{};
   if (A.rows() != A.cols())
     throw SolverError("sparse Cholesky: matrix is " + std::to_string(A.rows()) + " x " +
@@ -266,20 +262,16 @@ void SparseCholesky::solve_with_cholmod(const Eigen::MatrixXd& B, Eigen::MatrixX
   X.resize(n, columns);
   const SolveWorkspace& ws = impl.workspace;
   for (Eigen::Index c = 0; c < columns; ++c)
-    X.col(c) = Eigen::Map<const Eigen::VectorXd>(static_cast<const double*>(ws.X->x) +
-                                                     c * static_cast<Eigen::Index>(ws.X->d),
-                                                 n);
+    X.col(c) = Eigen::Map<const Eigen::VectorXd>(
+        static_cast<const double*>(ws.X->x) + c * static_cast<Eigen::Index>(ws.X->d), n);
 }
 
 Eigen::MatrixXd SparseCholesky::solve(const Eigen::MatrixXd& B) const {
   const FactorizationKind k = kind();
   check_solve(k, rows(), B);
-  if (k == FactorizationKind::Empty)
-    return Eigen::MatrixXd(0, B.cols());
-  if (k == FactorizationKind::SimplicialLDLT)
-    return impl_->ldlt->solve(B);
-  if (!impl_->supernodal)
-    return impl_->llt->solve(B);
+  if (k == FactorizationKind::Empty) return Eigen::MatrixXd(0, B.cols());
+  if (k == FactorizationKind::SimplicialLDLT) return impl_->ldlt->solve(B);
+  if (!impl_->supernodal) return impl_->llt->solve(B);
   Eigen::MatrixXd X;
   detail::SupernodalWorkspace ws; // a workspace of its own: const solves may run concurrently
   std::as_const(*impl_->supernodal).solve(B, X, thread_count(), ws);

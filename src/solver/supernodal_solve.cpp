@@ -38,13 +38,10 @@ constexpr double kSupernodeCost = 16.0;
 template <int G, int J>
 inline void subtract_row(const double* Lj, int nrow, int i, const double (&yy)[J][G], double* t) {
   double sum[G];
-  for (int c = 0; c < G; ++c)
-    sum[c] = Lj[i] * yy[0][c];
+  for (int c = 0; c < G; ++c) sum[c] = Lj[i] * yy[0][c];
   for (int j = 1; j < J; ++j)
-    for (int c = 0; c < G; ++c)
-      sum[c] += Lj[j * nrow + i] * yy[j][c];
-  for (int c = 0; c < G; ++c)
-    t[c] -= sum[c];
+    for (int c = 0; c < G; ++c) sum[c] += Lj[j * nrow + i] * yy[j][c];
+  for (int c = 0; c < G; ++c) t[c] -= sum[c];
 }
 
 // Forward update by J solved columns y of a supernode: rows [ncol, inside_end) are W's, the rest top rows
@@ -54,8 +51,7 @@ void forward_block(const double* Lj, int nrow, const int* rows, int ncol, int in
                    double* W, double* acc, const int* top_slot) {
   double yy[J][G];
   for (int j = 0; j < J; ++j)
-    for (int c = 0; c < G; ++c)
-      yy[j][c] = y[j * G + c];
+    for (int c = 0; c < G; ++c) yy[j][c] = y[j * G + c];
   for (int i = ncol; i < inside_end; ++i)
     subtract_row<G, J>(Lj, nrow, i, yy, W + static_cast<std::ptrdiff_t>(rows[i]) * G);
   for (int i = inside_end; i < nrow; ++i)
@@ -75,11 +71,9 @@ void forward_supernode(const SupernodalFactorView& L, int s, int inside, double*
   for (int j = 0; j < ncol; ++j) {
     const double* col = Ls + static_cast<std::ptrdiff_t>(j) * nrow;
     double yj[G];
-    for (int c = 0; c < G; ++c)
-      yj[c] = y[j * G + c] /= col[j];
+    for (int c = 0; c < G; ++c) yj[c] = y[j * G + c] /= col[j];
     for (int i = j + 1; i < ncol; ++i)
-      for (int c = 0; c < G; ++c)
-        y[i * G + c] -= col[i] * yj[c];
+      for (int c = 0; c < G; ++c) y[i * G + c] -= col[i] * yj[c];
   }
   const int inside_end = ncol + inside;
   for (int j0 = 0; j0 < ncol; j0 += kColumnBlock) {
@@ -108,12 +102,10 @@ void backward_block(const double* Lj, int nrow, const int* rows, int ncol, const
   for (int i = ncol; i < nrow; ++i) {
     const double* xr = W + static_cast<std::ptrdiff_t>(rows[i]) * G;
     for (int j = 0; j < J; ++j)
-      for (int c = 0; c < G; ++c)
-        sum[j][c] += Lj[j * nrow + i] * xr[c];
+      for (int c = 0; c < G; ++c) sum[j][c] += Lj[j * nrow + i] * xr[c];
   }
   for (int j = 0; j < J; ++j)
-    for (int c = 0; c < G; ++c)
-      x[j * G + c] -= sum[j][c];
+    for (int c = 0; c < G; ++c) x[j * G + c] -= sum[j][c];
 }
 
 // L^T x = y for supernode s, once every row it names (its ancestors') holds x.
@@ -144,13 +136,10 @@ template <int G> void backward_supernode(const SupernodalFactorView& L, int s, d
   for (int j = ncol - 1; j >= 0; --j) {
     const double* col = Ls + static_cast<std::ptrdiff_t>(j) * nrow;
     double v[G];
-    for (int c = 0; c < G; ++c)
-      v[c] = x[j * G + c];
+    for (int c = 0; c < G; ++c) v[c] = x[j * G + c];
     for (int i = j + 1; i < ncol; ++i)
-      for (int c = 0; c < G; ++c)
-        v[c] -= col[i] * x[i * G + c];
-    for (int c = 0; c < G; ++c)
-      x[j * G + c] = v[c] / col[j];
+      for (int c = 0; c < G; ++c) v[c] -= col[i] * x[i * G + c];
+    for (int c = 0; c < G; ++c) x[j * G + c] = v[c] / col[j];
   }
 }
 
@@ -160,8 +149,7 @@ void wait_until(const std::atomic<int>& counter, int value) {
   const auto spin_end = std::chrono::steady_clock::now() + kSpinBeforeYield;
   bool spinning = true;
   for (int check = 1; counter.load(std::memory_order_acquire) < value; ++check) {
-    if (spinning && check % 64 == 0)
-      spinning = std::chrono::steady_clock::now() < spin_end;
+    if (spinning && check % 64 == 0) spinning = std::chrono::steady_clock::now() < spin_end;
     if (spinning) {
 #if defined(__x86_64__) || defined(__i386__)
       __builtin_ia32_pause();
@@ -191,14 +179,10 @@ void solve_group(const SupernodalFactorView& L, const SupernodalSchedule& sc, co
       xout[perm[i] + static_cast<std::ptrdiff_t>(c) * n] = W[static_cast<std::ptrdiff_t>(i) * G + c];
   };
   if (sc.bins == 1) {
-    for (int i = 0; i < n; ++i)
-      gather(i);
-    for (int s = 0; s < L.nsuper; ++s)
-      forward_supernode<G>(L, s, sc.inside_rows[s], W, nullptr, nullptr);
-    for (int s = L.nsuper - 1; s >= 0; --s)
-      backward_supernode<G>(L, s, W);
-    for (int i = 0; i < n; ++i)
-      scatter(i);
+    for (int i = 0; i < n; ++i) gather(i);
+    for (int s = 0; s < L.nsuper; ++s) forward_supernode<G>(L, s, sc.inside_rows[s], W, nullptr, nullptr);
+    for (int s = L.nsuper - 1; s >= 0; --s) backward_supernode<G>(L, s, W);
+    for (int i = 0; i < n; ++i) scatter(i);
     return;
   }
   const int bins = sc.bins;
@@ -213,8 +197,7 @@ void solve_group(const SupernodalFactorView& L, const SupernodalSchedule& sc, co
   // sleep, and waking it costs tens of microseconds on the critical path, twice per solve.
   std::atomic<int> finished{0}, top_done{0}, backward_done{0};
   auto columns = [&](int s, auto&& f) {
-    for (int col = L.super[s]; col < L.super[s + 1]; ++col)
-      f(col);
+    for (int col = L.super[s]; col < L.super[s + 1]; ++col) f(col);
   };
 #pragma omp parallel num_threads(sc.threads)
   {
@@ -223,8 +206,7 @@ void solve_group(const SupernodalFactorView& L, const SupernodalSchedule& sc, co
     for (int bin = 0; bin < bins; ++bin) {
       double* acc_bin = acc + bin * bin_stride;
       std::fill(acc_bin, acc_bin + bin_stride, 0.0);
-      for (const int s : sc.bin_supernodes[bin])
-        columns(s, gather); // all before their updates arrive
+      for (const int s : sc.bin_supernodes[bin]) columns(s, gather); // all before their updates arrive
       for (const int s : sc.bin_supernodes[bin])
         forward_supernode<G>(L, s, sc.inside_rows[s], W, acc_bin, top_slot);
     }
@@ -236,12 +218,10 @@ void solve_group(const SupernodalFactorView& L, const SupernodalSchedule& sc, co
           gather(col);
           for (int bin = 0; bin < bins; ++bin) {
             const double* a = acc + bin * bin_stride + static_cast<std::ptrdiff_t>(top_slot[col]) * G;
-            for (int c = 0; c < G; ++c)
-              W[static_cast<std::ptrdiff_t>(col) * G + c] += a[c];
+            for (int c = 0; c < G; ++c) W[static_cast<std::ptrdiff_t>(col) * G + c] += a[c];
           }
         });
-      for (const int s : sc.top)
-        forward_supernode<G>(L, s, sc.inside_rows[s], W, nullptr, nullptr);
+      for (const int s : sc.top) forward_supernode<G>(L, s, sc.inside_rows[s], W, nullptr, nullptr);
       for (auto it = sc.top.rbegin(); it != sc.top.rend(); ++it) {
         backward_supernode<G>(L, *it, W);
         columns(*it, scatter);
@@ -258,8 +238,7 @@ void solve_group(const SupernodalFactorView& L, const SupernodalSchedule& sc, co
         columns(*it, scatter);
       }
     backward_done.fetch_add(1, std::memory_order_release);
-    if (omp_get_thread_num() == 0)
-      wait_until(backward_done, omp_get_num_threads());
+    if (omp_get_thread_num() == 0) wait_until(backward_done, omp_get_num_threads());
   }
 }
 
@@ -268,15 +247,12 @@ void solve_group(const SupernodalFactorView& L, const SupernodalSchedule& sc, co
 void supernodal_solve(const SupernodalFactorView& L, const SupernodalSchedule& schedule,
                       const Eigen::MatrixXd& B, Eigen::MatrixXd& X, SupernodalWorkspace& ws) {
   const Eigen::Index k = B.cols();
-  if (X.rows() != B.rows() || X.cols() != k)
-    X.resize(B.rows(), k);
+  if (X.rows() != B.rows() || X.cols() != k) X.resize(B.rows(), k);
   const std::size_t n = static_cast<std::size_t>(L.n);
   const int group = static_cast<int>(std::min<Eigen::Index>(k, kMaxGroup));
-  if (ws.rows.size() < n * group)
-    ws.rows.resize(n * group);
+  if (ws.rows.size() < n * group) ws.rows.resize(n * group);
   const std::size_t acc_size = static_cast<std::size_t>(schedule.bins) * schedule.top_columns * group;
-  if (schedule.bins > 1 && ws.accumulator.size() < acc_size)
-    ws.accumulator.resize(acc_size);
+  if (schedule.bins > 1 && ws.accumulator.size() < acc_size) ws.accumulator.resize(acc_size);
   for (Eigen::Index c0 = 0; c0 < k; c0 += kMaxGroup) {
     switch (std::min<Eigen::Index>(kMaxGroup, k - c0)) {
     case 4:
@@ -331,17 +307,14 @@ SupernodalSolve::SupernodalSolve(const SupernodalFactorView& L, int threads, dou
       const bool below_ok = i < ncol || (rows[i] > rows[i - 1] && rows[i] < L.n);
       usable_ = diagonal_ok && below_ok;
     }
-    for (int col = k1; col < k2; ++col)
-      column_owner[col] = s;
+    for (int col = k1; col < k2; ++col) column_owner[col] = s;
     work_[s] = static_cast<double>(ncol) * nrow - 0.5 * ncol * (ncol - 1) + kRowCost * nrow + kSupernodeCost;
   }
   usable_ = usable_ && ns >= 1 && L.super[0] == 0 && L.super[ns] == L.n;
-  if (!usable_)
-    return;
+  if (!usable_) return;
   for (int s = 0; s < ns; ++s) {
     const int first_below = L.pi[s] + (L.super[s + 1] - L.super[s]);
-    if (first_below < L.pi[s + 1])
-      parent_[s] = column_owner[L.s_rows[first_below]];
+    if (first_below < L.pi[s + 1]) parent_[s] = column_owner[L.s_rows[first_below]];
   }
   schedule_threads_ = threads;
   schedule_ = make_schedule(threads);
@@ -360,12 +333,10 @@ SupernodalSchedule SupernodalSolve::make_schedule(int threads) const {
     sc = SupernodalSchedule{};
     all_rows_inside();
     sc.bin_supernodes.assign(1, std::vector<int>(ns));
-    for (int s = 0; s < ns; ++s)
-      sc.bin_supernodes[0][s] = s;
+    for (int s = 0; s < ns; ++s) sc.bin_supernodes[0][s] = s;
     return sc;
   };
-  if (threads <= 1 || ns < 2)
-    return serial();
+  if (threads <= 1 || ns < 2) return serial();
 
   // Work of each subtree (children come before their parent).
   std::vector<double> subtree(work_);
@@ -411,8 +382,7 @@ SupernodalSchedule SupernodalSolve::make_schedule(int threads) const {
       candidate_work += subtree[child];
     }
   }
-  if (!parallel)
-    return serial();
+  if (!parallel) return serial();
 
   std::vector<char> is_top(ns, 0);
   top_work = 0;
@@ -434,8 +404,7 @@ SupernodalSchedule SupernodalSolve::make_schedule(int threads) const {
   const double top_limit = top_work + 0.02 * best;
   while (static_cast<int>(parts.size()) < max_bins) {
     const int s = -parts.top().second;
-    if (subtree[s] <= candidate_work / max_bins || top_work + work_[s] > top_limit)
-      break;
+    if (subtree[s] <= candidate_work / max_bins || top_work + work_[s] > top_limit) break;
     parts.pop();
     is_top[s] = 1;
     top_work += work_[s];
@@ -444,8 +413,7 @@ SupernodalSchedule SupernodalSolve::make_schedule(int threads) const {
       parts.push({subtree[child], -child});
       candidate_work += subtree[child];
     }
-    if (parts.empty())
-      break;
+    if (parts.empty()) break;
   }
   // Heaviest subtree first onto the least loaded part (LPT); parts then in decreasing load, the order in
   // which the threads take them.
@@ -458,27 +426,22 @@ SupernodalSchedule SupernodalSolve::make_schedule(int threads) const {
     bin[r] = target;
   }
   for (int s = ns - 1; s >= 0; --s)
-    if (!is_top[s] && bin[s] < 0)
-      bin[s] = bin[parent_[s]];
+    if (!is_top[s] && bin[s] < 0) bin[s] = bin[parent_[s]];
   std::vector<int> by_load(load.size());
-  for (std::size_t b = 0; b < load.size(); ++b)
-    by_load[b] = static_cast<int>(b);
+  for (std::size_t b = 0; b < load.size(); ++b) by_load[b] = static_cast<int>(b);
   std::stable_sort(by_load.begin(), by_load.end(), [&](int a, int b) { return load[a] > load[b]; });
   std::vector<int> renumber(load.size(), -1);
   sc.bins = 0;
   for (const int b : by_load)
-    if (load[b] > 0)
-      renumber[b] = sc.bins++;
-  if (sc.bins < 2)
-    return serial();
+    if (load[b] > 0) renumber[b] = sc.bins++;
+  if (sc.bins < 2) return serial();
   sc.threads = std::min(threads, sc.bins);
   sc.bin_supernodes.assign(sc.bins, {});
   sc.top_slot.assign(L_.n, -1);
   for (int s = 0; s < ns; ++s) {
     if (is_top[s]) {
       sc.top.push_back(s);
-      for (int col = L_.super[s]; col < L_.super[s + 1]; ++col)
-        sc.top_slot[col] = sc.top_columns++;
+      for (int col = L_.super[s]; col < L_.super[s + 1]; ++col) sc.top_slot[col] = sc.top_columns++;
     } else {
       sc.bin_supernodes[renumber[bin[s]]].push_back(s);
     }
@@ -486,16 +449,13 @@ SupernodalSchedule SupernodalSolve::make_schedule(int threads) const {
   // A subtree supernode's below-diagonal rows: first those of its own subtree, then (higher columns, as
   // ancestors of the subtree's root) the top part's.
   for (int s = 0; s < ns; ++s) {
-    if (is_top[s])
-      continue;
+    if (is_top[s]) continue;
     const int ncol = L_.super[s + 1] - L_.super[s];
     const int* rows = L_.s_rows + L_.pi[s];
     int inside = 0;
-    while (inside < sc.inside_rows[s] && sc.top_slot[rows[ncol + inside]] < 0)
-      ++inside;
+    while (inside < sc.inside_rows[s] && sc.top_slot[rows[ncol + inside]] < 0) ++inside;
     for (int i = inside; i < sc.inside_rows[s]; ++i)
-      if (sc.top_slot[rows[ncol + i]] < 0)
-        return serial(); // not a postordered tree after all
+      if (sc.top_slot[rows[ncol + i]] < 0) return serial(); // not a postordered tree after all
     sc.inside_rows[s] = inside;
   }
   return sc;

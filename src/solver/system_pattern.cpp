@@ -77,11 +77,13 @@ Eigen::SparseMatrix<double> element_system_matrix(const ArapElements& el, const 
         throw InputError("system matrix: element " + std::to_string(e) + " has vertex " +
                          std::to_string(el.b_index(e, k)) + " outside its face " + std::to_string(f));
     }
-    const double cw = (el.cell_start[static_cast<size_t>(e) + 1] - el.cell_start[static_cast<size_t>(e)]) * el.w(e);
+    const double cw =
+        (el.cell_start[static_cast<size_t>(e) + 1] - el.cell_start[static_cast<size_t>(e)]) * el.w(e);
     for (int k = 0; k < 3; ++k)
       for (int l = 0; l < 3; ++l)
         if (corner[k] >= 0 && corner[l] >= 0) // same products as the triplet assembly: bitwise symmetric
-          value[pattern.face_slot(f, 3 * corner[k] + corner[l])] += cw * (el.b_value(e, k) * el.b_value(e, l));
+          value[pattern.face_slot(f, 3 * corner[k] + corner[l])] +=
+              cw * (el.b_value(e, k) * el.b_value(e, l));
   }
   return L;
 }

@@ -20,8 +20,7 @@ void breadth_first(const ArapElements& el, int root, std::vector<char>& placed, 
       // Unused slots repeat a vertex of the element (ArapElements::b_index), so b_value need not be read.
       for (int j = 0; j < 3; ++j) {
         const int v = el.b_index(e, j);
-        if (v >= n || placed[static_cast<size_t>(v)])
-          continue;
+        if (v >= n || placed[static_cast<size_t>(v)]) continue;
         placed[static_cast<size_t>(v)] = 1;
         order.push_back(v);
       }
@@ -46,8 +45,7 @@ std::vector<int> breadth_first_cell_order(const ArapElements& el, const Eigen::M
     breadth_first(el, static_cast<int>(first), placed, order);
   }
   for (int v = 0; v < n; ++v) // the other connected pieces, each from its first vertex in the file
-    if (!placed[static_cast<size_t>(v)])
-      breadth_first(el, v, placed, order);
+    if (!placed[static_cast<size_t>(v)]) breadth_first(el, v, placed, order);
   // The inserted boundary cells read vertices but are read by none: they go last, in their own order.
   order.resize(static_cast<size_t>(el.num_cells));
   std::iota(order.begin() + n, order.end(), n);
@@ -56,7 +54,8 @@ std::vector<int> breadth_first_cell_order(const ArapElements& el, const Eigen::M
 
 std::vector<int> visit_positions(const ArapElements& el) {
   std::vector<int> position(el.visit_order.size());
-  for (size_t p = 0; p < position.size(); ++p) position[static_cast<size_t>(el.visit_order[p])] = static_cast<int>(p);
+  for (size_t p = 0; p < position.size(); ++p)
+    position[static_cast<size_t>(el.visit_order[p])] = static_cast<int>(p);
   return position;
 }
 

@@ -22,12 +22,10 @@ inline CliRun run_command(const std::string& line, bool merge_stderr = false) {
   const std::string command = line + (merge_stderr ? " 2>&1" : "");
   CliRun run;
   std::FILE* pipe = ::popen(command.c_str(), "r");
-  if (pipe == nullptr)
-    return run;
+  if (pipe == nullptr) return run;
   char buffer[4096];
   std::size_t n = 0;
-  while ((n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0)
-    run.out.append(buffer, n);
+  while ((n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0) run.out.append(buffer, n);
   const int status = ::pclose(pipe);
   run.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return run;

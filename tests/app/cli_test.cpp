@@ -1,9 +1,9 @@
 // End-to-end tests of the iarap tool: exit codes (0 ok, 1 runtime error, 2 usage error), JSON output,
 // output files. They run the built binary (IARAP_CLI_PATH) through the shell.
+#include "app/cli_runner.h"
 #include "iarap/io/read_mesh.h"
 #include "iarap/io/write_mesh.h"
 #include "iarap/scene/read_constraints.h"
-#include "app/cli_runner.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>
@@ -167,9 +167,9 @@ TEST(Cli, DeformAcceleratorsReportTheirWork) {
   for (const std::string accel : {"none", "anderson", "lbfgs", "newton"}) {
     const fs::path out = dir / (accel + ".off");
     const std::string limit = accel == "none" ? "20" : "400"; // plain needs thousands for 1e-8
-    const CliRun run = iarap_cli("deform '" + bunny + "' --scenario '" + scenario + "' --method spokes-rims --accel " +
-                                 accel + " --iterations " + limit + " --tolerance 0 --grad-tol 1e-8 --json --out '" +
-                                 out.string() + "'");
+    const CliRun run = iarap_cli("deform '" + bunny + "' --scenario '" + scenario +
+                                 "' --method spokes-rims --accel " + accel + " --iterations " + limit +
+                                 " --tolerance 0 --grad-tol 1e-8 --json --out '" + out.string() + "'");
     ASSERT_EQ(run.code, 0) << run.out;
     const json j = parse_json(run);
     EXPECT_EQ(j["accelerator"], accel);
@@ -318,8 +318,9 @@ TEST(Cli, BenchReportsTheMallocSettings) {
   };
   const std::string ours = tunables("-u GLIBC_TUNABLES");
   if (thp_on) {
-    EXPECT_EQ(ours, "glibc.malloc.hugetlb=1:glibc.malloc.mmap_threshold=33554432:glibc.malloc.top_pad=67108864:"
-                    "glibc.malloc.trim_threshold=134217728");
+    EXPECT_EQ(ours,
+              "glibc.malloc.hugetlb=1:glibc.malloc.mmap_threshold=33554432:glibc.malloc.top_pad=67108864:"
+              "glibc.malloc.trim_threshold=134217728");
   } else {
     EXPECT_EQ(ours, ""); // no re-execution: huge pages would change nothing
   }
@@ -347,7 +348,8 @@ TEST(Cli, BenchRoundsKeepEveryRoundAndThePairedMedian) {
     for (const auto& ms : r["precompute_ms_rounds"]) fastest = std::min(fastest, ms.get<double>());
     EXPECT_EQ(r["precompute_ms"].get<double>(), fastest); // the table keeps the fastest round
   }
-  const CliRun text = iarap_cli("bench '" + bunny + "' --methods arap,iarap --iterations 1 --rounds 3 --threads 1");
+  const CliRun text =
+      iarap_cli("bench '" + bunny + "' --methods arap,iarap --iterations 1 --rounds 3 --threads 1");
   ASSERT_EQ(text.code, 0) << text.out;
   EXPECT_NE(text.out.find("iarap / arap: precompute"), std::string::npos) << text.out;
   EXPECT_NE(text.out.find("median of 3 paired rounds: precompute"), std::string::npos) << text.out;
@@ -369,8 +371,10 @@ TEST(Cli, BenchConvergeReportsReachedOrStationaryRuns) {
   const double tolerance = 1e-3; // a loose gap: the test measures the bench's bookkeeping, not the solvers
   const auto dir = iarap::test::temp_dir("cli_bench_converge");
   const auto report = dir / "converge.json";
-  const CliRun run = iarap_cli("bench '" + bunny + "' --converge 1e-3 --methods spokes-rims --accels none,lbfgs "
-                               "--max-iterations 2000 --threads 1 --report '" + report.string() + "'");
+  const CliRun run = iarap_cli("bench '" + bunny +
+                               "' --converge 1e-3 --methods spokes-rims --accels none,lbfgs "
+                               "--max-iterations 2000 --threads 1 --report '" +
+                               report.string() + "'");
   ASSERT_EQ(run.code, 0) << run.out;
   EXPECT_NE(run.out.find("within 1e-03 (relative) of the reference minimum"), std::string::npos) << run.out;
   std::ifstream in(report);

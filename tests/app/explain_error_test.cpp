@@ -10,7 +10,9 @@ namespace {
 using iarap::cli::ErrorContext;
 using iarap::cli::explain_solver_error;
 
-bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+bool contains(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
 
 } // namespace
 
@@ -25,8 +27,8 @@ TEST(ExplainError, UnconstrainedComponentNamesTheFlags) {
 }
 
 TEST(ExplainError, SingularMatrixGetsCauseAndFix) {
-  const std::string m =
-      explain_solver_error("sparse Cholesky: the 605 x 605 matrix is singular (zero pivot in LDL^T)", {"m.obj", false});
+  const std::string m = explain_solver_error(
+      "sparse Cholesky: the 605 x 605 matrix is singular (zero pivot in LDL^T)", {"m.obj", false});
   EXPECT_TRUE(contains(m, "cause:")) << m;
   EXPECT_TRUE(contains(m, "`iarap info m.obj`")) << m;
   EXPECT_TRUE(contains(m, "--repair")) << m;
@@ -48,7 +50,7 @@ TEST(ExplainError, TracingFailureGetsCauseAndFix) {
 }
 
 TEST(ExplainError, RepairedRunSaysWhichNumbering) {
-  const std::string m = explain_solver_error("ARAP: face 3 is degenerate (zero area): its cotangent weights are not finite",
-                                             {"m.obj", true});
+  const std::string m = explain_solver_error(
+      "ARAP: face 3 is degenerate (zero area): its cotangent weights are not finite", {"m.obj", true});
   EXPECT_TRUE(contains(m, "refer to the repaired mesh, not to m.obj")) << m;
 }

@@ -33,7 +33,8 @@ Fixture fixture(const std::string& tag, double scale = 1.0) {
 }
 
 std::string deform_args(const Fixture& f, const std::string& extra) {
-  return "deform '" + f.mesh.string() + "' --scenario '" + f.scenario.string() + "' --quiet --iterations 5 " + extra;
+  return "deform '" + f.mesh.string() + "' --scenario '" + f.scenario.string() + "' --quiet --iterations 5 " +
+         extra;
 }
 
 } // namespace
@@ -79,9 +80,9 @@ TEST(CliRobustness, NonUtf8PathsGiveValidJson) {
 TEST(CliRobustness, NonFiniteToleranceIsAUsageError) {
   const Fixture f = fixture("tolerance");
   for (const char* value : {"nan", "inf", "-1"}) {
-    const CliRun run =
-        iarap_cli(deform_args(f, std::string("--tolerance ") + value + " --out '" + (f.dir / "o.obj").string() + "'"),
-                  true);
+    const CliRun run = iarap_cli(
+        deform_args(f, std::string("--tolerance ") + value + " --out '" + (f.dir / "o.obj").string() + "'"),
+        true);
     EXPECT_EQ(run.code, 2) << value << ": " << run.out;
     EXPECT_NE(run.out.find("must be a finite number >= 0"), std::string::npos) << run.out;
     EXPECT_LT(run.out.size(), 400u) << run.out;
@@ -98,12 +99,14 @@ TEST(CliRobustness, FolderAsMeshAndHugeScenarioNumberAreNamed) {
   EXPECT_EQ(run.out.find("basic_string"), std::string::npos) << run.out;
 
   const fs::path scenario = f.dir / "huge.json";
-  write_file(scenario, "{\"fixed\": [0],\n \"handles\": [{\"vertices\": [1], \"translate\": [1e400, 0, 0]}]}");
+  write_file(scenario,
+             "{\"fixed\": [0],\n \"handles\": [{\"vertices\": [1], \"translate\": [1e400, 0, 0]}]}");
   run = iarap_cli("deform '" + f.mesh.string() + "' --scenario '" + scenario.string() + "' --out '" +
                       (f.dir / "o.obj").string() + "'",
                   true);
   EXPECT_EQ(run.code, 1);
-  EXPECT_NE(run.out.find(scenario.string() + ":2: number 1e400 is beyond the range of a double"), std::string::npos)
+  EXPECT_NE(run.out.find(scenario.string() + ":2: number 1e400 is beyond the range of a double"),
+            std::string::npos)
       << run.out;
 }
 
@@ -112,8 +115,8 @@ TEST(CliRobustness, OverflowingTargetNamesItsHandle) {
   const Fixture f = fixture("far");
   const fs::path scenario = f.dir / "far.json";
   write_file(scenario, R"({"fixed": [0], "handles": [{"vertices": [5], "translate": [1e300, 0, 0]}]})");
-  const CliRun run = iarap_cli("deform '" + f.mesh.string() + "' --scenario '" + scenario.string() + "' --out '" +
-                                   (f.dir / "o.obj").string() + "' --quiet",
+  const CliRun run = iarap_cli("deform '" + f.mesh.string() + "' --scenario '" + scenario.string() +
+                                   "' --out '" + (f.dir / "o.obj").string() + "' --quiet",
                                true);
   EXPECT_EQ(run.code, 1);
   EXPECT_NE(run.out.find("the target of vertex 5"), std::string::npos) << run.out;
@@ -164,14 +167,14 @@ TEST(CliRobustness, ExtremeScalesDeformLikeUnitScale) {
   for (const char* method : {"arap", "iarap"}) {
     const Fixture unit = fixture(std::string("unit_") + method);
     const CliRun base = iarap_cli(deform_args(unit, std::string("--json --method ") + method + " --out '" +
-                                                         (unit.dir / "o.obj").string() + "'"));
+                                                        (unit.dir / "o.obj").string() + "'"));
     ASSERT_EQ(base.code, 0) << base.out;
     const double reference = parse_json(base).value("max_displacement", 0.0);
     ASSERT_GT(reference, 0);
     for (double scale : {1e150, 1e-150}) {
       const Fixture f = fixture(std::string("scaled_") + method, scale);
-      const CliRun run = iarap_cli(
-          deform_args(f, std::string("--json --method ") + method + " --out '" + (f.dir / "o.obj").string() + "'"));
+      const CliRun run = iarap_cli(deform_args(f, std::string("--json --method ") + method + " --out '" +
+                                                      (f.dir / "o.obj").string() + "'"));
       ASSERT_EQ(run.code, 0) << method << " at " << scale << ": " << run.out;
       EXPECT_NEAR(parse_json(run).value("max_displacement", 0.0) / scale, reference, 1e-9 * reference)
           << method << " at " << scale;
@@ -202,7 +205,9 @@ TEST(CliRobustness, OriginalArapWarnsAboutNegativeWeights) {
   iarap::test::TestMesh grid = iarap::test::planar_grid(8, 0.0);
   iarap::test::random_planar_flips(grid, 40);
   iarap::write_mesh(f.mesh.string(), grid.V, grid.F);
-  write_file(f.scenario, R"({"fixed": {"bottom": 0.2}, "handles": [{"vertices": {"top": 0.2}, "translate_relative": [0, 0, 0.2]}]})");
+  write_file(
+      f.scenario,
+      R"({"fixed": {"bottom": 0.2}, "handles": [{"vertices": {"top": 0.2}, "translate_relative": [0, 0, 0.2]}]})");
   CliRun run = iarap_cli(deform_args(f, "--method arap --out '" + (f.dir / "o.obj").string() + "'"), true);
   EXPECT_EQ(run.code, 0) << run.out;
   EXPECT_NE(run.out.find("negative cotangent weights"), std::string::npos) << run.out;

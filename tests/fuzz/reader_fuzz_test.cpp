@@ -49,12 +49,11 @@ constexpr double kDefaultSeconds = 1;
 constexpr double kDefaultSeconds = 1;
 #endif
 
-constexpr int kMaxInputs = 200000;       // an upper bound on inputs whatever the budget
+constexpr int kMaxInputs = 200000;        // an upper bound on inputs whatever the budget
 constexpr std::size_t kMaxSize = 1 << 16; // mutated inputs stay small: the readers' speed is not under test
 
 double budget_seconds() {
-  if (const char* env = std::getenv("IARAP_FUZZ_SECONDS"))
-    return std::max(0.0, std::atof(env));
+  if (const char* env = std::getenv("IARAP_FUZZ_SECONDS")) return std::max(0.0, std::atof(env));
   return kDefaultSeconds;
 }
 
@@ -76,12 +75,53 @@ std::vector<std::string> corpus(const std::string& reader) {
 }
 
 // Tokens that have broken readers elsewhere: overflow, negative and huge indices, non-numbers, a BOM.
-const std::vector<std::string> kHostile = {
-    "1e400", "-1e400", "nan", "inf", "-1", "0", "-0", "4294967296", "2147483648", "-2147483649",
-    "99999999999999999999", "1e-400", "0x10", "+", "-", ".", "e5", "\xef\xbb\xbf", "\r", "\t", "#", "/", "//",
-    "3", "255", "65535", "1.5", "\"", "{", "}", "[", "]", ",", ":", "null", "true", "\"x\"", "solid",
-    "endsolid", "facet", "end_header", "element face 2147483647", "property list uchar int vertex_indices",
-    "format binary_little_endian 1.0", "f", "v", "OFF"};
+const std::vector<std::string> kHostile = {"1e400",
+                                           "-1e400",
+                                           "nan",
+                                           "inf",
+                                           "-1",
+                                           "0",
+                                           "-0",
+                                           "4294967296",
+                                           "2147483648",
+                                           "-2147483649",
+                                           "99999999999999999999",
+                                           "1e-400",
+                                           "0x10",
+                                           "+",
+                                           "-",
+                                           ".",
+                                           "e5",
+                                           "\xef\xbb\xbf",
+                                           "\r",
+                                           "\t",
+                                           "#",
+                                           "/",
+                                           "//",
+                                           "3",
+                                           "255",
+                                           "65535",
+                                           "1.5",
+                                           "\"",
+                                           "{",
+                                           "}",
+                                           "[",
+                                           "]",
+                                           ",",
+                                           ":",
+                                           "null",
+                                           "true",
+                                           "\"x\"",
+                                           "solid",
+                                           "endsolid",
+                                           "facet",
+                                           "end_header",
+                                           "element face 2147483647",
+                                           "property list uchar int vertex_indices",
+                                           "format binary_little_endian 1.0",
+                                           "f",
+                                           "v",
+                                           "OFF"};
 
 class Mutator {
 public:
@@ -96,7 +136,9 @@ public:
   }
 
 private:
-  std::size_t pick(std::size_t n) { return n == 0 ? 0 : std::uniform_int_distribution<std::size_t>(0, n - 1)(random_); }
+  std::size_t pick(std::size_t n) {
+    return n == 0 ? 0 : std::uniform_int_distribution<std::size_t>(0, n - 1)(random_);
+  }
 
   void mutate(std::string& data) {
     const std::size_t n = data.size();
@@ -127,7 +169,8 @@ private:
       std::size_t at = pick(n);
       while (at < n && !std::isdigit(static_cast<unsigned char>(data[at]))) ++at;
       std::size_t end = at;
-      while (end < n && (std::isalnum(static_cast<unsigned char>(data[end])) || data[end] == '.' || data[end] == '-'))
+      while (end < n &&
+             (std::isalnum(static_cast<unsigned char>(data[end])) || data[end] == '.' || data[end] == '-'))
         ++end;
       data.replace(at, end - at, kHostile[pick(kHostile.size())]);
       break;
@@ -168,7 +211,8 @@ int fuzz(const std::string& reader, const std::string& extension, std::uint32_t 
   const double budget = budget_seconds();
   int inputs = 0, rejected = 0;
   for (; inputs < kMaxInputs; ++inputs) {
-    if (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() >= budget && inputs > 0)
+    if (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() >= budget &&
+        inputs > 0)
       break;
     const std::string data = mutator.next();
     std::ofstream(path, std::ios::binary | std::ios::trunc) << data;
@@ -202,13 +246,22 @@ void read_check_repair(const std::string& path) {
 
 } // namespace
 
-TEST(Fuzz, ObjReader) { EXPECT_GT(fuzz("obj", ".obj", 1, read_check_repair), 0); }
-TEST(Fuzz, OffReader) { EXPECT_GT(fuzz("off", ".off", 2, read_check_repair), 0); }
-TEST(Fuzz, PlyReader) { EXPECT_GT(fuzz("ply", ".ply", 3, read_check_repair), 0); }
-TEST(Fuzz, StlReader) { EXPECT_GT(fuzz("stl", ".stl", 4, read_check_repair), 0); }
+TEST(Fuzz, ObjReader) {
+  EXPECT_GT(fuzz("obj", ".obj", 1, read_check_repair), 0);
+}
+TEST(Fuzz, OffReader) {
+  EXPECT_GT(fuzz("off", ".off", 2, read_check_repair), 0);
+}
+TEST(Fuzz, PlyReader) {
+  EXPECT_GT(fuzz("ply", ".ply", 3, read_check_repair), 0);
+}
+TEST(Fuzz, StlReader) {
+  EXPECT_GT(fuzz("stl", ".stl", 4, read_check_repair), 0);
+}
 
 TEST(Fuzz, ConstraintsReader) {
-  EXPECT_GT(fuzz("constraints", ".txt", 5, [](const std::string& path) { iarap::read_constraints(path, 4); }), 0);
+  EXPECT_GT(fuzz("constraints", ".txt", 5, [](const std::string& path) { iarap::read_constraints(path, 4); }),
+            0);
 }
 
 TEST(Fuzz, ScenarioReader) {

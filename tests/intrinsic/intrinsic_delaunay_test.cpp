@@ -43,7 +43,8 @@ int expect_invariants(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const 
     for (int k = 0; k < 3; ++k) l[k] = tri.length(tri.FE(f, k)); // side opposite corner k
     const double s = 0.5 * (l[0] + l[1] + l[2]);
     const double area = std::sqrt(std::max(s * (s - l[0]) * (s - l[1]) * (s - l[2]), 0.0));
-    EXPECT_NEAR(tri.face_area(f), area, 1e-9 * (l[0] * l[0] + l[1] * l[1] + l[2] * l[2])) << name << " face " << f;
+    EXPECT_NEAR(tri.face_area(f), area, 1e-9 * (l[0] * l[0] + l[1] * l[1] + l[2] * l[2]))
+        << name << " face " << f;
     for (int k = 0; k < 3; ++k) {
       const double a = l[k], b = l[(k + 1) % 3], c = l[(k + 2) % 3];
       const double expected = std::atan2(4.0 * area, b * b + c * c - a * a);
@@ -60,12 +61,14 @@ int expect_invariants(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const 
     Eigen::VectorXd input_sum = Eigen::VectorXd::Zero(V.rows());
     for (int f = 0; f < F.rows(); ++f)
       for (int k = 0; k < 3; ++k) {
-        const Eigen::Vector3d u = V.row(F(f, (k + 1) % 3)) - V.row(F(f, k)), w = V.row(F(f, (k + 2) % 3)) - V.row(F(f, k));
+        const Eigen::Vector3d u = V.row(F(f, (k + 1) % 3)) - V.row(F(f, k)),
+                              w = V.row(F(f, (k + 2) % 3)) - V.row(F(f, k));
         input_sum(F(f, k)) += std::atan2(u.cross(w).norm(), u.dot(w));
       }
     for (int v = 0; v < V.rows() && failures < 5; ++v)
       if (std::abs(angle_sum(v) - input_sum(v)) > 1e-8) {
-        ADD_FAILURE() << name << ": vertex " << v << " angle sum " << angle_sum(v) << " vs input " << input_sum(v);
+        ADD_FAILURE() << name << ": vertex " << v << " angle sum " << angle_sum(v) << " vs input "
+                      << input_sum(v);
         ++failures;
       }
   }
@@ -78,7 +81,8 @@ int expect_invariants(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const 
     const int p0 = tr.start[e], p1 = tr.start[e + 1];
     EXPECT_GE(p1 - p0, 2);
     // End points: the input vertex itself, or the inserted boundary point's input edge and parameter.
-    for (const auto& [p, v] : {std::pair<int, int>{p0, tri.E(e, 0)}, std::pair<int, int>{p1 - 1, tri.E(e, 1)}}) {
+    for (const auto& [p, v] :
+         {std::pair<int, int>{p0, tri.E(e, 0)}, std::pair<int, int>{p1 - 1, tri.E(e, 1)}}) {
       if (v < tri.num_input_vertices) {
         EXPECT_EQ(tr.a[p], v);
         EXPECT_EQ(tr.c[p], -1);
@@ -109,7 +113,8 @@ int expect_invariants(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const 
     max_segments = std::max(max_segments, seg.edge_start(e + 1) - seg.edge_start(e));
     // With mollification the layout uses lengths longer by delta than the extrinsic ones.
     if (tri.mollify_delta == 0.0 && std::abs(traced - tri.length(e)) > 1e-9 * tri.length(e)) {
-      ADD_FAILURE() << name << ": edge " << e << " traced length " << traced << " vs intrinsic " << tri.length(e);
+      ADD_FAILURE() << name << ": edge " << e << " traced length " << traced << " vs intrinsic "
+                    << tri.length(e);
       ++failures;
     }
   }
@@ -122,10 +127,15 @@ void expect_planar_delaunay(const Eigen::MatrixXd& V, const IntrinsicDelaunay& i
   const double scale = (V.colwise().maxCoeff() - V.colwise().minCoeff()).norm();
   int failures = 0;
   for (int f = 0; f < tri.F.rows() && failures < 5; ++f) {
-    const Eigen::Vector2d a = V.row(tri.F(f, 0)).head<2>(), b = V.row(tri.F(f, 1)).head<2>(), c = V.row(tri.F(f, 2)).head<2>();
+    const Eigen::Vector2d a = V.row(tri.F(f, 0)).head<2>(), b = V.row(tri.F(f, 1)).head<2>(),
+                          c = V.row(tri.F(f, 2)).head<2>();
     const double d = 2 * (a.x() * (b.y() - c.y()) + b.x() * (c.y() - a.y()) + c.x() * (a.y() - b.y()));
-    const Eigen::Vector2d centre((a.squaredNorm() * (b.y() - c.y()) + b.squaredNorm() * (c.y() - a.y()) + c.squaredNorm() * (a.y() - b.y())) / d,
-                                 (a.squaredNorm() * (c.x() - b.x()) + b.squaredNorm() * (a.x() - c.x()) + c.squaredNorm() * (b.x() - a.x())) / d);
+    const Eigen::Vector2d centre((a.squaredNorm() * (b.y() - c.y()) + b.squaredNorm() * (c.y() - a.y()) +
+                                  c.squaredNorm() * (a.y() - b.y())) /
+                                     d,
+                                 (a.squaredNorm() * (c.x() - b.x()) + b.squaredNorm() * (a.x() - c.x()) +
+                                  c.squaredNorm() * (b.x() - a.x())) /
+                                     d);
     const double radius = (a - centre).norm();
     for (int v = 0; v < V.rows(); ++v) {
       if (v == tri.F(f, 0) || v == tri.F(f, 1) || v == tri.F(f, 2)) continue;
@@ -143,7 +153,8 @@ void expect_planar_delaunay(const Eigen::MatrixXd& V, const IntrinsicDelaunay& i
     for (int k = idt.traces.start[e]; k < idt.traces.start[e + 1]; ++k) {
       const int a = idt.traces.a[k], c = idt.traces.c[k];
       const double t = idt.traces.t[k];
-      const Eigen::Vector3d x = c < 0 ? Eigen::Vector3d(V.row(a)) : Eigen::Vector3d((1 - t) * V.row(a) + t * V.row(c));
+      const Eigen::Vector3d x =
+          c < 0 ? Eigen::Vector3d(V.row(a)) : Eigen::Vector3d((1 - t) * V.row(a) + t * V.row(c));
       const double off_line = ((x - p).cross(q - p)).norm() / (q - p).norm();
       EXPECT_LT(off_line, 1e-10 * scale) << name << " edge " << e << " point " << k;
     }
@@ -151,7 +162,8 @@ void expect_planar_delaunay(const Eigen::MatrixXd& V, const IntrinsicDelaunay& i
 }
 
 // Every traced point of a flat mesh lies on the straight line between its edge's end points.
-void expect_planar_delaunay_edges_straight(const Eigen::MatrixXd& V, const IntrinsicDelaunay& idt, const std::string& name) {
+void expect_planar_delaunay_edges_straight(const Eigen::MatrixXd& V, const IntrinsicDelaunay& idt,
+                                           const std::string& name) {
   const auto& tri = idt.triangulation;
   const auto& tr = idt.traces;
   const double scale = (V.colwise().maxCoeff() - V.colwise().minCoeff()).norm();
@@ -163,7 +175,8 @@ void expect_planar_delaunay_edges_straight(const Eigen::MatrixXd& V, const Intri
     const Eigen::Vector3d p = point(tr.start[e]), q = point(tr.start[e + 1] - 1);
     EXPECT_NEAR(tri.length(e), (q - p).norm(), 1e-12 * scale) << name << " edge " << e;
     for (int k = tr.start[e]; k < tr.start[e + 1]; ++k)
-      EXPECT_LT(((point(k) - p).cross(q - p)).norm() / (q - p).norm(), 1e-10 * scale) << name << " edge " << e;
+      EXPECT_LT(((point(k) - p).cross(q - p)).norm() / (q - p).norm(), 1e-10 * scale)
+          << name << " edge " << e;
   }
 }
 
@@ -185,13 +198,13 @@ TEST(IntrinsicDelaunay, DelaunayGridNeedsNoFlips) {
 TEST(IntrinsicDelaunay, DelaunaySharedMeshesNeedNoFlips) {
   for (const std::string name : {"cube.obj", "bumpy-cube.obj"}) {
     const std::string path = iarap::test::shared_mesh_in_loop(name);
-    if (path.empty())
-      continue;
+    if (path.empty()) continue;
     const MeshData mesh = read_mesh(path);
     const IntrinsicDelaunay idt = intrinsic_delaunay(mesh.V, mesh.F);
     EXPECT_EQ(idt.triangulation.flips, 0) << name;
     EXPECT_EQ(idt.segments.edge.size(), idt.triangulation.E.rows()) << name;
-    for (int s = 0; s < idt.segments.edge.size(); ++s) ASSERT_EQ((idt.segments.b_value.row(s).array() != 0.0).count(), 2) << name;
+    for (int s = 0; s < idt.segments.edge.size(); ++s)
+      ASSERT_EQ((idt.segments.b_value.row(s).array() != 0.0).count(), 2) << name;
   }
 }
 
@@ -257,7 +270,9 @@ TEST(IntrinsicDelaunay, TracesAreOptional) {
   iarap::test::random_planar_flips(grid, 120, 11);
   const TestMesh strip = obtuse_strip();
   const std::pair<const char*, std::pair<Eigen::MatrixXd, Eigen::MatrixXi>> cases[] = {
-      {"bunny", {bunny.V, bunny.F}}, {"flipped grid", {grid.V, grid.F}}, {"obtuse strip", {strip.V, strip.F}}};
+      {"bunny", {bunny.V, bunny.F}},
+      {"flipped grid", {grid.V, grid.F}},
+      {"obtuse strip", {strip.V, strip.F}}};
   for (const auto& [name, mesh] : cases) {
     IntrinsicOptions options;
     options.refine_boundary = true;
@@ -267,8 +282,10 @@ TEST(IntrinsicDelaunay, TracesAreOptional) {
     EXPECT_TRUE(without.traces.start.empty() && without.traces.a.empty()) << name;
     EXPECT_EQ(with.traces.start.size(), static_cast<size_t>(with.triangulation.E.rows()) + 1) << name;
     // Edges that are not input edges (flipped, or made by a boundary split) exist, so the compact path runs.
-    if (name == std::string("obtuse strip")) EXPECT_GT(with.triangulation.inserted_t.size(), 0);
-    else EXPECT_GT(with.triangulation.flips, 0) << name;
+    if (name == std::string("obtuse strip"))
+      EXPECT_GT(with.triangulation.inserted_t.size(), 0);
+    else
+      EXPECT_GT(with.triangulation.flips, 0) << name;
     EXPECT_EQ(without.segments.edge_start, with.segments.edge_start) << name;
     EXPECT_EQ(without.segments.face, with.segments.face) << name;
     EXPECT_EQ(without.segments.b_index, with.segments.b_index) << name;
@@ -281,9 +298,9 @@ TEST(IntrinsicDelaunay, TracesAreOptional) {
 TEST(IntrinsicDelaunay, SharedSurfaceMeshes) {
   int tested = 0;
   for (const std::string name :
-       {"planexy.off", "grid.off", "decimated-knight.off", "spike.ply", "halftunnel.off", "3holes.off", "fertility.off",
-        "horse.obj", "cactus.obj", "elephant.obj", "cheburashka.off", "lion.off", "camelhead.off", "armadillo_30K.obj",
-        "beetle.off", "face.obj", "ogre.obj"}) {
+       {"planexy.off", "grid.off", "decimated-knight.off", "spike.ply", "halftunnel.off", "3holes.off",
+        "fertility.off", "horse.obj", "cactus.obj", "elephant.obj", "cheburashka.off", "lion.off",
+        "camelhead.off", "armadillo_30K.obj", "beetle.off", "face.obj", "ogre.obj"}) {
     const std::string path = iarap::test::shared_mesh_in_loop(name);
     if (path.empty()) continue;
     const MeshData mesh = read_mesh(path);
@@ -429,7 +446,8 @@ TEST(IntrinsicDelaunay, VertexWithTwoClosedFansIsNamed) {
   Eigen::MatrixXd V(9, 3);
   V << 0, 0, 0, 1, 0, 1, 0, 1, 1, -1, 0, 1, 0, -1, 1, 1, 0, -1, 0, 1, -1, -1, 0, -1, 0, -1, -1;
   Eigen::MatrixXi F(12, 3);
-  F << 0, 2, 1, 0, 3, 2, 0, 4, 3, 0, 1, 4, 1, 2, 3, 1, 3, 4, 0, 5, 6, 0, 6, 7, 0, 7, 8, 0, 8, 5, 5, 7, 6, 5, 8, 7;
+  F << 0, 2, 1, 0, 3, 2, 0, 4, 3, 0, 1, 4, 1, 2, 3, 1, 3, 4, 0, 5, 6, 0, 6, 7, 0, 7, 8, 0, 8, 5, 5, 7, 6, 5,
+      8, 7;
   try {
     intrinsic_delaunay(V, F);
     ADD_FAILURE() << "expected a TopologyError";
@@ -455,7 +473,8 @@ TEST(IntrinsicDelaunay, BoundaryRefinementRemovesObtuseBoundaryAngles) {
 
 TEST(IntrinsicDelaunay, BoundaryRefinementOnSharedMeshes) {
   int tested = 0;
-  for (const std::string name : {"lion.off", "beetle.off", "ogre.obj", "face.obj", "camelhead.off", "spike.ply", "grid.off"}) {
+  for (const std::string name :
+       {"lion.off", "beetle.off", "ogre.obj", "face.obj", "camelhead.off", "spike.ply", "grid.off"}) {
     const std::string path = iarap::test::shared_mesh_in_loop(name);
     if (path.empty()) continue;
     const MeshData mesh = read_mesh(path);

@@ -61,7 +61,8 @@ inline void random_planar_flips(TestMesh& m, int flips, unsigned seed = 7) {
     const int f1 = it->second.first, d = m.F(f1, it->second.second);
     // Convex quad a, d, b, c (counter-clockwise): the new diagonal c-d must separate a from b.
     if (cross2(c, d, a) * cross2(c, d, b) >= 0 || cross2(a, b, c) * cross2(a, b, d) >= 0) continue;
-    if (std::abs(cross2(c, a, d)) < 1e-3 / m.V.rows() || std::abs(cross2(d, b, c)) < 1e-3 / m.V.rows()) continue;
+    if (std::abs(cross2(c, a, d)) < 1e-3 / m.V.rows() || std::abs(cross2(d, b, c)) < 1e-3 / m.V.rows())
+      continue;
     m.F.row(f0) << c, a, d;
     m.F.row(f1) << d, b, c;
     ++done;
@@ -74,12 +75,12 @@ inline TestMesh zigzag_strip(int n, double h = 0.3) {
   TestMesh m;
   m.V.resize(2 * (n + 1), 3);
   for (int i = 0; i <= n; ++i) {
-    m.V.row(i) << i, 0, 0;              // B_i
+    m.V.row(i) << i, 0, 0;               // B_i
     m.V.row(n + 1 + i) << i + 0.5, h, 0; // T_i (shifted so no four points are cocircular)
   }
   std::vector<Eigen::Vector3i> faces;
   const int t0 = n + 1, bn = n;
-  for (int i = 0; i < n; ++i) faces.emplace_back(t0, i, i + 1);          // fan from T_0
+  for (int i = 0; i < n; ++i) faces.emplace_back(t0, i, i + 1);           // fan from T_0
   for (int i = 0; i < n; ++i) faces.emplace_back(bn, t0 + i + 1, t0 + i); // fan from B_n
   m.F.resize(static_cast<int>(faces.size()), 3);
   for (size_t f = 0; f < faces.size(); ++f) m.F.row(static_cast<int>(f)) = faces[f].transpose();
@@ -145,7 +146,8 @@ inline TestMesh sheared_strip(int cols, int rows, double bend_radius = 0.0) {
     for (int c = 0; c <= cols; ++c) {
       const double x = c + 0.5 * (r % 2), y = 0.25 * r;
       if (bend_radius > 0)
-        m.V.row(r * (cols + 1) + c) << bend_radius * std::sin(x / bend_radius), y, bend_radius * std::cos(x / bend_radius);
+        m.V.row(r * (cols + 1) + c) << bend_radius * std::sin(x / bend_radius), y,
+            bend_radius * std::cos(x / bend_radius);
       else
         m.V.row(r * (cols + 1) + c) << x, y, 0.0;
     }
@@ -198,10 +200,10 @@ inline TestMesh wrapped_pyramid() {
   m.V.row(8) = middle_panel(panel[1] - 0.15, 1.13); // p
   m.V.row(9) = middle_panel(panel[1] - 0.185, 2.6); // q
   m.F.resize(15, 3);
-  m.F << 0, 1, 2, 0, 2, 3, 0, 3, 1, // the apex's star
-      1, 4, 5, 1, 5, 2,             // panel 0
+  m.F << 0, 1, 2, 0, 2, 3, 0, 3, 1,                                           // the apex's star
+      1, 4, 5, 1, 5, 2,                                                       // panel 0
       2, 8, 3, 3, 8, 7, 3, 7, 9, 3, 9, 6, 9, 7, 6, 6, 7, 5, 2, 5, 7, 2, 7, 8, // middle panel; 3-7 is x2 -> y
-      3, 6, 4, 3, 4, 1;             // panel 2
+      3, 6, 4, 3, 4, 1;                                                       // panel 2
   return m;
 }
 

@@ -29,8 +29,9 @@ TEST(UpperHalfAngle, MatchesAtan2OnRandomArguments) {
   for (int i = 0; i < 2000000; ++i) {
     const double y = std::fabs(unit(rng)) * std::pow(10.0, exponent(rng));
     double x = unit(rng) * std::pow(10.0, exponent(rng));
-    if (i % 5 == 0) x = std::copysign(y * 0.41421356237309504880 * (1 + 1e-12 * unit(rng)), x); // at the reduction
-    if (i % 7 == 0) x = std::copysign(y * (1 + 1e-12 * unit(rng)), x);                          // near pi/4, 3 pi/4
+    if (i % 5 == 0)
+      x = std::copysign(y * 0.41421356237309504880 * (1 + 1e-12 * unit(rng)), x); // at the reduction
+    if (i % 7 == 0) x = std::copysign(y * (1 + 1e-12 * unit(rng)), x);            // near pi/4, 3 pi/4
     worst = std::max(worst, ulps(upper_half_angle(y, x), std::atan2(y, x)));
   }
   EXPECT_LE(worst, kUlps);

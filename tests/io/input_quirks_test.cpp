@@ -19,15 +19,19 @@ TEST(InputQuirks, ByteOrderMarkIsSkippedInEveryTextFormat) {
   const MeshData obj = read_obj(write_temp_file("bom.obj", bom + "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"));
   EXPECT_EQ(obj.V.rows(), 3);
   EXPECT_EQ(obj.F.rows(), 1);
-  const MeshData off = read_off(write_temp_file("bom.off", bom + "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"));
+  const MeshData off =
+      read_off(write_temp_file("bom.off", bom + "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"));
   EXPECT_EQ(off.F.rows(), 1);
   const MeshData ply = read_ply(write_temp_file(
-      "bom.ply", bom + "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
-                       "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"));
+      "bom.ply",
+      bom + "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+            "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 "
+            "2\n"));
   EXPECT_EQ(ply.F.rows(), 1);
   const MeshData stl = read_stl(write_temp_file(
-      "bom.stl", bom + "solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\n"
-                       "endfacet\nendsolid t\n"));
+      "bom.stl",
+      bom + "solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\n"
+            "endfacet\nendsolid t\n"));
   EXPECT_EQ(stl.V.rows(), 3);
   EXPECT_EQ(stl.F.rows(), 1);
 }
@@ -39,8 +43,9 @@ TEST(InputQuirks, OffFaceRecordsMaySpanLines) {
   EXPECT_EQ(m.F.row(0), Eigen::RowVector3i(0, 1, 2));
   EXPECT_EQ(m.F.row(1), Eigen::RowVector3i(0, 2, 3));
   // A record cut short by the end of the file names its face and the line it starts on.
-  expect_input_error([] { read_off(write_temp_file("cut.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0\n1\n")); },
-                     {"cut.off:6:", "face 0 declares 3 corners but the file ends after 2"});
+  expect_input_error(
+      [] { read_off(write_temp_file("cut.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0\n1\n")); },
+      {"cut.off:6:", "face 0 declares 3 corners but the file ends after 2"});
 }
 
 TEST(InputQuirks, FolderGivenAsMeshIsNamed) {

@@ -21,8 +21,7 @@ template <typename T> void put(std::string& out, T value, bool big_endian) {
   std::memcpy(&first, &one, 1);
   const bool host_little = first == 1;
   if (host_little == big_endian)
-    for (std::size_t i = 0; i < sizeof(T) / 2; ++i)
-      std::swap(b[i], b[sizeof(T) - 1 - i]);
+    for (std::size_t i = 0; i < sizeof(T) / 2; ++i) std::swap(b[i], b[sizeof(T) - 1 - i]);
   out.append(reinterpret_cast<const char*>(b), sizeof(T));
 }
 
@@ -45,12 +44,10 @@ std::string binary_ply(bool big_endian) {
   put(s, std::int32_t{1}, big_endian);
   put(s, std::int32_t{7}, big_endian);
   put(s, std::uint16_t{4}, big_endian);
-  for (std::uint32_t i : {0u, 1u, 2u, 3u})
-    put(s, i, big_endian);
+  for (std::uint32_t i : {0u, 1u, 2u, 3u}) put(s, i, big_endian);
   put(s, std::int32_t{7}, big_endian);
   put(s, std::uint16_t{3}, big_endian);
-  for (std::uint32_t i : {1u, 4u, 2u})
-    put(s, i, big_endian);
+  for (std::uint32_t i : {1u, 4u, 2u}) put(s, i, big_endian);
   return s;
 }
 

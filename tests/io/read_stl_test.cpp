@@ -17,8 +17,7 @@ std::string binary_square(const std::string& header_text) {
   std::string s = header_text;
   s.resize(80, ' ');
   const auto put_u32 = [&](std::uint32_t u) {
-    for (int i = 0; i < 4; ++i)
-      s += static_cast<char>((u >> (8 * i)) & 0xff);
+    for (int i = 0; i < 4; ++i) s += static_cast<char>((u >> (8 * i)) & 0xff);
   };
   const auto put_float = [&](float f) {
     std::uint32_t u;
@@ -27,11 +26,9 @@ std::string binary_square(const std::string& header_text) {
   };
   put_u32(2);
   for (const auto& tri : square) {
-    for (int k = 0; k < 3; ++k)
-      put_float(0.0f); // normal
+    for (int k = 0; k < 3; ++k) put_float(0.0f); // normal
     for (const auto& p : tri)
-      for (float x : p)
-        put_float(x);
+      for (float x : p) put_float(x);
     s += std::string(2, '\0');
   }
   return s;

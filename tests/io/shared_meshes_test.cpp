@@ -37,8 +37,7 @@ TEST(SharedMeshes, LoadWithReadmeCounts) {
   int found = 0;
   for (const Expected& e : meshes) {
     const std::string path = iarap::test::shared_mesh_in_loop(e.name);
-    if (path.empty())
-      continue;
+    if (path.empty()) continue;
     ++found;
     const iarap::MeshData m = iarap::read_mesh(path);
     EXPECT_EQ(m.V.rows(), e.vertices) << e.name;
@@ -46,8 +45,7 @@ TEST(SharedMeshes, LoadWithReadmeCounts) {
     EXPECT_EQ(m.F.minCoeff(), 0) << e.name;
     EXPECT_LT(m.F.maxCoeff(), m.V.rows()) << e.name;
   }
-  if (found == 0)
-    GTEST_SKIP() << "shared meshes not found (set IARAP_SHARED_MESHES)";
+  if (found == 0) GTEST_SKIP() << "shared meshes not found (set IARAP_SHARED_MESHES)";
 }
 
 // Issue 20, item 3: `info` and `deform` agree on every shared mesh. A mesh check_mesh calls usable stays
@@ -58,8 +56,7 @@ TEST(SharedMeshes, LoadWithReadmeCounts) {
 TEST(SharedMeshes, SharedSurfaceMeshesInfoAndDeformAgree) {
   for (const Expected& e : meshes) {
     const std::string path = iarap::test::shared_mesh_in_loop(e.name);
-    if (path.empty())
-      continue;
+    if (path.empty()) continue;
     const iarap::MeshData m = iarap::read_mesh(path);
     const bool usable = iarap::check_mesh(m.V, m.F).usable();
     iarap::RepairOptions repair;
@@ -67,12 +64,12 @@ TEST(SharedMeshes, SharedSurfaceMeshesInfoAndDeformAgree) {
     const iarap::RepairResult r = iarap::repair_mesh(m.V, m.F, repair);
     const iarap::MeshReport after = iarap::check_mesh(r.V, r.F);
     EXPECT_EQ(after.usable(), usable) << e.name;
-    if (!usable || r.V.rows() > 70000)
-      continue;
+    if (!usable || r.V.rows() > 70000) continue;
     EXPECT_EQ(after.zero_area_faces, 0) << e.name;
     iarap::ArapOptions options;
     options.method = iarap::ArapMethod::Arap;
     options.pin_unconstrained_components = true;
-    EXPECT_NO_THROW(iarap::arap_precompute(r.V, r.F, (Eigen::VectorXi(1) << 0).finished(), options)) << e.name;
+    EXPECT_NO_THROW(iarap::arap_precompute(r.V, r.F, (Eigen::VectorXi(1) << 0).finished(), options))
+        << e.name;
   }
 }

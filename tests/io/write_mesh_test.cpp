@@ -18,8 +18,7 @@ Eigen::MatrixXd awkward_positions(int n) {
   std::uniform_int_distribution<int> exponent(-300, 300);
   Eigen::MatrixXd V(n, 3);
   for (int i = 0; i < n; ++i)
-    for (int k = 0; k < 3; ++k)
-      V(i, k) = std::ldexp(mantissa(rng), exponent(rng) / 10) * (1.0 + 1.0 / 3.0);
+    for (int k = 0; k < 3; ++k) V(i, k) = std::ldexp(mantissa(rng), exponent(rng) / 10) * (1.0 + 1.0 / 3.0);
   V(0, 0) = 0.1;
   V(0, 1) = -0.0;
   V(0, 2) = 5e-324; // smallest subnormal
@@ -30,8 +29,7 @@ Eigen::MatrixXi some_faces(int n_vertices, int n_faces) {
   std::mt19937 rng(11);
   std::uniform_int_distribution<int> index(0, n_vertices - 1);
   Eigen::MatrixXi F(n_faces, 3);
-  for (int f = 0; f < n_faces; ++f)
-    F.row(f) << index(rng), index(rng), index(rng);
+  for (int f = 0; f < n_faces; ++f) F.row(f) << index(rng), index(rng), index(rng);
   return F;
 }
 
@@ -42,8 +40,7 @@ void expect_round_trip(const std::string& path, const Eigen::MatrixXd& V, const 
   ASSERT_EQ(m.V.rows(), V.rows()) << path;
   ASSERT_EQ(m.F.rows(), F.rows()) << path;
   // %.17g and raw doubles are exact, so identical bits are expected (well within 1e-15 relative).
-  for (Eigen::Index i = 0; i < V.size(); ++i)
-    EXPECT_EQ(m.V.data()[i], V.data()[i]) << path << " entry " << i;
+  for (Eigen::Index i = 0; i < V.size(); ++i) EXPECT_EQ(m.V.data()[i], V.data()[i]) << path << " entry " << i;
   EXPECT_EQ(m.F, F) << path;
   EXPECT_TRUE(m.notes.empty());
 }

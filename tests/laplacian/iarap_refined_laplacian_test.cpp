@@ -24,7 +24,8 @@ TEST(IarapRefinedLaplacian, SymmetricConstantsInKernelAndLinearlyPreciseOnFlatBo
   std::vector<char> boundary(static_cast<size_t>(m.V.rows()), 0);
   const EdgeTopology topo = edge_topology(m.F, static_cast<int>(m.V.rows()));
   for (int e = 0; e < topo.E.rows(); ++e)
-    if (topo.face_count(e) == 1) boundary[static_cast<size_t>(topo.E(e, 0))] = boundary[static_cast<size_t>(topo.E(e, 1))] = 1;
+    if (topo.face_count(e) == 1)
+      boundary[static_cast<size_t>(topo.E(e, 0))] = boundary[static_cast<size_t>(topo.E(e, 1))] = 1;
   for (int axis = 0; axis < 2; ++axis) {
     const Eigen::VectorXd Lx = L * m.V.col(axis);
     for (int v = 0; v < m.V.rows(); ++v)

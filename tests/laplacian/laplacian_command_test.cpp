@@ -25,12 +25,10 @@ struct CommandResult {
 CommandResult run_cli(const std::string& arguments) {
   const std::string command = std::string(IARAP_CLI_PATH) + " " + arguments + " 2>/dev/null";
   FILE* pipe = ::popen(command.c_str(), "r");
-  if (!pipe)
-    return {-1, ""};
+  if (!pipe) return {-1, ""};
   std::string output;
   char buffer[4096];
-  while (size_t n = std::fread(buffer, 1, sizeof buffer, pipe))
-    output.append(buffer, n);
+  while (size_t n = std::fread(buffer, 1, sizeof buffer, pipe)) output.append(buffer, n);
   const int status = ::pclose(pipe);
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
 }
@@ -59,8 +57,7 @@ TEST(LaplacianCommand, WritesMatrixMarket) {
   std::vector<Eigen::Triplet<double>> triplets;
   long i = 0, j = 0;
   double value = 0;
-  while (in >> i >> j >> value)
-    triplets.emplace_back(i - 1, j - 1, value);
+  while (in >> i >> j >> value) triplets.emplace_back(i - 1, j - 1, value);
   ASSERT_EQ(static_cast<long>(triplets.size()), entries);
   read.setFromTriplets(triplets.begin(), triplets.end());
   EXPECT_EQ(Eigen::MatrixXd(read - L).cwiseAbs().maxCoeff(), 0.0); // %.17g round-trips doubles

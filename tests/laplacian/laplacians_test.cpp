@@ -33,8 +33,7 @@ int negative_cotan_weights(const test::TestMesh& m) {
   int count = 0;
   for (int k = 0; k < L.outerSize(); ++k)
     for (Eigen::SparseMatrix<double>::InnerIterator it(L, k); it; ++it)
-      if (it.row() < it.col() && it.value() > 0)
-        ++count;
+      if (it.row() < it.col() && it.value() > 0) ++count;
   return count;
 }
 
@@ -102,13 +101,11 @@ double linear_residual(const test::TestMesh& m, const Eigen::SparseMatrix<double
   const EdgeTopology topology = edge_topology(m.F, static_cast<int>(m.V.rows()));
   std::vector<char> boundary(static_cast<size_t>(m.V.rows()), 0);
   for (Eigen::Index e = 0; e < topology.E.rows(); ++e)
-    if (topology.face_count(e) == 1)
-      boundary[topology.E(e, 0)] = boundary[topology.E(e, 1)] = 1;
+    if (topology.face_count(e) == 1) boundary[topology.E(e, 0)] = boundary[topology.E(e, 1)] = 1;
   const Eigen::MatrixXd Lxy = L * m.V.leftCols(2);
   double residual = 0;
   for (Eigen::Index i = 0; i < m.V.rows(); ++i)
-    if (!boundary[static_cast<size_t>(i)])
-      residual = std::max(residual, Lxy.row(i).cwiseAbs().maxCoeff());
+    if (!boundary[static_cast<size_t>(i)]) residual = std::max(residual, Lxy.row(i).cwiseAbs().maxCoeff());
   const double diagonal = (m.V.colwise().maxCoeff() - m.V.colwise().minCoeff()).norm();
   return residual / (max_abs_diagonal(L) * diagonal);
 }
@@ -145,16 +142,14 @@ TEST(Laplacians, TracedOperatorsHaveInputSparsity) {
     triplets.emplace_back(topology.E(e, 0), topology.E(e, 1), 1.0);
     triplets.emplace_back(topology.E(e, 1), topology.E(e, 0), 1.0);
   }
-  for (Eigen::Index i = 0; i < bunny.V.rows(); ++i)
-    triplets.emplace_back(i, i, 1.0);
+  for (Eigen::Index i = 0; i < bunny.V.rows(); ++i) triplets.emplace_back(i, i, 1.0);
   adjacency.setFromTriplets(triplets.begin(), triplets.end());
   for (LaplacianKind kind : {LaplacianKind::Iarap, LaplacianKind::IarapPlus, LaplacianKind::IarapSym}) {
     const Eigen::SparseMatrix<double> L = laplacian(bunny.V, bunny.F, kind, &idt);
     int outside = 0;
     for (int k = 0; k < L.outerSize(); ++k)
       for (Eigen::SparseMatrix<double>::InnerIterator it(L, k); it; ++it)
-        if (it.value() != 0.0 && adjacency.coeff(it.row(), it.col()) == 0.0)
-          ++outside;
+        if (it.value() != 0.0 && adjacency.coeff(it.row(), it.col()) == 0.0) ++outside;
     EXPECT_EQ(outside, 0) << laplacian_kind_name(kind);
   }
 }
@@ -197,17 +192,14 @@ TEST(Laplacians, IarapPlusGivesCotanWeightOnUnsplitEdges) {
     for (int end = 0; end < 2; ++end) {
       const size_t p = static_cast<size_t>(end == 0 ? traces.start[e] + 1 : traces.start[e + 1] - 2);
       triplets.emplace_back(T.E(e, end), traces.a[p], 1.0);
-      if (traces.c[p] >= 0)
-        triplets.emplace_back(T.E(e, end), traces.c[p], 1.0);
+      if (traces.c[p] >= 0) triplets.emplace_back(T.E(e, end), traces.c[p], 1.0);
     }
   touches.setFromTriplets(triplets.begin(), triplets.end());
   int checked = 0;
   for (Eigen::Index e = 0; e < T.E.rows(); ++e) {
-    if (traces.start[e + 1] - traces.start[e] != 2)
-      continue;
+    if (traces.start[e + 1] - traces.start[e] != 2) continue;
     const int i = T.E(e, 0), j = T.E(e, 1);
-    if (touches.coeff(i, j) != 1.0)
-      continue;
+    if (touches.coeff(i, j) != 1.0) continue;
     EXPECT_NEAR(L_plus.coeff(i, j), -T.cot_weight(e), 1e-14 * max_abs_diagonal(L_plus)) << "edge " << e;
     ++checked;
   }

@@ -202,8 +202,7 @@ TEST(OperatorIdentity, SharedMeshes) {
   int found = 0;
   for (const std::string name : {"fertility.off", "lion.off", "camelhead.off"}) {
     const std::string path = test::shared_mesh_path(name);
-    if (path.empty())
-      continue;
+    if (path.empty()) continue;
     ++found;
     const MeshData mesh = read_mesh(path);
     expect_identity(mesh.V, mesh.F, name);

@@ -11,8 +11,7 @@ namespace iarap::test {
 inline double max_abs(const Eigen::SparseMatrix<double>& A) {
   double m = 0;
   for (int k = 0; k < A.outerSize(); ++k)
-    for (Eigen::SparseMatrix<double>::InnerIterator it(A, k); it; ++it)
-      m = std::max(m, std::abs(it.value()));
+    for (Eigen::SparseMatrix<double>::InnerIterator it(A, k); it; ++it) m = std::max(m, std::abs(it.value()));
   return m;
 }
 

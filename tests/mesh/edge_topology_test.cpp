@@ -34,7 +34,8 @@ void expect_matches_sorted_reference(const Eigen::MatrixXi& F, int nv) {
     }
     EXPECT_EQ(t.FE(f, k), e);
     int slot = 0;
-    for (size_t j = i; j > 0 && std::get<0>(corners[j - 1]) == lo && std::get<1>(corners[j - 1]) == hi; --j) ++slot;
+    for (size_t j = i; j > 0 && std::get<0>(corners[j - 1]) == lo && std::get<1>(corners[j - 1]) == hi; --j)
+      ++slot;
     if (slot < 2) {
       EXPECT_EQ(t.EF(e, slot), f);
       EXPECT_EQ(t.EK(e, slot), k);
@@ -76,6 +77,6 @@ TEST(EdgeTopology, HighValenceDiscInDecreasingOrder) {
   }
   expect_matches_sorted_reference(F, n + 1);
   const EdgeTopology t = edge_topology(F, n + 1);
-  EXPECT_EQ(t.E.rows(), 2 * n);                     // n spokes + n rim edges
+  EXPECT_EQ(t.E.rows(), 2 * n);                      // n spokes + n rim edges
   EXPECT_EQ((t.face_count.array() == 1).count(), n); // the rim is the boundary
 }

@@ -14,15 +14,13 @@ namespace {
 
 bool any_contains(const std::vector<std::string>& lines, const std::string& part) {
   for (const std::string& line : lines)
-    if (line.find(part) != std::string::npos)
-      return true;
+    if (line.find(part) != std::string::npos) return true;
   return false;
 }
 
 std::string joined(const std::vector<std::string>& lines) {
   std::string out;
-  for (const std::string& line : lines)
-    out += line + "\n";
+  for (const std::string& line : lines) out += line + "\n";
   return out;
 }
 
@@ -34,7 +32,7 @@ MeshReport check_shared(const char* name) {
 #define SKIP_WITHOUT(name)                                                                                   \
   if (iarap::test::shared_mesh_path(name).empty()) {                                                         \
     if (iarap::test::shared_meshes_required())                                                               \
-      FAIL() << name << " is missing and IARAP_REQUIRE_SHARED_MESHES=1";                                      \
+      FAIL() << name << " is missing and IARAP_REQUIRE_SHARED_MESHES=1";                                     \
     GTEST_SKIP() << name << " not found in the shared meshes";                                               \
   }
 

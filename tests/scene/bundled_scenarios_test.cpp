@@ -17,8 +17,7 @@ iarap::ConstraintSet resolve_and_check(const std::string& scenario_file, const E
   const double diagonal = iarap::bounding_box(V).diagonal();
   const auto box = iarap::bounding_box(V);
   std::size_t fixed_count = 0;
-  for (const auto& region : scenario.fixed)
-    fixed_count += iarap::select_region(region, V, box).size();
+  for (const auto& region : scenario.fixed) fixed_count += iarap::select_region(region, V, box).size();
   EXPECT_GT(fixed_count, 0u);
   for (std::size_t k = 0; k < fixed_count; ++k) {
     const auto row = static_cast<Eigen::Index>(k);
@@ -47,8 +46,7 @@ TEST(BundledScenarios, BunnyScenes) {
   Eigen::RowVector3d shift = Eigen::RowVector3d::Zero();
   int handle = 0;
   for (Eigen::Index k = 0; k < c.fixed.size(); ++k) {
-    if (bunny.V(c.fixed(k), 1) < box.max(1) - 0.1 * (box.max(1) - box.min(1)))
-      continue; // fixed part
+    if (bunny.V(c.fixed(k), 1) < box.max(1) - 0.1 * (box.max(1) - box.min(1))) continue; // fixed part
     shift += c.targets.row(k) - bunny.V.row(c.fixed(k));
     ++handle;
   }

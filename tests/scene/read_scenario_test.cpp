@@ -96,8 +96,7 @@ TEST(ReadScenario, ErrorsNameTheJsonPath) {
 
 TEST(ReadScenario, BundledExamplesParse) {
   for (const auto& entry : std::filesystem::directory_iterator(std::string(IARAP_SOURCE_DIR) + "/data")) {
-    if (entry.path().extension() != ".json")
-      continue;
+    if (entry.path().extension() != ".json") continue;
     SCOPED_TRACE(entry.path().string());
     const auto s = iarap::read_scenario(entry.path().string());
     EXPECT_FALSE(s.description.empty());

@@ -11,8 +11,7 @@ namespace {
 // Points 0..10 along y at x = z = 0, plus one off-axis point, plus a NaN row ignored by the box.
 Eigen::MatrixXd line_points() {
   Eigen::MatrixXd V(13, 3);
-  for (int i = 0; i <= 10; ++i)
-    V.row(i) << 0, i, 0;
+  for (int i = 0; i <= 10; ++i) V.row(i) << 0, i, 0;
   V.row(11) << 4, 5, 0;
   V.row(12) << std::numeric_limits<double>::quiet_NaN(), 0, 0;
   return V;

@@ -12,8 +12,7 @@ namespace {
 Eigen::MatrixXd grid() {
   Eigen::MatrixXd V(25, 3);
   for (int j = 0; j < 5; ++j)
-    for (int i = 0; i < 5; ++i)
-      V.row(5 * j + i) << i, j, 0;
+    for (int i = 0; i < 5; ++i) V.row(5 * j + i) << i, j, 0;
   return V;
 }
 

@@ -31,8 +31,7 @@ void expect_consistent(const ArapElements& el, const Eigen::MatrixXd& V) {
   for (Eigen::Index e = 0; e < el.size(); ++e) {
     EXPECT_NEAR(el.b_value.row(e).sum(), 0.0, 1e-12) << "element " << e; // b encodes a vector
     Eigen::RowVector3d s = Eigen::RowVector3d::Zero();
-    for (int k = 0; k < 3; ++k)
-      s += el.b_value(e, k) * V.row(el.b_index(e, k));
+    for (int k = 0; k < 3; ++k) s += el.b_value(e, k) * V.row(el.b_index(e, k));
     EXPECT_LT((s - el.s_hat.row(e)).norm(), 1e-15 * test::bbox_diagonal(V));
   }
   // The transposed incidence lists every (element, cell) pair once.
@@ -42,17 +41,21 @@ void expect_consistent(const ArapElements& el, const Eigen::MatrixXd& V) {
   // (b_e)_v s_hat_e. Only the order of the additions differs: a few ulps of the sum of magnitudes.
   ASSERT_EQ(el.rhs_term_start.size(), static_cast<size_t>(el.num_vertices) + 1);
   std::vector<int> position(el.visit_order.size());
-  for (size_t p = 0; p < position.size(); ++p) position[static_cast<size_t>(el.visit_order[p])] = static_cast<int>(p);
-  Eigen::MatrixX3d direct = Eigen::MatrixX3d::Zero(el.num_vertices, 3), magnitude = direct, regrouped = direct;
+  for (size_t p = 0; p < position.size(); ++p)
+    position[static_cast<size_t>(el.visit_order[p])] = static_cast<int>(p);
+  Eigen::MatrixX3d direct = Eigen::MatrixX3d::Zero(el.num_vertices, 3), magnitude = direct,
+                   regrouped = direct;
   for (Eigen::Index e = 0; e < el.size(); ++e)
     for (int k = 0; k < 3; ++k) {
       if (el.b_value(e, k) == 0.0) continue;
-      const Eigen::RowVector3d q = (el.cell_start[e + 1] - el.cell_start[e]) * el.w(e) * el.b_value(e, k) * el.s_hat.row(e);
+      const Eigen::RowVector3d q =
+          (el.cell_start[e + 1] - el.cell_start[e]) * el.w(e) * el.b_value(e, k) * el.s_hat.row(e);
       direct.row(position[static_cast<size_t>(el.b_index(e, k))]) += q;
       magnitude.row(position[static_cast<size_t>(el.b_index(e, k))]) += q.cwiseAbs();
     }
   for (int v = 0; v < el.num_vertices; ++v)
-    for (int t = el.rhs_term_start[static_cast<size_t>(v)]; t < el.rhs_term_start[static_cast<size_t>(v) + 1]; ++t) {
+    for (int t = el.rhs_term_start[static_cast<size_t>(v)]; t < el.rhs_term_start[static_cast<size_t>(v) + 1];
+         ++t) {
       const ArapElements::RhsTerm& term = el.rhs_term[static_cast<size_t>(t)];
       if (t > el.rhs_term_start[static_cast<size_t>(v)]) {
         EXPECT_LT(el.rhs_term[static_cast<size_t>(t) - 1].cell, term.cell) << "vertex at position " << v;
@@ -93,8 +96,7 @@ TEST(ArapElements, IarapElementsGiveTwiceBtDwB) {
   // Recomputed rest vectors agree with the segments' own (they differ only in summation order).
   double largest = 0.0;
   for (Eigen::Index s = 0, e = 0; s < seg.edge.size(); ++s) {
-    if (seg.b_value.row(s).cwiseAbs().maxCoeff() == 0.0)
-      continue;
+    if (seg.b_value.row(s).cwiseAbs().maxCoeff() == 0.0) continue;
     largest = std::max(largest, (seg.s_hat.row(s) - el.s_hat.row(e++)).norm());
   }
   EXPECT_LT(largest, 1e-14 * test::bbox_diagonal(m.V));
@@ -107,7 +109,9 @@ TEST(ArapElements, StreamedLayoutDoesNotDependOnTheThreadCount) {
   const auto m = test::bunny();
   const IntrinsicDelaunay idt = intrinsic_delaunay(m.V, m.F);
   auto build = [&](int which) {
-    return which == 0 ? arap_edge_elements(m.V, m.F) : which == 1 ? spokes_rims_elements(m.V, m.F) : iarap_elements(m.V, idt);
+    return which == 0   ? arap_edge_elements(m.V, m.F)
+           : which == 1 ? spokes_rims_elements(m.V, m.F)
+                        : iarap_elements(m.V, idt);
   };
   for (int which = 0; which < 3; ++which) {
     set_thread_count(1);
@@ -191,7 +195,8 @@ TEST(ArapElements, TracedElementsEqualSegmentElements) {
     EXPECT_FALSE(input.topology || input.C) << name << ": the build drops its references";
     ArapElements fused = detail::traced_iarap_elements(mesh.first, traced.triangulation, traced.traces);
     detail::finish_elements(mesh.first, fused, true);
-    const ArapElements reference = iarap_elements(mesh.first, intrinsic_delaunay(mesh.first, mesh.second, options));
+    const ArapElements reference =
+        iarap_elements(mesh.first, intrinsic_delaunay(mesh.first, mesh.second, options));
     EXPECT_GT(traced.traces.points.size(), 0u) << name << ": some edges must be traced";
     if (options.refine_boundary) {
       EXPECT_GT(fused.num_cells, fused.num_vertices) << name;

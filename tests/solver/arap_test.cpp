@@ -44,8 +44,7 @@ template <class F> void expect_error_mentions(F&& call, const std::string& words
 }
 
 TEST(Arap, MethodNamesRoundTrip) {
-  for (ArapMethod m : kAllMethods)
-    EXPECT_EQ(parse_arap_method(arap_method_name(m)), m);
+  for (ArapMethod m : kAllMethods) EXPECT_EQ(parse_arap_method(arap_method_name(m)), m);
   expect_error_mentions([] { parse_arap_method("spokes"); }, "unknown ARAP method 'spokes'");
 }
 
@@ -72,8 +71,9 @@ TEST(Arap, RestHasZeroEnergyAndGradient) {
 // arap_precompute factorizes iARAP's L as twice the cotan Laplacian of the input (cotan_system_matrix)
 // before the intrinsic triangulation exists. The checked path: the assembly from iARAP's own elements,
 // 2 B^T D_w B, is the same matrix, on a closed mesh (bunny), on non-Delaunay patches with boundary, with and
-// without boundary refinement (inserted points on the sheared strip). 1e-12 relative: the sums differ in grouping only.
-// On a mesh whose degenerate faces are mollified the identity fails and L comes from the elements.
+// without boundary refinement (inserted points on the sheared strip). 1e-12 relative: the sums differ in
+// grouping only. On a mesh whose degenerate faces are mollified the identity fails and L comes from the
+// elements.
 TEST(Arap, IarapSystemMatrixIsTheCotanLaplacian) {
   const SolverMesh bunny = test::bunny();
   const SolverMesh patch = test::bumpy_patch(14);
@@ -133,8 +133,7 @@ TEST(Arap, RigidMotionOfConstraintsMovesTheMeshRigidly) {
     EXPECT_TRUE(report.converged) << arap_method_name(method);
     EXPECT_LT(max_row_distance(U, moved), 1e-8 * diag)
         << arap_method_name(method) << " after " << report.iterations << " iterations";
-    for (const Eigen::Matrix3d& R : arap_rotations(data))
-      EXPECT_LT((R - Q).norm(), 1e-6);
+    for (const Eigen::Matrix3d& R : arap_rotations(data)) EXPECT_LT((R - Q).norm(), 1e-6);
   }
 }
 
@@ -235,8 +234,7 @@ TEST(Arap, GradientMatchesFiniteDifferences) {
   std::mt19937 rng(17);
   std::normal_distribution<double> noise(0.0, 0.05 * diag);
   Eigen::MatrixXd U = m.V;
-  for (Eigen::Index i = 0; i < U.size(); ++i)
-    U(i) += noise(rng);
+  for (Eigen::Index i = 0; i < U.size(); ++i) U(i) += noise(rng);
   const double h = 1e-5 * diag;
   for (ArapMethod method : kAllMethods) {
     const ArapData data = arap_precompute(m.V, m.F, Eigen::VectorXi::Constant(1, 0), with_method(method));

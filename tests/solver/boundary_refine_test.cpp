@@ -31,7 +31,8 @@ struct RestRun {
 };
 
 // Bottom and top 10% along `axis` held at rest, start at rest, `iterations` iterations without early stop.
-RestRun rest_run(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, bool refine, int iterations, int axis = 1) {
+RestRun rest_run(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, bool refine, int iterations,
+                 int axis = 1) {
   std::vector<int> fixed = iarap::test::axis_band(V, axis, 0.1, -1);
   const std::vector<int> top = iarap::test::axis_band(V, axis, 0.1, +1);
   fixed.insert(fixed.end(), top.begin(), top.end());
@@ -135,7 +136,8 @@ TEST(BoundaryRefine, IdenticalToPaperWithoutObtuseBoundaryEdges) {
 
 TEST(BoundaryRefine, SharedMeshesWithBoundaryStayAtRest) {
   int tested = 0;
-  for (const std::string name : {"lion.off", "beetle.off", "ogre.obj", "face.obj", "camelhead.off", "spike.ply", "grid.off"}) {
+  for (const std::string name :
+       {"lion.off", "beetle.off", "ogre.obj", "face.obj", "camelhead.off", "spike.ply", "grid.off"}) {
     const std::string path = iarap::test::shared_mesh_in_loop(name);
     if (path.empty()) continue;
     const MeshData mesh = read_mesh(path);

@@ -10,9 +10,9 @@
 #include "solver_fixtures.h"
 
 #include <Eigen/Geometry>
-#include <gtest/gtest.h>
 #include <cmath>
 #include <cstdio>
+#include <gtest/gtest.h>
 
 namespace {
 
@@ -36,7 +36,9 @@ double reference_local_step(const ArapElements& el, const Eigen::MatrixXd& U, st
   for (Eigen::Index e = 0; e < el.size(); ++e)
     for (int j = el.cell_start[e]; j < el.cell_start[e + 1]; ++j) {
       const int c = el.cell[j];
-      cell_energy(c) += 0.5 * el.w(e) * (s.row(e).transpose() - R[static_cast<size_t>(c)] * el.s_hat.row(e).transpose()).squaredNorm();
+      cell_energy(c) +=
+          0.5 * el.w(e) *
+          (s.row(e).transpose() - R[static_cast<size_t>(c)] * el.s_hat.row(e).transpose()).squaredNorm();
     }
   return cell_energy.sum();
 }
@@ -80,19 +82,22 @@ struct BentBunny {
   Eigen::VectorXi fixed;
   Eigen::MatrixXd targets;
   BentBunny() {
-    const std::vector<int> bottom = test::axis_band(mesh.V, 1, 0.1, -1), top = test::axis_band(mesh.V, 1, 0.1, +1);
+    const std::vector<int> bottom = test::axis_band(mesh.V, 1, 0.1, -1),
+                           top = test::axis_band(mesh.V, 1, 0.1, +1);
     fixed.resize(static_cast<Eigen::Index>(bottom.size() + top.size()));
     fixed << test::to_vector(bottom), test::to_vector(top);
     targets = test::rows_of(mesh.V, fixed);
     const double diag = test::bbox_diagonal(mesh.V);
     const Eigen::Matrix3d Q = Eigen::AngleAxisd(0.5, Eigen::Vector3d::UnitZ()).toRotationMatrix();
     for (Eigen::Index k = static_cast<Eigen::Index>(bottom.size()); k < fixed.size(); ++k)
-      targets.row(k) = (Q * targets.row(k).transpose()).transpose() + Eigen::RowVector3d(0.15 * diag, 0.1 * diag, 0);
+      targets.row(k) =
+          (Q * targets.row(k).transpose()).transpose() + Eigen::RowVector3d(0.15 * diag, 0.1 * diag, 0);
   }
 };
 
 // The scene's data for `method` after `iterations` iterations of arap_solve from rest (U: the result).
-ArapData solved(const BentBunny& scene, ArapMethod method, int iterations, Eigen::MatrixXd& U, ArapReport* report = nullptr) {
+ArapData solved(const BentBunny& scene, ArapMethod method, int iterations, Eigen::MatrixXd& U,
+                ArapReport* report = nullptr) {
   ArapOptions options;
   options.method = method;
   ArapData data = arap_precompute(scene.mesh.V, scene.mesh.F, scene.fixed, options);
@@ -100,7 +105,8 @@ ArapData solved(const BentBunny& scene, ArapMethod method, int iterations, Eigen
   ArapSolveOptions solve;
   solve.max_iterations = iterations;
   solve.tolerance = -1;
-  solve.accelerator = ArapAccelerator::None; // the paper's plain iteration, which the reference loop writes out
+  solve.accelerator =
+      ArapAccelerator::None; // the paper's plain iteration, which the reference loop writes out
   const ArapReport r = arap_solve(data, scene.targets, U, solve);
   if (report) *report = r;
   return data;
@@ -128,7 +134,8 @@ TEST(FitRotations, StreamedStepsMatchThePlainFormulas) {
     EXPECT_LT(worst, 1e-12) << arap_method_name(method);
     EXPECT_NEAR(E_warm, E_ref, 1e-12 * std::abs(E_ref)) << arap_method_name(method);
     EXPECT_NEAR(E_cold, E_ref, 1e-12 * std::abs(E_ref)) << arap_method_name(method);
-    EXPECT_LT((energy_warm - energy_ref).cwiseAbs().maxCoeff(), 1e-12 * std::abs(E_ref)) << arap_method_name(method);
+    EXPECT_LT((energy_warm - energy_ref).cwiseAbs().maxCoeff(), 1e-12 * std::abs(E_ref))
+        << arap_method_name(method);
     Eigen::MatrixXd rhs;
     arap_rhs(data.elements, R_ref, rhs);
     const Eigen::MatrixXd rhs_ref = reference_rhs(data.elements, R_ref);
@@ -152,7 +159,8 @@ TEST(FitRotations, FiftyIterationsMatchThePlainIteration) {
     const double distance = (U - U_ref).rowwise().norm().maxCoeff() / diag;
     EXPECT_LT(distance, 1e-10) << arap_method_name(method);
     EXPECT_GT((U - scene.mesh.V).rowwise().norm().maxCoeff(), 1e-2 * diag); // it did deform
-    EXPECT_NEAR(report.energies.back(), energies.back(), 1e-10 * std::abs(energies.back())) << arap_method_name(method);
+    EXPECT_NEAR(report.energies.back(), energies.back(), 1e-10 * std::abs(energies.back()))
+        << arap_method_name(method);
     char text[32];
     std::snprintf(text, sizeof text, "%.3g", distance);
     RecordProperty(arap_method_name(method) + "_distance", text);

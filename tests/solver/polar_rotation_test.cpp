@@ -15,16 +15,14 @@ using iarap::polar_rotation;
 Matrix3d random_matrix(std::mt19937& rng) {
   std::normal_distribution<double> n;
   Matrix3d A;
-  for (int i = 0; i < 9; ++i)
-    A(i) = n(rng);
+  for (int i = 0; i < 9; ++i) A(i) = n(rng);
   return A;
 }
 
 Matrix3d random_rotation(std::mt19937& rng) {
   Eigen::HouseholderQR<Matrix3d> qr(random_matrix(rng));
   Matrix3d Q = qr.householderQ();
-  if (Q.determinant() < 0)
-    Q.col(0) = -Q.col(0);
+  if (Q.determinant() < 0) Q.col(0) = -Q.col(0);
   return Q;
 }
 
@@ -32,8 +30,7 @@ Matrix3d random_rotation(std::mt19937& rng) {
 Matrix3d svd_rotation(const Matrix3d& S) {
   Eigen::JacobiSVD<Matrix3d> svd(S, Eigen::ComputeFullU | Eigen::ComputeFullV);
   Matrix3d U = svd.matrixU();
-  if ((U * svd.matrixV().transpose()).determinant() < 0)
-    U.col(2) = -U.col(2);
+  if ((U * svd.matrixV().transpose()).determinant() < 0) U.col(2) = -U.col(2);
   return U * svd.matrixV().transpose();
 }
 
@@ -52,8 +49,7 @@ TEST(PolarRotation, RandomMatricesMatchSvdAndBeatRandomRotations) {
     const Eigen::Vector3d sigma = Eigen::JacobiSVD<Matrix3d>(S).singularValues();
     EXPECT_LT((R - svd_rotation(S)).norm(), 1e-13 * sigma(0) / (sigma(1) + sigma(2))) << "trial " << t;
     const double best = (R.transpose() * S).trace();
-    for (int k = 0; k < 5; ++k)
-      EXPECT_GE(best + 1e-12, (random_rotation(rng).transpose() * S).trace());
+    for (int k = 0; k < 5; ++k) EXPECT_GE(best + 1e-12, (random_rotation(rng).transpose() * S).trace());
   }
 }
 
@@ -98,8 +94,7 @@ TEST(PolarRotation, NearIdentityAndScaleFree) {
     const Matrix3d R = polar_rotation(S);
     expect_rotation(R);
     EXPECT_LT((R - svd_rotation(S)).norm(), 1e-14);
-    for (double scale : {1e-150, 1e150})
-      EXPECT_LT((polar_rotation(scale * S) - R).norm(), 1e-14);
+    for (double scale : {1e-150, 1e150}) EXPECT_LT((polar_rotation(scale * S) - R).norm(), 1e-14);
   }
 }
 
@@ -191,12 +186,23 @@ TEST(PolarRotation, BatchedNearFitsEqualSingleFits) {
     const Eigen::Vector3d axis = random_matrix(rng).col(0).normalized();
     double turn = angle(rng);
     switch (t % 9) {
-    case 3: turn = 2.0; break;                                                           // far guess
-    case 5: St = St * St.transpose(); break;                                             // symmetric
-    case 6: St = random_matrix(rng).col(0) * random_matrix(rng).col(0).transpose(); break; // rank 1
-    case 7: St.setZero(); break;
-    case 8: St(2, 0) = t % 2 ? std::numeric_limits<double>::quiet_NaN() : St(2, 0); break;
-    default: break;
+    case 3:
+      turn = 2.0;
+      break; // far guess
+    case 5:
+      St = St * St.transpose();
+      break; // symmetric
+    case 6:
+      St = random_matrix(rng).col(0) * random_matrix(rng).col(0).transpose();
+      break; // rank 1
+    case 7:
+      St.setZero();
+      break;
+    case 8:
+      St(2, 0) = t % 2 ? std::numeric_limits<double>::quiet_NaN() : St(2, 0);
+      break;
+    default:
+      break;
     }
     S.push_back(St);
     guess.push_back(svd_rotation(St.allFinite() ? St : Matrix3d::Identity()) *

@@ -7,8 +7,8 @@
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
-#include <gtest/gtest.h>
 #include <cmath>
+#include <gtest/gtest.h>
 #include <random>
 #include <vector>
 
@@ -108,8 +108,7 @@ inline std::vector<int> axis_band(const Eigen::MatrixXd& V, int axis, double fra
   std::vector<int> out;
   for (int v = 0; v < V.rows(); ++v) {
     const double t = (V(v, axis) - lo) / (hi - lo);
-    if ((side < 0 && t <= fraction) || (side > 0 && t >= 1.0 - fraction))
-      out.push_back(v);
+    if ((side < 0 && t <= fraction) || (side > 0 && t >= 1.0 - fraction)) out.push_back(v);
   }
   return out;
 }
@@ -121,8 +120,7 @@ inline Eigen::VectorXi to_vector(const std::vector<int>& v) {
 // Rows `idx` of V.
 inline Eigen::MatrixXd rows_of(const Eigen::MatrixXd& V, const Eigen::VectorXi& idx) {
   Eigen::MatrixXd out(idx.size(), V.cols());
-  for (Eigen::Index k = 0; k < idx.size(); ++k)
-    out.row(k) = V.row(idx(k));
+  for (Eigen::Index k = 0; k < idx.size(); ++k) out.row(k) = V.row(idx(k));
   return out;
 }
 

@@ -28,8 +28,7 @@ public:
   }
   detail::SupernodalFactorView view() const {
     const auto v = detail::supernodal_factor_view(m_cholmodFactor);
-    if (!v)
-      throw std::runtime_error("not a supernodal LL^T factor");
+    if (!v) throw std::runtime_error("not a supernodal LL^T factor");
     return *v;
   }
 };
@@ -47,16 +46,14 @@ Eigen::SparseMatrix<double> random_spd(int n, int neighbours, unsigned seed) {
   for (int i = 0; i < n; ++i)
     for (int m = 0; m < neighbours; ++m) {
       const int j = pick(rng);
-      if (j == i)
-        continue;
+      if (j == i) continue;
       const double a = value(rng);
       t.emplace_back(i, j, a);
       t.emplace_back(j, i, a);
       diagonal(i) += std::abs(a);
       diagonal(j) += std::abs(a);
     }
-  for (int i = 0; i < n; ++i)
-    t.emplace_back(i, i, diagonal(i));
+  for (int i = 0; i < n; ++i) t.emplace_back(i, i, diagonal(i));
   Eigen::SparseMatrix<double> A(n, n);
   A.setFromTriplets(t.begin(), t.end());
   return A;
@@ -82,12 +79,9 @@ double relative_difference(const Eigen::MatrixXd& X, const Eigen::MatrixXd& refe
 void expect_partition(const detail::SupernodalSchedule& sc, int nsuper) {
   std::vector<int> seen(nsuper, 0);
   for (const auto& bin : sc.bin_supernodes)
-    for (const int s : bin)
-      ++seen[s];
-  for (const int s : sc.top)
-    ++seen[s];
-  for (int s = 0; s < nsuper; ++s)
-    EXPECT_EQ(seen[s], 1) << "supernode " << s;
+    for (const int s : bin) ++seen[s];
+  for (const int s : sc.top) ++seen[s];
+  for (int s = 0; s < nsuper; ++s) EXPECT_EQ(seen[s], 1) << "supernode " << s;
 }
 
 // Forward error against a dense Cholesky solve: both are backward stable, so they differ by at most about
@@ -162,8 +156,7 @@ TEST(SupernodalSolve, InsideAParallelRegionGivesTheSameBits) {
   {
     detail::SupernodalWorkspace own; // const solves may run concurrently, each with its own workspace
     const int t = omp_get_thread_num();
-    if (t < 2)
-      solve.solve(B, nested[t], 2, own);
+    if (t < 2) solve.solve(B, nested[t], 2, own);
   }
   EXPECT_EQ(nested[0], alone);
   if (nested[1].size() > 0) { // the runtime may give the region one thread
@@ -177,8 +170,7 @@ TEST(SupernodalSolve, ChainHasNothingToSplit) {
   const int n = 40;
   Eigen::MatrixXd M = Eigen::MatrixXd::Random(n, n);
   M = (M + M.transpose()).eval();
-  for (int i = 0; i < n; ++i)
-    M(i, i) = 1.0 + M.row(i).cwiseAbs().sum();
+  for (int i = 0; i < n; ++i) M(i, i) = 1.0 + M.row(i).cwiseAbs().sum();
   const Eigen::SparseMatrix<double> A = M.sparseView();
   const Factor factor(A);
   ASSERT_EQ(factor.info(), Eigen::Success);
@@ -226,8 +218,7 @@ TEST(SupernodalSolve, ManyTinySupernodesSplitWithoutTopPart) {
     const Eigen::MatrixXd B = Eigen::MatrixXd::Random(n, k);
     Eigen::MatrixXd X;
     solve.solve(B, X, 2, ws);
-    for (const int i : single)
-      EXPECT_EQ(X.row(i), B.row(i) / 4.0) << "row " << i;
+    for (const int i : single) EXPECT_EQ(X.row(i), B.row(i) / 4.0) << "row " << i;
     EXPECT_LT((A * X - B).norm() / B.norm(), 1e-15 * n);
   }
 }
@@ -256,8 +247,7 @@ TEST(SupernodalSolve, OneByOneThroughSparseCholesky) {
 TEST(SupernodalSolve, ArapSystemOfTheBunnyMatchesCholmod) {
   const test::SolverMesh m = test::bunny();
   Eigen::VectorXi fixed(6);
-  for (int i = 0; i < 6; ++i)
-    fixed(i) = i * static_cast<int>(m.V.rows() / 6);
+  for (int i = 0; i < 6; ++i) fixed(i) = i * static_cast<int>(m.V.rows() / 6);
   ArapOptions options;
   options.method = ArapMethod::Arap;
   const ArapData data = arap_precompute(m.V, m.F, fixed, options);

@@ -47,7 +47,8 @@ TEST(SystemPattern, HoldsTheDiagonalAndTheEdgesWithFaceSlots) {
         const int slot = p.face_slot(f, 3 * k + l);
         ASSERT_GE(slot, 0);
         EXPECT_EQ(p.matrix.innerIndexPtr()[slot], m.F(f, k));
-        EXPECT_TRUE(slot >= p.matrix.outerIndexPtr()[m.F(f, l)] && slot < p.matrix.outerIndexPtr()[m.F(f, l) + 1]);
+        EXPECT_TRUE(slot >= p.matrix.outerIndexPtr()[m.F(f, l)] &&
+                    slot < p.matrix.outerIndexPtr()[m.F(f, l) + 1]);
       }
 }
 

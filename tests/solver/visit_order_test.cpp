@@ -41,11 +41,9 @@ double mean_edge_span(const Eigen::MatrixXi& F, const std::vector<int>& position
 // The mesh with its vertices renumbered: vertex v becomes new_index[v].
 SolverMesh renumbered(const SolverMesh& m, const std::vector<int>& new_index) {
   SolverMesh out{Eigen::MatrixXd(m.V.rows(), 3), Eigen::MatrixXi(m.F.rows(), 3)};
-  for (Eigen::Index v = 0; v < m.V.rows(); ++v)
-    out.V.row(new_index[static_cast<size_t>(v)]) = m.V.row(v);
+  for (Eigen::Index v = 0; v < m.V.rows(); ++v) out.V.row(new_index[static_cast<size_t>(v)]) = m.V.row(v);
   for (Eigen::Index f = 0; f < m.F.rows(); ++f)
-    for (int k = 0; k < 3; ++k)
-      out.F(f, k) = new_index[static_cast<size_t>(m.F(f, k))];
+    for (int k = 0; k < 3; ++k) out.F(f, k) = new_index[static_cast<size_t>(m.F(f, k))];
   return out;
 }
 
@@ -71,8 +69,7 @@ TEST_F(VisitOrder, PermutesTheCellsWithTheVerticesFirst) {
     for (int c = 0; c < el.num_cells; ++c)
       ASSERT_EQ(sorted[static_cast<size_t>(c)], c) << arap_method_name(method);
     EXPECT_LT(*std::max_element(el.visit_order.begin(), el.visit_order.begin() + n), n);
-    for (int p = n; p < el.num_cells; ++p)
-      EXPECT_EQ(el.visit_order[static_cast<size_t>(p)], p);
+    for (int p = n; p < el.num_cells; ++p) EXPECT_EQ(el.visit_order[static_cast<size_t>(p)], p);
     // Each position streams exactly the elements of its cell.
     for (int p = 0; p < el.num_cells; ++p) {
       const auto c = static_cast<size_t>(el.visit_order[static_cast<size_t>(p)]);
@@ -118,8 +115,7 @@ TEST_F(VisitOrder, SolveDoesNotDependOnTheFileVertexOrder) {
   std::vector<int> fixed_m = bottom;
   fixed_m.insert(fixed_m.end(), top.begin(), top.end());
   std::vector<int> fixed_s;
-  for (const int v : fixed_m)
-    fixed_s.push_back(new_index[static_cast<size_t>(v)]);
+  for (const int v : fixed_m) fixed_s.push_back(new_index[static_cast<size_t>(v)]);
   Eigen::MatrixXd targets = test::rows_of(m.V, test::to_vector(fixed_m));
   targets.bottomRows(static_cast<Eigen::Index>(top.size())).rowwise() +=
       Eigen::RowVector3d(0.2, 0.05, 0.0) * test::bbox_diagonal(m.V);

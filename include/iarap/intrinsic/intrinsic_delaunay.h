@@ -39,15 +39,15 @@ struct IntrinsicOptions {
 // join the same pair of vertices, an edge may be a loop, a face may have two corners at one vertex.
 // Everything is therefore indexed by edge and corner, never by vertex pair.
 struct IntrinsicTriangulation {
-  Eigen::MatrixXi F;              // #F x 3 intrinsic faces (input vertex indices), same count as input
-  Eigen::MatrixXi FE;             // #F x 3 intrinsic edge opposite corner k of face f
-  Eigen::MatrixXi E;              // #E x 2 endpoints (i, j) of each intrinsic edge; segments run i -> j
-  Eigen::VectorXd length;         // #E intrinsic edge lengths |e_ij|
-  Eigen::VectorXd cot_weight;     // #E w_ij = (cot a + cot b) / 2, one term on boundary edges
-  Eigen::MatrixXd corner_angle;   // #F x 3 intrinsic angle at corner k of face f
-  Eigen::VectorXd face_area;      // #F intrinsic face areas
-  Eigen::VectorXi is_boundary;    // #E 1 for boundary edges (never flipped), else 0
-  Eigen::VectorXi original_edge;  // #E the input edge (index into edge_topology(F).E) it still is, or -1
+  Eigen::MatrixXi F;             // #F x 3 intrinsic faces (input vertex indices), same count as input
+  Eigen::MatrixXi FE;            // #F x 3 intrinsic edge opposite corner k of face f
+  Eigen::MatrixXi E;             // #E x 2 endpoints (i, j) of each intrinsic edge; segments run i -> j
+  Eigen::VectorXd length;        // #E intrinsic edge lengths |e_ij|
+  Eigen::VectorXd cot_weight;    // #E w_ij = (cot a + cot b) / 2, one term on boundary edges
+  Eigen::MatrixXd corner_angle;  // #F x 3 intrinsic angle at corner k of face f
+  Eigen::VectorXd face_area;     // #F intrinsic face areas
+  Eigen::VectorXi is_boundary;   // #E 1 for boundary edges (never flipped), else 0
+  Eigen::VectorXi original_edge; // #E the input edge (index into edge_topology(F).E) it still is, or -1
   // Vertices 0 .. num_input_vertices-1 are the input's; vertex num_input_vertices + q is inserted point q
   // (refine_boundary), at (1 - inserted_t(q)) V[inserted_on(q,0)] + inserted_t(q) V[inserted_on(q,1)].
   int num_input_vertices = 0;
@@ -57,17 +57,18 @@ struct IntrinsicTriangulation {
   int obtuse_boundary_after = 0;  // ... and after refinement (0 unless the insertion cap was hit)
   int refine_rounds = 0;
   long flips = 0;
-  int non_delaunay_before = 0;    // interior edges of the input failing the Delaunay test
-  int non_delaunay_after = 0;     // after flipping: 0 unless flips were impossible
-  double mollify_delta = 0.0;     // length added to every edge by mollification (0: none)
+  int non_delaunay_before = 0; // interior edges of the input failing the Delaunay test
+  int non_delaunay_after = 0;  // after flipping: 0 unless flips were impossible
+  double mollify_delta = 0.0;  // length added to every edge by mollification (0: none)
 };
 
 // Traced intrinsic edges: the ordered points of each edge's polyline over the input mesh, in CSR form.
 // Point p is (1 - t[p]) * V[a[p]] + t[p] * V[c[p]]: an input vertex (c = -1, t = 0), a crossing of
-// input edge (a, c) at parameter t, or (first/last point) an inserted boundary point. face[p] is the input face carrying the segment from p to p + 1
+// input edge (a, c) at parameter t, or (first/last point) an inserted boundary point. face[p] is the input
+// face carrying the segment from p to p + 1
 // (-1 for the last point of each edge).
 struct TracedEdges {
-  std::vector<int> start;         // #E + 1 offsets into the point arrays
+  std::vector<int> start; // #E + 1 offsets into the point arrays
   std::vector<int> a, c, face;
   std::vector<double> t;
 };
@@ -75,21 +76,22 @@ struct TracedEdges {
 // The segments of all traced edges (Eq. 7, 8, 11), structure of arrays. The segments of intrinsic
 // edge e are rows edge_start[e] .. edge_start[e+1]-1, in order from E(e,0) to E(e,1).
 struct Segments {
-  Eigen::VectorXi edge;                                        // #S intrinsic edge of each segment
-  Eigen::VectorXi face;                                        // #S carrying input face
-  Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor> b_index;    // #S x 3 input vertices of b
-  Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> b_value; // #S x 3 coefficients (sum 0; unused slots 0)
-  Eigen::MatrixXd s_hat;                                       // #S x 3 rest vectors V b (Eq. 8)
-  Eigen::VectorXd length;                                      // #S |s| at rest
-  Eigen::VectorXd weight;                                      // #S w_ij |e_ij| / |s| (Eq. 11)
-  Eigen::VectorXi edge_start;                                  // #E + 1 offsets
-  Eigen::SparseMatrix<double> B;                               // #S x #V, row s holds b_s^T; L = B^T D_w B (Eq. 17);
-                                                               // 0 x 0 when IntrinsicOptions::assemble_B is off
+  Eigen::VectorXi edge;                                           // #S intrinsic edge of each segment
+  Eigen::VectorXi face;                                           // #S carrying input face
+  Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor> b_index; // #S x 3 input vertices of b
+  Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>
+      b_value;                   // #S x 3 coefficients (sum 0; unused slots 0)
+  Eigen::MatrixXd s_hat;         // #S x 3 rest vectors V b (Eq. 8)
+  Eigen::VectorXd length;        // #S |s| at rest
+  Eigen::VectorXd weight;        // #S w_ij |e_ij| / |s| (Eq. 11)
+  Eigen::VectorXi edge_start;    // #E + 1 offsets
+  Eigen::SparseMatrix<double> B; // #S x #V, row s holds b_s^T; L = B^T D_w B (Eq. 17);
+                                 // 0 x 0 when IntrinsicOptions::assemble_B is off
 };
 
 struct IntrinsicDelaunay {
   IntrinsicTriangulation triangulation;
-  TracedEdges traces;             // empty when IntrinsicOptions::keep_traces is off
+  TracedEdges traces; // empty when IntrinsicOptions::keep_traces is off
   Segments segments;
   double flip_ms = 0, trace_ms = 0, segment_ms = 0;
 };

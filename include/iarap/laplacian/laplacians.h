@@ -14,16 +14,17 @@
 namespace iarap {
 
 enum class LaplacianKind {
-  Cotan,     // extrinsic cotan Laplacian of the input mesh
-  Intrinsic, // cotan Laplacian of the intrinsic Delaunay triangulation (Bobenko-Springborn)
-  Iarap,     // L = B^T D_w B of the iARAP global step (Eq. 17)
-  IarapPlus, // L+, the asymmetric first-segment finite-volume operator (end of Section 6)
-  IarapSym,  // iARAP energy restricted to the first segment from each end (last remark of Section 6)
+  Cotan,       // extrinsic cotan Laplacian of the input mesh
+  Intrinsic,   // cotan Laplacian of the intrinsic Delaunay triangulation (Bobenko-Springborn)
+  Iarap,       // L = B^T D_w B of the iARAP global step (Eq. 17)
+  IarapPlus,   // L+, the asymmetric first-segment finite-volume operator (end of Section 6)
+  IarapSym,    // iARAP energy restricted to the first segment from each end (last remark of Section 6)
   IarapRefined // B^T D_w B of the boundary-robust iARAP (refine_boundary, not in the paper): segments of
                // the triangulation whose obtuse boundary edges were split; still over the input vertices
 };
 
-// "cotan", "intrinsic", "iarap", "iarap-plus", "iarap-sym", "iarap-refined". Throws InputError naming the unknown word.
+// "cotan", "intrinsic", "iarap", "iarap-plus", "iarap-sym", "iarap-refined". Throws InputError naming the
+// unknown word.
 LaplacianKind parse_laplacian_kind(const std::string& name);
 std::string laplacian_kind_name(LaplacianKind kind);
 // Every kind, in the order above.

@@ -30,7 +30,7 @@ struct MeshReport {
   int non_finite_coordinates = 0; // vertices with a NaN or Inf coordinate
   int coincident_vertices = 0;    // vertices within 1e-12 * bbox_diagonal of a vertex with a smaller index
   int boundary_edges = 0;
-  int edges = 0; // distinct edges of the faces that enter the topological checks
+  int edges = 0;                             // distinct edges of the faces that enter the topological checks
   double bbox_diagonal = 0.0;                // of the finite vertices
   std::vector<std::string> errors, warnings; // each names the first offending element and the count
   bool usable() const { return errors.empty(); }

@@ -148,11 +148,10 @@ struct ArapSolveOptions {
   // 10% of the predicted decrease is replaced by the plain step. Default Newton, measured with
   // `iarap bench --converge 1e-6` on the bend60 scene (README "Accelerated solves"): on bunny, beetle and
   // armadillo it ended at the lowest minimum found for all three energies (these large edits have several),
-  // with over 30x fewer iterations and over 5.5x less time than plain on spokes-rims and iARAP; L-BFGS is up to
-  // 1.7x faster where it ends at the same minimum but ended higher on armadillo iARAP (2.5e-2 of the diagonal
-  // away) and on original ARAP.
-  // Each Newton iteration runs up to `window` CG steps (one solve each): for a bounded cost per iteration
-  // (interactive updates, as the viewer does) choose L-BFGS.
+  // with over 30x fewer iterations and over 5.5x less time than plain on spokes-rims and iARAP; L-BFGS is up
+  // to 1.7x faster where it ends at the same minimum but ended higher on armadillo iARAP (2.5e-2 of the
+  // diagonal away) and on original ARAP. Each Newton iteration runs up to `window` CG steps (one solve each):
+  // for a bounded cost per iteration (interactive updates, as the viewer does) choose L-BFGS.
   ArapAccelerator accelerator = ArapAccelerator::Newton;
   // History length m of the accelerator (Anderson: past residual differences; L-BFGS: (s, y) pairs; Newton:
   // the CG steps per Newton step). 0 runs the plain iteration, bit for bit as ArapAccelerator::None.
@@ -167,18 +166,18 @@ struct ArapReport {
   double local_ms = 0;          // all local steps, including the one that evaluates the last iterate
   double global_ms = 0;         // all global steps (right-hand side, solve and gradient)
   bool converged = false;       // a tolerance rule stopped the iteration (false: max_iterations or callback)
-  std::vector<double> local_ms_per_iteration;  // the local step(s) evaluating U_k (size iterations)
-  std::vector<double> global_ms_per_iteration; // the global step producing U_k (size iterations)
+  std::vector<double> local_ms_per_iteration;          // the local step(s) evaluating U_k (size iterations)
+  std::vector<double> global_ms_per_iteration;         // the global step producing U_k (size iterations)
   ArapAccelerator accelerator = ArapAccelerator::None; // what ran (None also for window 0)
-  double initial_gradient_norm = 0;  // ||g_0|| at the free vertices
-  std::vector<double> gradient_norms; // ||g(U_k)|| at the free vertices (size iterations)
+  double initial_gradient_norm = 0;                    // ||g_0|| at the free vertices
+  std::vector<double> gradient_norms;                  // ||g(U_k)|| at the free vertices (size iterations)
   // Per iteration: 1 when U_k came from the accelerator (an Anderson combination or an L-BFGS step with
   // history), 0 when it is the plain local/global iterate (first step, after a rejection, or no accelerator).
   std::vector<unsigned char> accepted;
-  int rejected = 0;              // accelerated iterates refused by the energy safeguard / line search
-  int solves = 0;                // back-substitutions with the factor of L_ff: one per plain step, plus
-                                 // L-BFGS's one per direction and Newton's one per conjugate-gradient step
-  double accelerator_ms = 0;     // the accelerator's own work (history, least squares, two-loop recursion)
+  int rejected = 0;               // accelerated iterates refused by the energy safeguard / line search
+  int solves = 0;                 // back-substitutions with the factor of L_ff: one per plain step, plus
+                                  // L-BFGS's one per direction and Newton's one per conjugate-gradient step
+  double accelerator_ms = 0;      // the accelerator's own work (history, least squares, two-loop recursion)
   std::vector<double> elapsed_ms; // wall time from the start of arap_solve to the end of iteration k
 };
 
@@ -189,9 +188,9 @@ struct ArapReport {
 // for the next iteration. Since L_ff (U_k,f - U_{k-1,f}) = -g_{k-1} this is gradient descent preconditioned
 // by L_ff, which options.accelerator speeds up (ArapSolveOptions). data.R holds the rotations of the
 // returned U (while the solve runs, U and data.R are kept in the iterations' own vertex order,
-// ArapElements::visit_order: an on_iteration callback should not read them). Throws InputError for a wrong targets / U shape or a non-finite entry (naming the row),
-// negative max_iterations or window, a NaN tolerance or a negative or NaN gradient_tolerance; SolverError
-// when the energy becomes non-finite.
+// ArapElements::visit_order: an on_iteration callback should not read them). Throws InputError for a wrong
+// targets / U shape or a non-finite entry (naming the row), negative max_iterations or window, a NaN
+// tolerance or a negative or NaN gradient_tolerance; SolverError when the energy becomes non-finite.
 ArapReport arap_solve(ArapData& data, const Eigen::MatrixXd& targets, Eigen::MatrixXd& U,
                       const ArapSolveOptions& options = {});
 

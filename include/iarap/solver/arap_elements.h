@@ -81,13 +81,15 @@ void check_arap_mesh(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F);
 ArapElements arap_edge_elements(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F);
 // The same from what the caller computed once already (arap_precompute): topology = edge_topology(F, #V)
 // and C = face_cotangents(V, F) of a mesh that passed check_arap_mesh.
-ArapElements arap_edge_elements(const Eigen::MatrixXd& V, const EdgeTopology& topology, const Eigen::MatrixXd& C);
+ArapElements arap_edge_elements(const Eigen::MatrixXd& V, const EdgeTopology& topology,
+                                const Eigen::MatrixXd& C);
 
 // Spokes-and-rims (Chao et al. 2010, Eq. 2): one element per (face, edge) pair, w = cot(opposite angle) / 2,
 // cells = the face's three vertices. Throws TopologyError naming a degenerate face; InputError for bad input.
 ArapElements spokes_rims_elements(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F);
 // The same from C = face_cotangents(V, F) computed by the caller, for a mesh that passed check_arap_mesh.
-ArapElements spokes_rims_elements(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const Eigen::MatrixXd& C);
+ArapElements spokes_rims_elements(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
+                                  const Eigen::MatrixXd& C);
 
 // iARAP (Eq. 9, 11): one element per segment of a traced intrinsic Delaunay edge, b and w = w_ij |e|/|s|
 // from the segments, cells = the two endpoints of the segment's intrinsic edge. s_hat is recomputed as

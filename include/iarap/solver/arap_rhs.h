@@ -17,10 +17,12 @@ void arap_rhs(const ArapElements& elements, const std::vector<Eigen::Matrix3d>& 
 // arap_rhs in visit order (ArapElements::visit_order): R[p] is the rotation of cell visit_order[p], row p of
 // rhs belongs to vertex visit_order[p]. One forward sweep, parallel over vertices without atomics, nothing
 // allocated once rhs has its size.
-void arap_rhs_in_visit_order(const ArapElements& elements, const std::vector<Eigen::Matrix3d>& R, Eigen::MatrixXd& rhs);
+void arap_rhs_in_visit_order(const ArapElements& elements, const std::vector<Eigen::Matrix3d>& R,
+                             Eigen::MatrixXd& rhs);
 
 // Row p of arap_rhs_in_visit_order (the vertex at position p), for passes that fuse it with other work.
-inline void arap_rhs_row(const ArapElements& elements, const std::vector<Eigen::Matrix3d>& R, int p, double (&row)[3]) {
+inline void arap_rhs_row(const ArapElements& elements, const std::vector<Eigen::Matrix3d>& R, int p,
+                         double (&row)[3]) {
   row[0] = row[1] = row[2] = 0.0;
   const auto v = static_cast<size_t>(p);
   for (int k = elements.rhs_term_start[v]; k < elements.rhs_term_start[v + 1]; ++k) {

@@ -28,6 +28,7 @@ Eigen::Matrix3d polar_rotation_near(const Eigen::Matrix3d& S, const Eigen::Matri
 // R[k] = polar_rotation_near(S[k], guess[k]) for k < count, the same rotations bit for bit, four fits at a
 // time in lockstep: their Newton steps interleave (and vectorize) instead of each waiting on its own
 // chain of dependent operations. What the ARAP local step calls.
-void polar_rotation_near(const Eigen::Matrix3d* S, const Eigen::Matrix3d* guess, Eigen::Matrix3d* R, int count);
+void polar_rotation_near(const Eigen::Matrix3d* S, const Eigen::Matrix3d* guess, Eigen::Matrix3d* R,
+                         int count);
 
 } // namespace iarap
