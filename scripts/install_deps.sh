@@ -2,7 +2,7 @@
 # Installs the Debian 12 packages iarap needs; skips what is already there (idempotent).
 set -euo pipefail
 packages=(
-  cmake ninja-build g++ pkg-config
+  cmake ninja-build g++ pkg-config clang-format-14
   libeigen3-dev libsuitesparse-dev libspectra-dev
   libcli11-dev nlohmann-json3-dev libcpp-httplib-dev libtinyobjloader-dev
   libgtest-dev libgmock-dev libbenchmark-dev

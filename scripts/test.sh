@@ -4,6 +4,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install_deps.sh
+# Formatting first: an unformatted file fails in seconds, before the build.
+bash scripts/check_format.sh
 bash scripts/build.sh
 # The web viewer's three.js and the browser test's playwright-core, from web/package-lock.json.
 if command -v npm >/dev/null; then npm ci --prefix web --no-audit --no-fund; fi
