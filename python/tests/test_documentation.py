@@ -1,7 +1,8 @@
-"""The documentation says what the code does: the README's option defaults and JSON keys against the
-tool's --help and real reports, python/README.md's defaults and names against the module, its API
-snippet runs as pasted, docs/http-api.md against the server's routes and answers, and the version is the
-same everywhere."""
+"""The documentation says what the code does: the option defaults of the README and of docs/cli.md (the
+full CLI reference) against the tool's --help, docs/cli.md's JSON keys against real reports,
+python/README.md's defaults and names against the module, its API snippet runs as pasted, docs/http-api.md
+against the server's routes and answers, the version is the same everywhere, and every relative link in
+the README and docs/ points to a file (and heading) that exists."""
 import ast
 import json
 import os
@@ -17,6 +18,7 @@ import iarap
 from conftest import REPO
 
 README = (REPO / "README.md").read_text()
+CLI_DOC = (REPO / "docs" / "cli.md").read_text()
 PYTHON_README = (REPO / "python" / "README.md").read_text()
 HTTP_API = (REPO / "docs" / "http-api.md").read_text()
 VERSION = (REPO / "VERSION").read_text().strip()
@@ -44,9 +46,9 @@ def backticked(text):
 
 
 def sentence(text, start):
-    """From `start` (line breaks in the README may fall anywhere) to the next period that ends a sentence."""
+    """From `start` (line breaks in the text may fall anywhere) to the next period that ends a sentence."""
     found = re.search(r"\s+".join(map(re.escape, start.split())), text)
-    assert found, f"README no longer says {start!r}"
+    assert found, f"the documentation no longer says {start!r}"
     end = re.compile(r"\.(\s|$)").search(text, found.end())
     return text[found.start():end.start() + 1]
 
@@ -63,18 +65,28 @@ def test_version_flag(cli):
     assert run.returncode == 0 and run.stdout.strip() == f"iarap {VERSION}"
 
 
+def documented_defaults(table):
+    """{option: default} from the rows of a Markdown option table that give a default."""
+    return dict(re.findall(r"^\| `(--[a-z-]+)[^`]*` \| `?([^|`]+?)`? \|", table, re.M))
+
+
 def test_deform_option_defaults(cli):
-    """Every row of the README's deform table with a default matches the default --help prints."""
-    table = section(README, "`iarap deform")
-    documented = dict(re.findall(r"^\| `(--[a-z-]+)[^`]*` \| `?([^|`]+?)`? \|", table, re.M))
-    assert {"--method", "--boundary", "--iterations", "--tolerance", "--threads"} <= set(documented)
+    """Every row with a default of docs/cli.md's full deform table and of the README's short one matches the
+    default --help prints; the README's rows are rows of the full table."""
+    full = documented_defaults(section(CLI_DOC, "`iarap deform"))
+    short = documented_defaults(section(README, "Deform a mesh"))
+    required = {"--method", "--boundary", "--iterations", "--tolerance", "--threads"}
+    assert required <= set(full)
+    assert required <= set(short)
+    assert set(short) <= set(full), f"README's deform table has {sorted(set(short) - set(full))}, docs/cli.md not"
     help_text = subprocess.run([cli, "deform", "--help"], capture_output=True, text=True, check=True).stdout
     # CLI11 prints "  --iterations INT:INT in [0 - 1000000]=50": the default follows the last "=".
     shown = dict(re.findall(r"^\s+(--[a-z-]+) .*=(\S+)$", help_text, re.M))
-    for option, default in documented.items():
-        assert option in shown, f"{option} shows no default in --help:\n{help_text}"
-        assert float(default) == float(shown[option]) if re.match(r"[\d.e+-]+$", default) else \
-            default == shown[option], f"{option}: README {default}, --help {shown[option]}"
+    for where, documented in (("docs/cli.md", full), ("README", short)):
+        for option, default in documented.items():
+            assert option in shown, f"{option} shows no default in --help:\n{help_text}"
+            assert float(default) == float(shown[option]) if re.match(r"[\d.e+-]+$", default) else \
+                default == shown[option], f"{option}: {where} {default}, --help {shown[option]}"
 
 
 def test_deform_report_keys(cli, tmp_path):
@@ -82,10 +94,10 @@ def test_deform_report_keys(cli, tmp_path):
         [cli, "deform", REPO / "data" / "bunny.off", "--scenario", REPO / "data" / "bunny_scenario.json",
          "--iterations", "2", "--out", tmp_path / "out.off", "--json", "--quiet"],
         capture_output=True, text=True, check=True).stdout)
-    text = section(README, "`iarap deform")
+    text = section(CLI_DOC, "`iarap deform")
     # repair: only with --repair; bench: a pointer to the bench command.
     top = set(backticked(sentence(text, "The\nreport holds"))) - {"repair", "bench"}
-    assert top == set(report), f"README lists {sorted(top - set(report))} not in the report, " \
+    assert top == set(report), f"docs/cli.md lists {sorted(top - set(report))} not in the report, " \
                                f"misses {sorted(set(report) - top)}"
     nested = set(backticked(sentence(text, "For iARAP, `intrinsic` holds"))) - {"intrinsic"}
     assert nested == set(report["intrinsic"])
@@ -94,10 +106,10 @@ def test_deform_report_keys(cli, tmp_path):
 def test_info_json_keys(cli):
     report = json.loads(subprocess.run([cli, "info", "--json", REPO / "data" / "bunny.off"],
                                        capture_output=True, text=True, check=True).stdout)
-    text = section(README, "`iarap info")
+    text = section(CLI_DOC, "`iarap info")
     nested = set(backticked(sentence(text, "reports, in the JSON under the key `intrinsic`"))) - {"intrinsic"}
     assert nested == set(report["intrinsic"])
-    assert not nested & set(report)  # the README says they are nested, and they are
+    assert not nested & set(report)  # docs/cli.md says they are nested, and they are
 
 
 def python_signature(function):
@@ -166,3 +178,41 @@ def test_http_api_session_json(cli):
 
     assert keys(example) == keys(state)
     assert state["mesh"]["vertices"] == 3485 and state["fixed"] == [12, 40] and state["handle"] == [7]
+
+
+def heading_anchors(text):
+    """The anchors GitHub gives a Markdown file's headings: lower case, punctuation dropped, spaces to
+    hyphens, "-1", "-2" ... on repeats (lines inside ``` blocks are code, not headings)."""
+    anchors, fenced = set(), False
+    for line in text.splitlines():
+        if line.startswith("```"):
+            fenced = not fenced
+        heading = not fenced and re.match(r"#+ (.*)", line)
+        if heading:
+            anchor = re.sub(r"[^\w\- ]", "", heading.group(1).strip().lower()).replace(" ", "-")
+            repeat, unique = 0, anchor
+            while unique in anchors:
+                repeat += 1
+                unique = f"{anchor}-{repeat}"
+            anchors.add(unique)
+    return anchors
+
+
+def test_relative_links_resolve():
+    """Every relative link of the README and of docs/*.md (and docs/*/*.md) names a file that exists, and
+    a #fragment into a Markdown file names one of its headings."""
+    documents = [REPO / "README.md"] + sorted((REPO / "docs").glob("*.md")) + sorted((REPO / "docs").glob("*/*.md"))
+    assert len(documents) >= 8
+    broken = []
+    for document in documents:
+        text = re.sub(r"^```.*?^```", "", document.read_text(), flags=re.S | re.M)  # no links in code blocks
+        for target in re.findall(r"\]\(([^)\s]+)\)", text):
+            if re.match(r"[a-z]+:", target):
+                continue  # https:, mailto:
+            path, _, fragment = target.partition("#")
+            file = (document.parent / path).resolve() if path else document
+            if not file.exists():
+                broken.append(f"{document.relative_to(REPO)}: {target} (no such file)")
+            elif fragment and file.suffix == ".md" and fragment not in heading_anchors(file.read_text()):
+                broken.append(f"{document.relative_to(REPO)}: {target} (no such heading)")
+    assert not broken, "\n".join(broken)
