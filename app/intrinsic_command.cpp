@@ -6,6 +6,7 @@
 #include "write_text_file.h"
 
 #include "iarap/core/errors.h"
+#include "iarap/core/stopwatch.h"
 #include "iarap/core/threads.h"
 #include "iarap/intrinsic/intrinsic_delaunay.h"
 #include "iarap/io/read_mesh.h"
@@ -15,7 +16,6 @@
 #include "iarap/solver/sparse_cholesky.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -74,10 +74,6 @@ double segments_mib(const Segments& s) {
   return bytes / (1 << 20);
 }
 
-double ms_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
-
 // OBJ with the input vertices first (file order), then one vertex per edge crossing, and one `l` record
 // per intrinsic edge over its traced points.
 std::string traced_edges_obj(const Eigen::MatrixXd& V, const IntrinsicDelaunay& idt) {
@@ -131,7 +127,7 @@ double cotan_factorization_ms(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F
     }
   Eigen::SparseMatrix<double> L_ff(n_free, n_free);
   L_ff.setFromTriplets(triplets.begin(), triplets.end());
-  const auto t0 = std::chrono::steady_clock::now();
+  const auto t0 = Clock::now();
   SparseCholesky cholesky(L_ff);
   return ms_since(t0);
 }
@@ -151,7 +147,7 @@ void run(const IntrinsicArgs& args) {
   double total_ms = 0.0;
   double rss_mib = 0.0;
   for (int round = 0; round < args.rounds; ++round) {
-    const auto t0 = std::chrono::steady_clock::now();
+    const auto t0 = Clock::now();
     IntrinsicDelaunay next = intrinsic_delaunay(mesh.V, mesh.F, options);
     const double ms = ms_since(t0);
     if (round == 0) rss_mib = peak_rss_mib();

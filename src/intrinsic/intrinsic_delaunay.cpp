@@ -1,4 +1,5 @@
 #include "iarap/intrinsic/intrinsic_delaunay.h"
+#include "iarap/core/stopwatch.h"
 
 #include "intrinsic_phases.h"
 #include "segments.h"
@@ -10,16 +11,11 @@
 
 #include "../core/parallel_chunks.h"
 
-#include <chrono>
 #include <vector>
 
 namespace iarap {
 
 namespace {
-
-double ms_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-}
 
 // inserted_ends: the input boundary edge (tail, head) of each inserted point, 2 per point. Without
 // `with_faces`, F, FE, corner_angle and face_area stay empty.
@@ -80,7 +76,7 @@ namespace detail {
 
 FlippedTriangulation flip_phase(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
                                 const IntrinsicOptions& options, SignpostInput* input) {
-  const auto t0 = std::chrono::steady_clock::now();
+  const auto t0 = Clock::now();
   FlippedTriangulation out;
   out.tri = build_signpost_triangulation(V, F, options.mollify, options.mollify_epsilon, out.fans,
                                          options.refine_boundary, input);
@@ -110,7 +106,7 @@ TracedTriangulation trace_phase(FlippedTriangulation&& flipped, bool with_faces)
   // The tracer needs little of the flipped triangulation: its flipped edges (a compact list), and the
   // endpoints of the others. The input copy and its fans are released right after tracing, before the
   // triangulation is exported, so that the three are never in memory with the export.
-  auto t0 = std::chrono::steady_clock::now();
+  auto t0 = Clock::now();
   {
     const EdgesToTrace flipped_edges_list = flipped_edges(tri);
     std::vector<double>().swap(tri.phi);
@@ -125,7 +121,7 @@ TracedTriangulation trace_phase(FlippedTriangulation&& flipped, bool with_faces)
   flipped.fans = {};
   result.trace_ms = ms_since(t0);
 
-  t0 = std::chrono::steady_clock::now();
+  t0 = Clock::now();
   result.triangulation = export_triangulation(tri, inserted_ends, with_faces);
   tri = {};
   IntrinsicTriangulation& out = result.triangulation;
@@ -148,11 +144,11 @@ IntrinsicDelaunay intrinsic_delaunay(const Eigen::MatrixXd& V, const Eigen::Matr
   result.flip_ms = traced.flip_ms;
   result.trace_ms = traced.trace_ms;
   result.triangulation = std::move(traced.triangulation);
-  auto t0 = std::chrono::steady_clock::now();
+  auto t0 = Clock::now();
   result.segments = detail::build_segments(V, result.triangulation, traced.traces, options.assemble_B);
   result.segment_ms = ms_since(t0);
   if (options.keep_traces) {
-    t0 = std::chrono::steady_clock::now();
+    t0 = Clock::now();
     result.traces = detail::expand_traces(traced.traces, result.triangulation.E);
     result.trace_ms += ms_since(t0);
   }

@@ -1,6 +1,6 @@
 #include "lbfgs_direction.h"
 
-#include "local_global_problem.h"
+#include "inner.h"
 
 #include <algorithm>
 #include <cmath>
@@ -38,22 +38,21 @@ bool LbfgsDirection::push(const Eigen::MatrixXd& x_next, const Eigen::MatrixXd& 
   return true;
 }
 
-Eigen::MatrixXd LbfgsDirection::direction(const Eigen::MatrixXd& g, const LocalGlobalProblem& problem) const {
-  Eigen::MatrixXd q = g;
-  std::vector<double> alpha(static_cast<size_t>(pairs_));
-  for (int a = 0; a < pairs_; ++a) { // newest to oldest
+void LbfgsDirection::newest_to_oldest(Eigen::MatrixXd& q, std::vector<double>& alpha) const {
+  for (int a = 0; a < pairs_; ++a) {
     const auto slot = static_cast<size_t>((newest_ - a + window_) % window_);
     alpha[static_cast<size_t>(a)] = rho_[slot] * inner(s_[slot], q);
     q -= alpha[static_cast<size_t>(a)] * y_[slot];
   }
-  Eigen::MatrixXd r = problem.solve(q);   // H_0 q
-  for (int a = pairs_ - 1; a >= 0; --a) { // oldest to newest
+}
+
+void LbfgsDirection::oldest_to_newest(const std::vector<double>& alpha, Eigen::MatrixXd& r) const {
+  for (int a = pairs_ - 1; a >= 0; --a) {
     const auto slot = static_cast<size_t>((newest_ - a + window_) % window_);
     const double beta = rho_[slot] * inner(y_[slot], r);
     r += (alpha[static_cast<size_t>(a)] - beta) * s_[slot];
   }
   r *= -1.0; // in place: no temporary
-  return r;
 }
 
 } // namespace iarap::detail

@@ -10,8 +10,6 @@
 
 namespace iarap::detail {
 
-class LocalGlobalProblem;
-
 class LbfgsDirection {
 public:
   explicit LbfgsDirection(int window);
@@ -22,13 +20,26 @@ public:
   bool push(const Eigen::MatrixXd& x_next, const Eigen::MatrixXd& x, const Eigen::MatrixXd& g_next,
             const Eigen::MatrixXd& g);
 
-  // d = -H g with H_0 r = problem.solve(r).
-  Eigen::MatrixXd direction(const Eigen::MatrixXd& g, const LocalGlobalProblem& problem) const;
+  // d = -H g, with H_0 r = H0(r) (arap_solve: the back-substitution with the factor of L_ff).
+  template <class InitialInverseHessian>
+  Eigen::MatrixXd direction(const Eigen::MatrixXd& g, const InitialInverseHessian& H0) const {
+    Eigen::MatrixXd q = g;
+    std::vector<double> alpha(static_cast<size_t>(pairs_));
+    newest_to_oldest(q, alpha);
+    Eigen::MatrixXd r = H0(q);
+    oldest_to_newest(alpha, r);
+    return r;
+  }
 
   void reset() { pairs_ = 0; }
   int pairs() const { return pairs_; }
 
 private:
+  // The two loops of the recursion: q -= alpha_a y_a (newest first), then r += (alpha_a - beta_a) s_a and
+  // r = -r (oldest first).
+  void newest_to_oldest(Eigen::MatrixXd& q, std::vector<double>& alpha) const;
+  void oldest_to_newest(const std::vector<double>& alpha, Eigen::MatrixXd& r) const;
+
   int window_;
   int pairs_ = 0;   // held, <= window_
   int newest_ = -1; // slot of the newest pair (circular)

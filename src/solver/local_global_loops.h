@@ -1,11 +1,10 @@
-// The three iterations behind arap_solve on a LocalGlobalProblem: plain local/global, Anderson-accelerated
-// and L-BFGS (see ArapAccelerator). Internal to the solver.
+// The loop behind arap_solve: the initial local step, then the optimizer ArapSolveOptions::accelerator
+// names (plain, Anderson, L-BFGS or Newton, one file each) on a LocalGlobalProblem. Internal to the solver.
 #pragma once
-#include "iarap/solver/arap.h"
+#include "iarap/core/stopwatch.h"
+#include "iarap/solver/arap_types.h"
 
 #include "local_global_problem.h"
-
-#include <chrono>
 
 namespace iarap::detail {
 
@@ -13,6 +12,6 @@ namespace iarap::detail {
 // start: when arap_solve began (report.elapsed_ms counts from it). Throws SolverError naming the
 // iteration and the factorization when an accepted iterate has a non-finite energy.
 ArapReport run_local_global(LocalGlobalProblem& problem, const ArapSolveOptions& options,
-                            FactorizationKind factorization, std::chrono::steady_clock::time_point start);
+                            FactorizationKind factorization, Clock::time_point start);
 
 } // namespace iarap::detail

@@ -4,7 +4,9 @@
 // step) and the gradient g(x) = L_ff x - B(x) = L_ff (x - G(x)) (Eq. 14 at the free rows, by the envelope
 // theorem). Internal to the solver; the public contract is arap_solve's.
 #pragma once
-#include "iarap/solver/arap.h"
+#include "iarap/solver/arap_types.h"
+
+#include "inner.h"
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
@@ -77,10 +79,5 @@ private:
   ArapElements::ValueRows v_rows_; // a direction v on all vertices, 0 at constrained ones
   mutable int solves_ = 0;
 };
-
-// sum_ij a_ij b_ij: the inner product of #free x 3 position-like matrices.
-inline double inner(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
-  return a.cwiseProduct(b).sum();
-}
 
 } // namespace iarap::detail

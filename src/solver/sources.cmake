@@ -1,6 +1,12 @@
-# Sources of the solver module, relative to src/.
+# Sources of the solver module, relative to src/, by layer (docs/architecture.md): the pieces of the
+# problem, the LocalGlobalProblem oracle, stopping and line search, the optimizers, the facade.
 list(APPEND IARAP_SOURCES
-  solver/polar_rotation.cpp solver/sparse_cholesky.cpp solver/arap_elements.cpp
-  solver/fit_rotations.cpp solver/arap_rhs.cpp solver/system_pattern.cpp solver/arap.cpp
-  solver/local_global_problem.cpp solver/local_global_loops.cpp solver/anderson_acceleration.cpp
-  solver/lbfgs_direction.cpp solver/visit_order.cpp solver/supernodal_solve.cpp)
+  solver/polar_rotation.cpp solver/sparse_cholesky.cpp solver/supernodal_solve.cpp solver/visit_order.cpp
+  solver/arap_elements.cpp solver/fit_rotations.cpp solver/arap_rhs.cpp solver/system_pattern.cpp
+  solver/constraint_layout.cpp
+  solver/local_global_problem.cpp
+  solver/stopping.cpp solver/line_search.cpp
+  solver/plain_iteration.cpp solver/anderson_acceleration.cpp solver/anderson_iteration.cpp
+  solver/lbfgs_direction.cpp solver/lbfgs_iteration.cpp solver/newton_trust_region.cpp
+  solver/local_global_loops.cpp
+  solver/arap_names.cpp solver/arap.cpp)

@@ -6,97 +6,15 @@
 //   Eigen::MatrixXd U = V;                                  // initial guess
 //   ArapReport report = arap_solve(data, targets, U);       // U now holds the deformation
 // New targets for the same fixed set reuse the factorization; arap_set_fixed refactorizes.
+// The types (ArapMethod, ArapOptions, ArapData, ArapSolveOptions, ArapReport, ...) are in arap_types.h.
 #pragma once
-#include "iarap/intrinsic/intrinsic_delaunay.h"
-#include "iarap/solver/arap_elements.h"
-#include "iarap/solver/sparse_cholesky.h"
+#include "iarap/solver/arap_types.h"
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
-#include <functional>
-#include <string>
 #include <vector>
 
 namespace iarap {
-
-enum class ArapMethod {
-  Arap,       // original ARAP (Sorkine & Alexa 2007), cotan weights, negative ones kept (Eq. 1)
-  SpokesRims, // spokes-and-rims (Chao et al. 2010), per-triangle cotangents (Eq. 2)
-  Iarap,      // intrinsic ARAP: segments of the traced intrinsic Delaunay edges (Eq. 9, 11)
-};
-
-// "arap" | "spokes-rims" | "iarap"; anything else throws InputError naming the value and the choices.
-ArapMethod parse_arap_method(const std::string& name);
-// The inverse of parse_arap_method.
-std::string arap_method_name(ArapMethod method);
-
-// The intrinsic options ARAP uses by default: boundary refinement on (issue 8). On meshes with boundary
-// the paper's iARAP keeps a negative weight on every boundary edge with an obtuse opposite angle and drifts
-// at rest (measured: lion.off 4.1% of the bbox diagonal, beetle.off 0.39% after 50 iterations); refined,
-// both stay within 1e-11 at an iteration cost within 10%. Closed meshes are unaffected (nothing is
-// inserted). Set intrinsic.refine_boundary = false for the paper's exact discretization.
-inline IntrinsicOptions boundary_robust_intrinsic_options() {
-  IntrinsicOptions options;
-  options.refine_boundary = true;
-  return options;
-}
-
-struct ArapOptions {
-  ArapMethod method = ArapMethod::Iarap;
-  IntrinsicOptions intrinsic = boundary_robust_intrinsic_options(); // used by ArapMethod::Iarap only
-  // A connected component without a constrained vertex makes L_ff singular. false: SolverError naming
-  // it; true: its first (smallest-index) vertex is pinned where the initial guess of arap_solve puts it.
-  bool pin_unconstrained_components = false;
-};
-
-// Wall-clock parts of arap_precompute; they add up to its duration.
-struct ArapPrecomputeTimings {
-  double intrinsic_ms = 0; // intrinsic Delaunay flips, tracing and segments (iARAP only)
-  double assembly_ms = 0;  // elements (with the layout the iterations stream) and L
-  // Components, constraint check, L_ff / L_fc extraction and the numeric factorization, plus any wait for
-  // the pattern of L and the symbolic analysis, which run on their own thread beside the element build when
-  // there is more than one thread (and are part of factor_ms with one thread). For iARAP, whose L is twice
-  // the cotan Laplacian of the input, the numeric factorization runs beside the intrinsic build as well;
-  // factor_ms is what of it that build did not hide.
-  double factor_ms = 0;
-  // The symbolic analysis alone (CHOLMOD ordering), wherever it ran.
-  double analyze_ms = 0;
-};
-
-// What the intrinsic triangulation looked like (iARAP only; zeros otherwise).
-struct ArapIntrinsicSummary {
-  long flips = 0;
-  int non_delaunay_before = 0;
-  int non_delaunay_after = 0;
-  double mollify_delta = 0.0;
-  Eigen::Index intrinsic_edges = 0;
-  Eigen::Index segments = 0;
-  int obtuse_boundary_before = 0; // boundary edges with an obtuse opposite angle (negative weight)
-  int obtuse_boundary_after = 0;  // ... left after refine_boundary
-  Eigen::Index inserted_points = 0;
-};
-
-// Everything arap_solve needs, owned by value (copyable: a copy refactorizes; movable: cheap).
-// Fields are public for inspection; change them only through the functions below.
-struct ArapData {
-  ArapMethod method = ArapMethod::Iarap;
-  bool pin_unconstrained_components = false;
-  Eigen::MatrixXd V;             // #V x 3 rest positions
-  Eigen::MatrixXi F;             // #F x 3 faces
-  ArapElements elements;         // the variant's elements (arap_elements.h)
-  Eigen::SparseMatrix<double> L; // #V x #V system matrix, sum_e |cells(e)| w_e b_e b_e^T
-  Eigen::VectorXi component;     // #V connected component of each vertex
-  int component_count = 0;
-  Eigen::VectorXi fixed;            // #fixed user-constrained vertices, in the order of the targets rows
-  Eigen::VectorXi pinned;           // vertices pinned by pin_unconstrained_components (empty otherwise)
-  Eigen::VectorXi free;             // #free the unconstrained vertices, increasing
-  Eigen::VectorXi free_slot;        // #V position of v in free, or -1 for constrained vertices
-  Eigen::SparseMatrix<double> L_fc; // #free x (#fixed + #pinned): coupling to the constrained vertices
-  SparseCholesky solver;            // factorization of L_ff (#free x #free)
-  std::vector<Eigen::Matrix3d> R;   // one per cell (arap_rotations) for the last iterate of arap_solve
-  ArapPrecomputeTimings timings;
-  ArapIntrinsicSummary intrinsic;
-};
 
 // Builds the elements of options.method on the rest mesh (V #V x 3, F #F x 3, a manifold triangle mesh),
 // assembles L and factorizes L_ff for the constrained vertices `fixed` (#fixed, 0-based).
@@ -111,75 +29,6 @@ ArapData arap_precompute(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, con
 // without constrained vertex (naming the component id, its vertex count and one vertex) unless
 // pin_unconstrained_components. On a throw, data keeps its previous constrained set.
 void arap_set_fixed(ArapData& data, const Eigen::VectorXi& fixed);
-
-// How arap_solve speeds up the local/global iteration. Every accelerator reuses the one factorization of
-// L_ff and keeps the energy monotone (see ArapSolveOptions::accelerator).
-enum class ArapAccelerator {
-  None,     // plain local/global block descent (Sec. 4.2): U_{k+1,f} = L_ff^{-1} (rhs_f(R*(U_k)) - L_fc U_c)
-  Anderson, // Anderson acceleration of that fixed-point map (Peng et al. 2018) with their energy safeguard
-  Lbfgs,    // L-BFGS on the rotation-minimized energy, initial inverse Hessian L_ff^{-1} (Liu et al. 2017)
-  Newton,   // truncated Newton with the exact Hessian of that energy: trust-region CG preconditioned by L_ff
-};
-
-// "none" | "anderson" | "lbfgs" | "newton"; anything else throws InputError naming the value and the choices.
-ArapAccelerator parse_arap_accelerator(const std::string& name);
-// The inverse of parse_arap_accelerator.
-std::string arap_accelerator_name(ArapAccelerator accelerator);
-
-struct ArapReport;
-
-// Called after each iteration with the report so far; returning false stops the solve (converged stays
-// false). For progress display and for stopping on an outside criterion (the bench's energy gap).
-using ArapIterationCallback = std::function<bool(const ArapReport&)>;
-
-struct ArapSolveOptions {
-  int max_iterations = 50;
-  // Stop when E_prev - E <= tolerance * |E_prev| (relative energy decrease) or E == 0. A negative
-  // tolerance disables the rule: exactly max_iterations iterations (benchmarks, stability tests).
-  double tolerance = 1e-6;
-  // Stop when ||g_k|| <= gradient_tolerance * ||g_0||, g the gradient of the energy at the free vertices
-  // (Eq. 14 restricted to them; Frobenius norm) and g_0 its value at the initial guess. Unlike the energy
-  // rule it does not stop on a stall. 0 disables the rule.
-  double gradient_tolerance = 0.0;
-  // The accelerator (see ArapAccelerator). Anderson: an accelerated iterate whose energy is above the last
-  // accepted one is replaced by the plain iterate and the history restarts. L-BFGS: Armijo backtracking on
-  // the rotation-minimized energy; when it fails, the plain step (which never increases the energy while
-  // L_ff is positive definite) and a fresh history. Newton: a trust region; a step that achieves less than
-  // 10% of the predicted decrease is replaced by the plain step. Default Newton, measured with
-  // `iarap bench --converge 1e-6` on the bend60 scene (README "Accelerated solves"): on bunny, beetle and
-  // armadillo it ended at the lowest minimum found for all three energies (these large edits have several),
-  // with over 30x fewer iterations and over 5.5x less time than plain on spokes-rims and iARAP; L-BFGS is up
-  // to 1.7x faster where it ends at the same minimum but ended higher on armadillo iARAP (2.5e-2 of the
-  // diagonal away) and on original ARAP. Each Newton iteration runs up to `window` CG steps (one solve each):
-  // for a bounded cost per iteration (interactive updates, as the viewer does) choose L-BFGS.
-  ArapAccelerator accelerator = ArapAccelerator::Newton;
-  // History length m of the accelerator (Anderson: past residual differences; L-BFGS: (s, y) pairs; Newton:
-  // the CG steps per Newton step). 0 runs the plain iteration, bit for bit as ArapAccelerator::None.
-  int window = 8;
-  ArapIterationCallback on_iteration; // optional
-};
-
-struct ArapReport {
-  int iterations = 0;           // accepted iterates (each one global solve at least)
-  double initial_energy = 0;    // E of the initial guess once the constrained rows are set to the targets
-  std::vector<double> energies; // E(U_k) = min_R energy after each iteration k (size iterations)
-  double local_ms = 0;          // all local steps, including the one that evaluates the last iterate
-  double global_ms = 0;         // all global steps (right-hand side, solve and gradient)
-  bool converged = false;       // a tolerance rule stopped the iteration (false: max_iterations or callback)
-  std::vector<double> local_ms_per_iteration;          // the local step(s) evaluating U_k (size iterations)
-  std::vector<double> global_ms_per_iteration;         // the global step producing U_k (size iterations)
-  ArapAccelerator accelerator = ArapAccelerator::None; // what ran (None also for window 0)
-  double initial_gradient_norm = 0;                    // ||g_0|| at the free vertices
-  std::vector<double> gradient_norms;                  // ||g(U_k)|| at the free vertices (size iterations)
-  // Per iteration: 1 when U_k came from the accelerator (an Anderson combination or an L-BFGS step with
-  // history), 0 when it is the plain local/global iterate (first step, after a rejection, or no accelerator).
-  std::vector<unsigned char> accepted;
-  int rejected = 0;               // accelerated iterates refused by the energy safeguard / line search
-  int solves = 0;                 // back-substitutions with the factor of L_ff: one per plain step, plus
-                                  // L-BFGS's one per direction and Newton's one per conjugate-gradient step
-  double accelerator_ms = 0;      // the accelerator's own work (history, least squares, two-loop recursion)
-  std::vector<double> elapsed_ms; // wall time from the start of arap_solve to the end of iteration k
-};
 
 // Runs local/global iterations. targets: #fixed x 3 positions of data.fixed (same order). U: #V x 3,
 // in: the initial guess (its constrained rows are overwritten by the targets first; warm starts pass the

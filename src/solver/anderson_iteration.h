@@ -1,0 +1,16 @@
+// Anderson-accelerated local/global iteration with the energy safeguard of Peng et al. 2018 (Algorithm 2).
+// Internal to the solver (run_local_global picks it for ArapAccelerator::Anderson).
+#pragma once
+#include "iarap/solver/arap_types.h"
+
+#include "local_global_problem.h"
+#include "stopping.h"
+
+namespace iarap::detail {
+
+// Up to options.max_iterations iterations (history options.window) from the problem's current point,
+// whose energy is `energy` and whose right-hand side is assembled.
+void run_anderson(LocalGlobalProblem& problem, const ArapSolveOptions& options, double energy,
+                  ArapReport& report, Progress& progress);
+
+} // namespace iarap::detail

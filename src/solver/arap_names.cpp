@@ -1,0 +1,49 @@
+// The names of the energies and accelerators (arap_types.h) as the CLI, the scenario files, the server
+// and the Python module spell them.
+#include "iarap/core/errors.h"
+#include "iarap/solver/arap_types.h"
+
+namespace iarap {
+
+ArapMethod parse_arap_method(const std::string& name) {
+  if (name == "arap") return ArapMethod::Arap;
+  if (name == "spokes-rims") return ArapMethod::SpokesRims;
+  if (name == "iarap") return ArapMethod::Iarap;
+  throw InputError("unknown ARAP method '" + name + "'; expected arap, spokes-rims or iarap");
+}
+
+std::string arap_method_name(ArapMethod method) {
+  switch (method) {
+  case ArapMethod::Arap:
+    return "arap";
+  case ArapMethod::SpokesRims:
+    return "spokes-rims";
+  case ArapMethod::Iarap:
+    return "iarap";
+  }
+  return "unknown";
+}
+
+ArapAccelerator parse_arap_accelerator(const std::string& name) {
+  if (name == "none") return ArapAccelerator::None;
+  if (name == "anderson") return ArapAccelerator::Anderson;
+  if (name == "lbfgs") return ArapAccelerator::Lbfgs;
+  if (name == "newton") return ArapAccelerator::Newton;
+  throw InputError("unknown ARAP accelerator '" + name + "'; expected anderson, lbfgs, newton or none");
+}
+
+std::string arap_accelerator_name(ArapAccelerator accelerator) {
+  switch (accelerator) {
+  case ArapAccelerator::None:
+    return "none";
+  case ArapAccelerator::Anderson:
+    return "anderson";
+  case ArapAccelerator::Lbfgs:
+    return "lbfgs";
+  case ArapAccelerator::Newton:
+    return "newton";
+  }
+  return "none";
+}
+
+} // namespace iarap

@@ -1,0 +1,38 @@
+// Which rows of the ARAP system are free and where the constrained ones go, and the system split along it
+// (L_ff, L_fc): what arap_precompute and arap_set_fixed share. Internal to the solver.
+#pragma once
+#include "iarap/solver/arap_types.h"
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+
+#include <vector>
+
+namespace iarap::detail {
+
+// Which vertices are free and where the constrained ones go: [fixed; pinned].
+struct ConstraintLayout {
+  std::vector<int> constrained_slot; // #V position in [fixed; pinned], or -1 for a free vertex
+  std::vector<int> constrained;      // the constrained vertices in slot order
+  std::vector<int> pinned;
+  std::vector<int> free;     // increasing
+  Eigen::VectorXi free_slot; // #V position in free, or -1
+};
+
+// The layout for the constrained set `fixed` (#fixed, 0-based) of data's mesh (data.V, data.component).
+// Throws InputError for an empty set, an index out of range or a duplicate (naming the position and the
+// index), SolverError for a connected component without constrained vertex (naming the component, its size
+// and one vertex) unless data.pin_unconstrained_components, which pins its first vertex instead.
+ConstraintLayout constraint_layout(const ArapData& data, const Eigen::VectorXi& fixed);
+
+// L (#V x #V, symmetric, compressed) split into L_ff (free x free) and L_fc (free x constrained) directly
+// in compressed form. Matrices with one pattern give L_ff with one pattern, which is what lets the
+// symbolic factorization run on the pattern ahead of the values.
+void split_system(const Eigen::SparseMatrix<double>& L, const ConstraintLayout& layout,
+                  Eigen::SparseMatrix<double>& L_ff, Eigen::SparseMatrix<double>* L_fc);
+
+// Moves the factorization of L_ff, L_fc and the layout's vertex sets into data.
+void commit_layout(ArapData& data, const Eigen::VectorXi& fixed, ConstraintLayout& layout,
+                   SparseCholesky& solver, Eigen::SparseMatrix<double>& L_fc);
+
+} // namespace iarap::detail

@@ -1,0 +1,49 @@
+#include "stopping.h"
+
+#include "iarap/core/errors.h"
+
+#include <cmath>
+#include <string>
+
+namespace iarap::detail {
+
+bool Progress::begin(double energy, double gradient_norm, double local_ms, double global_ms) {
+  report_.initial_energy = energy;
+  report_.initial_gradient_norm = gradient_norm;
+  report_.local_ms += local_ms;
+  report_.global_ms += global_ms;
+  if (!std::isfinite(energy)) throw SolverError("ARAP: the energy of the initial guess is not finite");
+  previous_ = energy;
+  report_.converged = options_.gradient_tolerance > 0 && gradient_norm == 0.0;
+  return report_.converged;
+}
+
+bool Progress::record(double energy, double gradient_norm, bool accelerated, double local_ms,
+                      double global_ms) {
+  report_.iterations += 1;
+  report_.energies.push_back(energy);
+  report_.gradient_norms.push_back(gradient_norm);
+  report_.accepted.push_back(accelerated ? 1 : 0);
+  report_.local_ms += local_ms;
+  report_.global_ms += global_ms;
+  report_.local_ms_per_iteration.push_back(local_ms);
+  report_.global_ms_per_iteration.push_back(global_ms);
+  report_.elapsed_ms.push_back(ms_since(start_));
+  if (!std::isfinite(energy))
+    throw SolverError("ARAP: the energy became non-finite at iteration " +
+                      std::to_string(report_.iterations) + " (factorization " +
+                      factorization_name(factorization_) + ")");
+  const double previous = previous_;
+  previous_ = energy;
+  const bool energy_rule = options_.tolerance >= 0 &&
+                           (energy == 0.0 || previous - energy <= options_.tolerance * std::abs(previous));
+  const bool gradient_rule = options_.gradient_tolerance > 0 &&
+                             gradient_norm <= options_.gradient_tolerance * report_.initial_gradient_norm;
+  if (energy_rule || gradient_rule) {
+    report_.converged = true;
+    return true;
+  }
+  return options_.on_iteration && !options_.on_iteration(report_);
+}
+
+} // namespace iarap::detail
