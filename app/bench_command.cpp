@@ -6,6 +6,7 @@
 #include "write_text_file.h"
 
 #include "iarap/core/errors.h"
+#include "iarap/core/stopwatch.h"
 #include "iarap/core/threads.h"
 #include "iarap/io/check_output_path.h"
 #include "iarap/io/read_mesh.h"
@@ -13,12 +14,12 @@
 #include "iarap/mesh/validate.h"
 #include "iarap/scene/scenario.h"
 #include "iarap/solver/arap.h"
-#include "iarap/solver/fit_rotations.h"
+
+#include "solver/streamed_fit_rotations.h" // the element pass the iterations stream
 
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
@@ -57,16 +58,13 @@ double median_after(std::vector<double> values, std::size_t first) {
   return 0.5 * (*middle + *std::max_element(values.begin(), middle));
 }
 
-double elapsed_ms(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-}
-
 // The floor an iteration is measured against (issue 18), timed on the precomputed data: the median of
 // `repeats` runs of
 //  - one CHOLMOD solve of the three right-hand sides with the same factor (solve_floor_ms: cholmod_solve2,
 //    the issue's reference), beside one solve as the iterations run it (solve_ms: the project's own
 //    supernodal solve over the same factor, src/solver/supernodal_solve.h), and
-//  - one streaming pass over the cell-ordered elements (ArapElements::cell_entry) that reads U and writes
+//  - one streaming pass over the cell-ordered elements (the streamed layout, src/solver/streamed_layout.h)
+//  that reads U and writes
 //    each cell's 3x3 covariance, nothing else (element_pass_ms): the memory traffic of the local step without
 //    its rotation fits, energies and the right-hand side.
 struct IterationFloor {
@@ -78,25 +76,25 @@ struct IterationFloor {
 IterationFloor iteration_floor(ArapData& data, const Eigen::MatrixXd& U, int repeats) {
   const ArapElements& el = data.elements;
   ArapElements::ValueRows U_rows;
-  visit_rows(el, U, U_rows); // in the order the iterations keep them
+  detail::visit_rows(el, U, U_rows); // in the order the iterations keep them
   std::vector<Eigen::Matrix3d> S(static_cast<size_t>(el.num_cells));
   std::vector<double> pass_ms, cholmod_ms, solve_ms;
   for (int r = 0; r < repeats; ++r) {
-    auto start = std::chrono::steady_clock::now();
-    cell_covariances(el, U_rows, S);
-    pass_ms.push_back(elapsed_ms(start));
+    auto start = Clock::now();
+    detail::cell_covariances(el, U_rows, S);
+    pass_ms.push_back(ms_since(start));
   }
   Eigen::MatrixXd B(data.free.size(), 3), X;
   for (Eigen::Index i = 0; i < data.free.size(); ++i) B.row(i) = U.row(data.free(i));
   data.solver.solve(B, X); // the workspaces as the iterations have them
   data.solver.solve_with_cholmod(B, X);
   for (int r = 0; r < repeats; ++r) { // alternated, so that a burst of other load hits both alike
-    auto start = std::chrono::steady_clock::now();
+    auto start = Clock::now();
     data.solver.solve_with_cholmod(B, X);
-    cholmod_ms.push_back(elapsed_ms(start));
-    start = std::chrono::steady_clock::now();
+    cholmod_ms.push_back(ms_since(start));
+    start = Clock::now();
     data.solver.solve(B, X);
-    solve_ms.push_back(elapsed_ms(start));
+    solve_ms.push_back(ms_since(start));
   }
   return {median_after(cholmod_ms, 0), median_after(solve_ms, 0), median_after(pass_ms, 0)};
 }
@@ -111,9 +109,9 @@ nlohmann::json bench_one(const std::string& path, const Eigen::MatrixXd& V, cons
   // Real-world meshes (e.g. ogre.obj, 44 components) have pieces the fixed scene does not reach; pinning
   // one vertex of each keeps them benchmarkable instead of singular.
   options.pin_unconstrained_components = true;
-  const auto start = std::chrono::steady_clock::now();
+  const auto start = Clock::now();
   ArapData data = arap_precompute(V, F, constraints.fixed, options);
-  const double precompute_ms = elapsed_ms(start);
+  const double precompute_ms = ms_since(start);
   Eigen::MatrixXd U = V;
   ArapSolveOptions solve_options;
   solve_options.max_iterations = iterations + 1;     // the first is the warm-up

@@ -5,6 +5,7 @@
 #include "write_text_file.h"
 
 #include "iarap/core/errors.h"
+#include "iarap/core/stopwatch.h"
 #include "iarap/core/threads.h"
 #include "iarap/io/check_output_path.h"
 #include "iarap/io/read_mesh.h"
@@ -20,7 +21,6 @@
 
 #include <nlohmann/json.hpp>
 
-#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <iostream>
@@ -51,10 +51,6 @@ const CLI::Validator finite_non_negative(
       return {};
     },
     "NUMBER >= 0");
-
-double elapsed_ms(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-}
 
 // True when a and b name the same file (following links), or would once written.
 bool same_file(const std::string& a, const std::string& b) {
@@ -147,7 +143,7 @@ void run_deform(const DeformArguments& args) {
   // Before the solve, which can take seconds: a bad output path fails now.
   check_mesh_output_path(args.out);
   if (!args.report.empty()) check_output_path(args.report);
-  const auto total_start = std::chrono::steady_clock::now();
+  const auto total_start = Clock::now();
   nlohmann::json j;
   j["input"] = args.mesh;
   MeshData mesh;
@@ -180,7 +176,7 @@ void run_deform(const DeformArguments& args) {
   const Eigen::MatrixXd V = mesh.V / s;
   const Eigen::MatrixXd targets = constraints.targets / s;
   const ErrorContext context{args.mesh, args.repair};
-  const auto precompute_start = std::chrono::steady_clock::now();
+  const auto precompute_start = Clock::now();
   std::optional<ArapData> data;
   try {
     data.emplace(arap_precompute(V, mesh.F, constraints.fixed, options));
@@ -189,7 +185,7 @@ void run_deform(const DeformArguments& args) {
   } catch (const TopologyError& e) {
     throw TopologyError(explain_solver_error(e.what(), context));
   }
-  const double precompute_ms = elapsed_ms(precompute_start);
+  const double precompute_ms = ms_since(precompute_start);
 
   Eigen::MatrixXd U = V;
   ArapSolveOptions solve_options;
@@ -260,7 +256,7 @@ void run_deform(const DeformArguments& args) {
   j["max_displacement"] = max_displacement;
   j["bbox_diagonal"] = check.bbox_diagonal;
   j["output"] = args.out;
-  j["total_ms"] = elapsed_ms(total_start);
+  j["total_ms"] = ms_since(total_start);
   if (options.method == ArapMethod::Iarap) {
     j["intrinsic"] = {{"flips", arap.intrinsic.flips},
                       {"non_delaunay_before", arap.intrinsic.non_delaunay_before},

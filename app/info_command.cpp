@@ -4,12 +4,12 @@
 #include "mesh_report_json.h"
 
 #include "iarap/core/errors.h"
+#include "iarap/core/stopwatch.h"
 #include "iarap/intrinsic/intrinsic_delaunay.h"
 #include "iarap/io/read_mesh.h"
 #include "iarap/mesh/normalize_scale.h"
 #include "iarap/mesh/validate.h"
 
-#include <chrono>
 #include <iostream>
 
 namespace iarap::cli {
@@ -94,16 +94,16 @@ void run_info(const InfoArguments& args) {
     ok = j["usable"].get<bool>();
     if (ok && !args.no_intrinsic) {
       try {
-        const auto start = std::chrono::steady_clock::now();
+        const auto start = Clock::now();
         IntrinsicOptions options;
         options.keep_traces = false; // the summary reads the segments
         // On the mesh divided by a power of two (exact), as `deform` does: coordinates of 1e+-80 and beyond
         // would overflow or underflow its squared lengths.
         const IntrinsicDelaunay intrinsic =
             intrinsic_delaunay(mesh.V / normalizing_scale(mesh.V), mesh.F, options);
-        const std::chrono::duration<double, std::milli> elapsed = std::chrono::steady_clock::now() - start;
+        const double elapsed_ms = ms_since(start);
         j["intrinsic"] = intrinsic_summary_json(intrinsic);
-        j["intrinsic"]["time_ms"] = elapsed.count();
+        j["intrinsic"]["time_ms"] = elapsed_ms;
       } catch (const Error& e) {
         j["intrinsic"] = {{"error", e.what()}};
         ok = false;

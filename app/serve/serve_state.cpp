@@ -3,19 +3,15 @@
 #include "http_error.h"
 
 #include "iarap/core/errors.h"
+#include "iarap/core/stopwatch.h"
 #include "iarap/mesh/validate.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <unordered_map>
 
 namespace iarap::serve {
 namespace {
-
-double elapsed_ms(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-}
 
 std::vector<float> to_float_rows(const Eigen::MatrixXd& X) {
   std::vector<float> out(static_cast<std::size_t>(X.rows() * X.cols()));
@@ -271,24 +267,24 @@ SolveResult ServeState::solve(const SolveRequest& request) {
   const Eigen::MatrixXd targets = targets_for(state, request);
 
   SolveResult result;
-  const auto precompute_start = std::chrono::steady_clock::now();
+  const auto precompute_start = Clock::now();
   if (!state.data) {
     ArapOptions options;
     options.method = request.method;
     // Uploaded meshes may have pieces the user did not select; pin them rather than refuse to solve.
     options.pin_unconstrained_components = true;
     state.data = arap_precompute(mesh_->V, mesh_->F, constrained_, options);
-    result.precompute_ms = elapsed_ms(precompute_start);
+    result.precompute_ms = ms_since(precompute_start);
   } else if (state.data->fixed.size() != constrained_.size() || state.data->fixed != constrained_) {
     arap_set_fixed(*state.data, constrained_); // keeps the previous set on a throw
-    result.precompute_ms = elapsed_ms(precompute_start);
+    result.precompute_ms = ms_since(precompute_start);
   }
 
   Eigen::MatrixXd U = state.U; // commit only a successful solve
-  const auto solve_start = std::chrono::steady_clock::now();
+  const auto solve_start = Clock::now();
   result.report = solve_with_progress(*state.data, targets, U, request, progress_);
   result.cancelled = !result.report.converged && result.report.iterations < request.iterations;
-  result.solve_ms = elapsed_ms(solve_start);
+  result.solve_ms = ms_since(solve_start);
   result.pinned = static_cast<int>(state.data->pinned.size());
   result.positions = to_float_rows(U);
   if (request.cell_energy) {

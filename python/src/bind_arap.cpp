@@ -3,9 +3,9 @@
 #include "bindings.h"
 #include "numpy_arrays.h"
 
+#include "iarap/core/stopwatch.h"
 #include "iarap/solver/arap.h"
 
-#include <chrono>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -23,9 +23,9 @@ public:
   // Everything below locks mutex_; callers release the GIL first so that a waiting thread never holds it.
   Eigen::MatrixXd solve(const Eigen::MatrixXd& targets, Eigen::MatrixXd U, const ArapSolveOptions& options) {
     std::lock_guard<std::mutex> lock(mutex_);
-    const auto start = std::chrono::steady_clock::now();
+    const auto start = Clock::now();
     ArapReport report = arap_solve(data_, targets, U, options);
-    solve_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    solve_ms_ = ms_since(start);
     report_ = std::move(report);
     return U;
   }

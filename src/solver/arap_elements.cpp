@@ -6,13 +6,14 @@
 #include "iarap/mesh/edge_topology.h"
 
 #include "../intrinsic/segments.h"
+#include "streamed_layout.h"
 #include "traced_elements.h"
-#include "visit_order.h"
 
 #include <omp.h>
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <string>
 
 namespace iarap {
@@ -98,116 +99,6 @@ int intrinsic_cell_count(const Eigen::MatrixXi& E, int num_vertices) {
       cells = std::max(cells, E(e, k) + 1);
     }
   return cells;
-}
-
-// ArapElements::cell_entry and rhs_term from the per-element arrays and their incidences.
-void fill_streamed_layout(const Eigen::MatrixXd& V, ArapElements& el) {
-  el.visit_order = detail::breadth_first_cell_order(el, V);
-  const std::vector<int>& order = el.visit_order;
-  // The streamed arrays index cells and vertices by their positions in visit_order. They are filled in the
-  // file's cell order, each cell's run written where its position puts it: the element arrays are then read
-  // about as they lie in memory, and the scattering is one block per cell.
-  const std::vector<int> position = detail::visit_positions(el);
-  el.cell_entry_start.assign(static_cast<size_t>(el.num_cells) + 1, 0);
-  for (int p = 0; p < el.num_cells; ++p) {
-    const auto c = static_cast<size_t>(order[static_cast<size_t>(p)]);
-    el.cell_entry_start[static_cast<size_t>(p) + 1] =
-        el.cell_entry_start[static_cast<size_t>(p)] + el.cell_element_start[c + 1] - el.cell_element_start[c];
-  }
-  el.cell_entry.resize(el.cell_element.size());
-#pragma omp parallel for num_threads(loop_thread_count()) schedule(static)
-  for (int c = 0; c < el.num_cells; ++c) {
-    ArapElements::CellEntry* entry =
-        el.cell_entry.data() + el.cell_entry_start[static_cast<size_t>(position[static_cast<size_t>(c)])];
-    for (int k = el.cell_element_start[static_cast<size_t>(c)];
-         k < el.cell_element_start[static_cast<size_t>(c) + 1]; ++k, ++entry) {
-      const int e = el.cell_element[static_cast<size_t>(k)];
-      for (int j = 0; j < 3; ++j) {
-        entry->index[j] = position[static_cast<size_t>(el.b_index(e, j))];
-        entry->value[j] = el.b_value(e, j);
-        entry->s_hat[j] = el.s_hat(e, j);
-      }
-      entry->w = el.w(e);
-    }
-  }
-  // The right-hand side's terms, cell by cell: each cell's entries are read in one forward sweep (they lie
-  // side by side, as the local step reads them) and their contributions grouped by vertex; then every term
-  // goes to its vertex's run. Each thread takes a range of cells and, in every vertex's run, the share its
-  // cells hold there, after the shares of the ranges before it: a vertex's terms are then in cell order
-  // whatever the number of threads. (Gathering them vertex by vertex through a vertex -> slot incidence read
-  // an element's w, b, s_hat and cells from five places at every visit: beetle iARAP, finish_elements
-  // 10.9-11.1 ms, now 7.8-8.1.) where[v]: v's slot among the current cell's terms, -1 none.
-  const int n = el.num_vertices;
-  el.rhs_term_start.assign(static_cast<size_t>(n) + 1, 0);
-  std::vector<std::vector<int>> share; // per thread: its count, then its next slot, in every vertex's run
-  struct CellTerm {
-    double p[3];
-    int vertex;
-  };
-#pragma omp parallel num_threads(loop_thread_count())
-  {
-    const int threads = omp_get_num_threads(), thread = omp_get_thread_num();
-#pragma omp single
-    share.resize(static_cast<size_t>(threads));
-    std::vector<int>& mine = share[static_cast<size_t>(thread)];
-    mine.assign(static_cast<size_t>(n), 0);
-    std::vector<int> where(static_cast<size_t>(n), -1);
-    std::vector<CellTerm> terms;
-    const int first = static_cast<int>(static_cast<long long>(el.num_cells) * thread / threads);
-    const int last = static_cast<int>(static_cast<long long>(el.num_cells) * (thread + 1) / threads);
-    // Calls add(v, w_e (b_e)_v, s_hat_e) for every non-zero of every element of the cell at position p.
-    auto for_each_contribution = [&](int p, const auto& add) {
-      const ArapElements::CellEntry* entry =
-          el.cell_entry.data() + el.cell_entry_start[static_cast<size_t>(p)];
-      const ArapElements::CellEntry* end =
-          el.cell_entry.data() + el.cell_entry_start[static_cast<size_t>(p) + 1];
-      for (; entry != end; ++entry)
-        for (int j = 0; j < 3; ++j)
-          if (entry->value[j] != 0.0) add(entry->index[j], entry->w * entry->value[j], entry->s_hat);
-    };
-    for (int p = first; p < last; ++p) {
-      for_each_contribution(p, [&](int v, double, const double*) {
-        if (where[static_cast<size_t>(v)] < 0) {
-          where[static_cast<size_t>(v)] = 0;
-          terms.push_back({{0.0, 0.0, 0.0}, v});
-          ++mine[static_cast<size_t>(v)];
-        }
-      });
-      for (const CellTerm& t : terms) where[static_cast<size_t>(t.vertex)] = -1;
-      terms.clear();
-    }
-#pragma omp barrier
-#pragma omp single
-    {
-      for (int v = 0; v < n; ++v) {
-        int at = el.rhs_term_start[static_cast<size_t>(v)];
-        for (std::vector<int>& counts : share) {
-          const int count = counts[static_cast<size_t>(v)];
-          counts[static_cast<size_t>(v)] = at;
-          at += count;
-        }
-        el.rhs_term_start[static_cast<size_t>(v) + 1] = at;
-      }
-      el.rhs_term.resize(static_cast<size_t>(el.rhs_term_start[static_cast<size_t>(n)]));
-    }
-    for (int p = first; p < last; ++p) {
-      for_each_contribution(p, [&](int v, double wb, const double* s_hat) {
-        int& at = where[static_cast<size_t>(v)];
-        if (at < 0) {
-          at = static_cast<int>(terms.size());
-          terms.push_back({{0.0, 0.0, 0.0}, v});
-        }
-        for (int d = 0; d < 3; ++d) terms[static_cast<size_t>(at)].p[d] += wb * s_hat[d];
-      });
-      for (const CellTerm& t : terms) {
-        where[static_cast<size_t>(t.vertex)] = -1;
-        ArapElements::RhsTerm& term = el.rhs_term[static_cast<size_t>(mine[static_cast<size_t>(t.vertex)]++)];
-        for (int d = 0; d < 3; ++d) term.p[d] = t.p[d];
-        term.cell = p;
-      }
-      terms.clear();
-    }
-  }
 }
 
 } // namespace
@@ -359,7 +250,7 @@ void finish_elements(const Eigen::MatrixXd& V, ArapElements& el, bool has_rest_v
           for (int c = el.cell_start[e]; c < el.cell_start[e + 1]; ++c) emit(el.cell[c], static_cast<int>(e));
       },
       el.cell_element_start, el.cell_element);
-  fill_streamed_layout(V, el);
+  el.streamed = std::make_shared<const detail::StreamedLayout>(detail::streamed_layout(V, el));
 }
 
 ArapElements traced_iarap_elements(const Eigen::MatrixXd& V, const IntrinsicTriangulation& tri,

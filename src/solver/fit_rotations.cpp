@@ -2,6 +2,8 @@
 
 #include "iarap/solver/polar_rotation.h"
 
+#include "streamed_fit_rotations.h"
+#include "streamed_layout.h"
 #include "visit_order.h"
 
 #include <algorithm>
@@ -10,7 +12,7 @@ namespace iarap {
 
 namespace {
 // s_e = U^T b_e from row-major positions u, summed in slot order exactly like s_hat (zero energy at rest).
-inline void element_vector(const ArapElements::CellEntry& x, const double* u, double (&s)[3]) {
+inline void element_vector(const detail::CellEntry& x, const double* u, double (&s)[3]) {
   for (int d = 0; d < 3; ++d) {
     double v = 0.0;
     for (int k = 0; k < 3; ++k) v += x.value[k] * u[3 * x.index[k] + d];
@@ -20,54 +22,47 @@ inline void element_vector(const ArapElements::CellEntry& x, const double* u, do
 
 // S += w (s s_hat^T), as w (s_i s_hat_j) rather than (w s_i) s_hat_j: at rest S is then bitwise symmetric,
 // which polar_rotation turns into exactly R = I when S is positive definite.
-inline void add_covariance(const ArapElements::CellEntry& x, const double (&s)[3], Eigen::Matrix3d& S) {
+inline void add_covariance(const detail::CellEntry& x, const double (&s)[3], Eigen::Matrix3d& S) {
   for (int j = 0; j < 3; ++j)
     for (int i = 0; i < 3; ++i) S(i, j) += x.w * (s[i] * x.s_hat[j]);
 }
 } // namespace
 
+namespace detail {
+
 void cell_covariances(const ArapElements& el, const ArapElements::ValueRows& U_rows,
                       std::vector<Eigen::Matrix3d>& S) {
+  const StreamedLayout& sl = streamed(el);
   S.resize(static_cast<size_t>(el.num_cells));
   const double* u = U_rows.data();
 #pragma omp parallel for schedule(dynamic, 256)
   for (int c = 0; c < el.num_cells; ++c) {
     Eigen::Matrix3d Sc = Eigen::Matrix3d::Zero();
-    for (int k = el.cell_entry_start[static_cast<size_t>(c)];
-         k < el.cell_entry_start[static_cast<size_t>(c) + 1]; ++k) {
+    for (int k = sl.cell_entry_start[static_cast<size_t>(c)];
+         k < sl.cell_entry_start[static_cast<size_t>(c) + 1]; ++k) {
       double s[3];
-      element_vector(el.cell_entry[static_cast<size_t>(k)], u, s);
-      add_covariance(el.cell_entry[static_cast<size_t>(k)], s, Sc);
+      element_vector(sl.cell_entry[static_cast<size_t>(k)], u, s);
+      add_covariance(sl.cell_entry[static_cast<size_t>(k)], s, Sc);
     }
     S[static_cast<size_t>(c)] = Sc;
   }
 }
 
 void visit_rows(const ArapElements& el, const Eigen::MatrixXd& U, ArapElements::ValueRows& U_rows) {
+  const StreamedLayout& sl = streamed(el);
   const Eigen::Index nv = U.rows();
   U_rows.resize(nv, 3);
 #pragma omp parallel for schedule(static)
   for (Eigen::Index p = 0; p < nv; ++p) {
-    const Eigen::Index v = el.visit_order[static_cast<size_t>(p)];
+    const Eigen::Index v = sl.visit_order[static_cast<size_t>(p)];
     for (int d = 0; d < 3; ++d) U_rows(p, d) = U(v, d);
   }
-}
-
-double fit_rotations(const ArapElements& el, const Eigen::MatrixXd& U, ArapElements::ValueRows& U_rows,
-                     std::vector<Eigen::Matrix3d>& R, Eigen::VectorXd& cell_energy) {
-  const auto n = static_cast<size_t>(el.num_cells);
-  visit_rows(el, U, U_rows);
-  std::vector<Eigen::Matrix3d> R_visit;
-  if (R.size() == n) // a warm start only when there is one rotation per cell
-    detail::rotations_to_visit_order(el, R, R_visit);
-  const double energy = fit_rotations_in_visit_order(el, U_rows, R_visit, cell_energy);
-  detail::rotations_from_visit_order(el, R_visit, R);
-  return energy;
 }
 
 double fit_rotations_in_visit_order(const ArapElements& el, const ArapElements::ValueRows& U_rows,
                                     std::vector<Eigen::Matrix3d>& R, Eigen::VectorXd& cell_energy,
                                     std::vector<Eigen::Matrix3d>* covariances) {
+  const StreamedLayout& sl = streamed(el);
   const int n = el.num_cells;
   // The previous rotations are a start for the fit only when there is one per cell.
   const bool warm = R.size() == static_cast<size_t>(n);
@@ -75,7 +70,7 @@ double fit_rotations_in_visit_order(const ArapElements& el, const ArapElements::
   cell_energy.resize(n);
   if (covariances) covariances->resize(static_cast<size_t>(n));
   const double* u = U_rows.data();
-  const ArapElements::CellEntry* entry = el.cell_entry.data();
+  const CellEntry* entry = sl.cell_entry.data();
 
   // Cells go in blocks of kBlock: their covariances first, then their rotations in one batched call
   // (polar_rotation_near fits four side by side), then their energies.
@@ -91,11 +86,11 @@ double fit_rotations_in_visit_order(const ArapElements& el, const ArapElements::
     Eigen::Matrix3d S[kBlock], Rc[kBlock];
     for (int l = 0; l < count; ++l) {
       const auto c = static_cast<size_t>(first + l); // the cell at position c (ArapElements::visit_order)
-      const int begin = el.cell_entry_start[c];
-      const int end = el.cell_entry_start[c + 1];
+      const int begin = sl.cell_entry_start[c];
+      const int end = sl.cell_entry_start[c + 1];
       S[l].setZero(); // Eq. 15
       for (int k = begin; k < end; ++k) {
-        const ArapElements::CellEntry& x = entry[k];
+        const CellEntry& x = entry[k];
         double s[3];
         element_vector(x, u, s);
         add_covariance(x, s, S[l]);
@@ -111,11 +106,11 @@ double fit_rotations_in_visit_order(const ArapElements& el, const ArapElements::
     // which the stopping rule needs. The cells' entries are still in L1 from the sweep above.
     for (int l = 0; l < count; ++l) {
       const auto c = static_cast<size_t>(first + l);
-      const int begin = el.cell_entry_start[c];
-      const int end = el.cell_entry_start[c + 1];
+      const int begin = sl.cell_entry_start[c];
+      const int end = sl.cell_entry_start[c + 1];
       double energy = 0.0;
       for (int k = begin; k < end; ++k) {
-        const ArapElements::CellEntry& x = entry[k];
+        const CellEntry& x = entry[k];
         double s[3];
         if (k - begin < kKeep)
           for (int d = 0; d < 3; ++d) s[d] = kept[l][k - begin][d];
@@ -131,10 +126,25 @@ double fit_rotations_in_visit_order(const ArapElements& el, const ArapElements::
       }
       R[c] = Rc[l];
       if (covariances) (*covariances)[c] = S[l];
-      cell_energy(el.visit_order[c]) = energy;
+      cell_energy(sl.visit_order[c]) = energy;
     }
   }
   return cell_energy.sum();
+}
+
+} // namespace detail
+
+double fit_rotations(const ArapElements& el, const Eigen::MatrixXd& U, ArapElements::ValueRows& U_rows,
+                     std::vector<Eigen::Matrix3d>& R, Eigen::VectorXd& cell_energy) {
+  const auto n = static_cast<size_t>(el.num_cells);
+  const std::vector<int>& order = detail::streamed(el).visit_order;
+  detail::visit_rows(el, U, U_rows);
+  std::vector<Eigen::Matrix3d> R_visit;
+  if (R.size() == n) // a warm start only when there is one rotation per cell
+    detail::to_visit_order(order, R, R_visit);
+  const double energy = detail::fit_rotations_in_visit_order(el, U_rows, R_visit, cell_energy);
+  detail::from_visit_order(order, R_visit, R);
+  return energy;
 }
 
 } // namespace iarap

@@ -1,9 +1,9 @@
 #include "local_global_problem.h"
 
+#include "streamed_fit_rotations.h"
+#include "streamed_layout.h"
+#include "streamed_rhs.h"
 #include "visit_order.h"
-
-#include "iarap/solver/arap_rhs.h"
-#include "iarap/solver/fit_rotations.h"
 
 #include <Eigen/Eigenvalues>
 
@@ -22,7 +22,7 @@ LocalGlobalProblem::LocalGlobalProblem(ArapData& data, const Eigen::MatrixXd& ta
   for (Eigen::Index k = 0; k < data.fixed.size(); ++k) U.row(data.fixed(k)) = targets.row(k);
   const ArapElements& el = data.elements;
   visit_rows(el, U, U_rows_);
-  const std::vector<int> position = visit_positions(el);
+  const std::vector<int> position = inverse_permutation(streamed(el).visit_order);
   R_spare_.resize(static_cast<size_t>(el.num_cells));
 
   // The free vertices in visit order (x's rows), and for each its row of the symmetric L (= its column).
@@ -56,7 +56,7 @@ LocalGlobalProblem::~LocalGlobalProblem() {
   for (size_t r = 0; r < free_index_.size(); ++r)
     U_.row(data_.free(free_index_[r])) = U_rows_.row(free_position_[r]);
   if (data_.R.size() != R_spare_.size()) return; // no local step ran
-  rotations_from_visit_order(data_.elements, data_.R, R_spare_);
+  from_visit_order(streamed(data_.elements).visit_order, data_.R, R_spare_);
   data_.R.swap(R_spare_);
 }
 
@@ -100,10 +100,11 @@ void LocalGlobalProblem::assemble_rhs() {
   B_.resize(free_count(), 3);
   g_.resize(free_count(), 3);
   const double* u = U_rows_.data();
+  const StreamedLayout& sl = streamed(data_.elements);
 #pragma omp parallel for schedule(static)
   for (int r = 0; r < rows; ++r) {
     double rhs[3], LU[3];
-    arap_rhs_row(data_.elements, data_.R, free_position_[static_cast<size_t>(r)], rhs);
+    arap_rhs_row(sl, data_.R, free_position_[static_cast<size_t>(r)], rhs);
     L_row_times(L_row_start_.data(), L_column_.data(), L_value_.data(), r, u, LU);
     for (int d = 0; d < 3; ++d) {
       B_(r, d) = rhs[d] - Lfc_Uc_(r, d);
@@ -211,10 +212,11 @@ Eigen::MatrixXd LocalGlobalProblem::hessian_product(const Eigen::MatrixXd& v) {
   Eigen::MatrixXd Hv(free_count(), 3);
   const auto rows = static_cast<int>(free_position_.size());
   const double* vr = v_rows_.data();
+  const StreamedLayout& sl = streamed(data_.elements);
 #pragma omp parallel for schedule(static)
   for (int r = 0; r < rows; ++r) {
     double d_rhs[3], Lv[3];
-    arap_rhs_row(data_.elements, dR_, free_position_[static_cast<size_t>(r)], d_rhs);
+    arap_rhs_row(sl, dR_, free_position_[static_cast<size_t>(r)], d_rhs);
     L_row_times(L_row_start_.data(), L_column_.data(), L_value_.data(), r, vr, Lv);
     for (int d = 0; d < 3; ++d) Hv(r, d) = Lv[d] - d_rhs[d];
   }

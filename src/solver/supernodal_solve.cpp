@@ -320,52 +320,68 @@ SupernodalSolve::SupernodalSolve(const SupernodalFactorView& L, int threads, dou
   schedule_ = make_schedule(threads);
 }
 
-SupernodalSchedule SupernodalSolve::make_schedule(int threads) const {
-  const int ns = L_.nsuper;
-  SupernodalSchedule sc;
-  auto all_rows_inside = [&] {
-    sc.inside_rows.resize(ns);
-    for (int s = 0; s < ns; ++s)
-      sc.inside_rows[s] = (L_.pi[s + 1] - L_.pi[s]) - (L_.super[s + 1] - L_.super[s]);
-  };
-  all_rows_inside();
-  auto serial = [&] {
-    sc = SupernodalSchedule{};
-    all_rows_inside();
-    sc.bin_supernodes.assign(1, std::vector<int>(ns));
-    for (int s = 0; s < ns; ++s) sc.bin_supernodes[0][s] = s;
-    return sc;
-  };
-  if (threads <= 1 || ns < 2) return serial();
+namespace {
 
-  // Work of each subtree (children come before their parent).
-  std::vector<double> subtree(work_);
-  std::vector<std::vector<int>> children(ns);
+// Everything on one thread, in supernode order (children before parents).
+SupernodalSchedule serial_schedule(const SupernodalFactorView& L) {
+  SupernodalSchedule sc;
+  sc.inside_rows.resize(L.nsuper);
+  for (int s = 0; s < L.nsuper; ++s)
+    sc.inside_rows[s] = (L.pi[s + 1] - L.pi[s]) - (L.super[s + 1] - L.super[s]);
+  sc.bin_supernodes.assign(1, std::vector<int>(L.nsuper));
+  for (int s = 0; s < L.nsuper; ++s) sc.bin_supernodes[0][s] = s;
+  return sc;
+}
+
+// The elimination tree's subtrees: each supernode's children and the work of its subtree.
+struct Subtrees {
+  std::vector<double> work;
+  std::vector<std::vector<int>> children;
   double total = 0;
-  for (int s = 0; s < ns; ++s) {
-    total += work_[s];
-    if (parent_[s] >= 0) {
-      subtree[parent_[s]] += subtree[s];
-      children[parent_[s]].push_back(s);
+};
+
+Subtrees subtrees(const std::vector<int>& parent, const std::vector<double>& work) {
+  const int ns = static_cast<int>(parent.size());
+  Subtrees t{work, std::vector<std::vector<int>>(ns), 0.0};
+  for (int s = 0; s < ns; ++s) { // children come before their parent
+    t.total += work[s];
+    if (parent[s] >= 0) {
+      t.work[parent[s]] += t.work[s];
+      t.children[parent[s]].push_back(s);
     }
   }
-  // Subtree-to-thread mapping: starting from the roots, move the heaviest subtree's root into the top part
-  // while that lowers the estimate top work + max(heaviest subtree, subtree work / threads); keep the best.
-  using Candidate = std::pair<double, int>; // (subtree work, -supernode): heaviest first, then lowest index
+  return t;
+}
+
+using Candidate = std::pair<double, int>; // (subtree work, -supernode): heaviest first, then lowest index
+
+// The top part (closed under "parent of"), as is_top per supernode with its work and the best estimated
+// time, or nullopt when no split beats one thread. Subtree-to-thread mapping: starting from the roots, move
+// the heaviest subtree's root into the top part while that lowers the estimate top work + max(heaviest
+// subtree, subtree work / threads); keep the best.
+struct TopPart {
+  std::vector<char> is_top;
+  double work = 0, best = 0;
+};
+
+std::optional<TopPart> choose_top_part(const SupernodalFactorView& L, const std::vector<int>& parent,
+                                       const std::vector<double>& work, const Subtrees& tree, int threads,
+                                       double parallel_overhead) {
+  const int ns = L.nsuper;
   std::priority_queue<Candidate> candidates;
   double candidate_work = 0, top_work = 0, top_columns = 0;
   for (int s = 0; s < ns; ++s)
-    if (parent_[s] < 0) {
-      candidates.push({subtree[s], -s});
-      candidate_work += subtree[s];
+    if (parent[s] < 0) {
+      candidates.push({tree.work[s], -s});
+      candidate_work += tree.work[s];
     }
   std::vector<int> moved; // supernodes moved to the top part, in order
-  double best = total;
+  double best = tree.total;
   std::size_t best_moves = 0;
   bool parallel = false;
   while (!candidates.empty() && top_work < best) {
     const double estimate = top_work + std::max(candidates.top().first, candidate_work / threads) +
-                            top_columns * threads + parallel_overhead_;
+                            top_columns * threads + parallel_overhead;
     if (estimate < best && candidates.size() >= 2) {
       best = estimate;
       best_moves = moved.size();
@@ -373,60 +389,85 @@ SupernodalSchedule SupernodalSolve::make_schedule(int threads) const {
     }
     const int s = -candidates.top().second;
     candidates.pop();
-    candidate_work -= subtree[s];
-    top_work += work_[s];
-    top_columns += L_.super[s + 1] - L_.super[s];
+    candidate_work -= tree.work[s];
+    top_work += work[s];
+    top_columns += L.super[s + 1] - L.super[s];
     moved.push_back(s);
-    for (const int child : children[s]) {
-      candidates.push({subtree[child], -child});
-      candidate_work += subtree[child];
+    for (const int child : tree.children[s]) {
+      candidates.push({tree.work[child], -child});
+      candidate_work += tree.work[child];
     }
   }
-  if (!parallel) return serial();
-
-  std::vector<char> is_top(ns, 0);
-  top_work = 0;
+  if (!parallel) return std::nullopt;
+  TopPart top{std::vector<char>(ns, 0), 0.0, best};
   for (std::size_t m = 0; m < best_moves; ++m) {
-    is_top[moved[m]] = 1;
-    top_work += work_[moved[m]];
+    top.is_top[moved[m]] = 1;
+    top.work += work[moved[m]];
   }
-  // More parts than threads, taken by whichever thread is free (dynamic scheduling): the cost model's
-  // errors and a thread the scheduler holds back even out. Subtrees too heavy for one part are split
-  // further while that adds at most 2% of the estimate to the top part.
-  const int max_bins = kBinsPerThread * threads;
+  return top;
+}
+
+// The subtrees below the top part as parts for the threads. More parts than threads, taken by whichever
+// thread is free (dynamic scheduling): the cost model's errors and a thread the scheduler holds back even
+// out. Subtrees too heavy for one part are split further (their roots join the top part) while that adds at
+// most 2% of the estimate to the top part.
+std::priority_queue<Candidate> split_into_parts(const std::vector<int>& parent,
+                                                const std::vector<double>& work, const Subtrees& tree,
+                                                int max_bins, TopPart& top) {
+  const int ns = static_cast<int>(parent.size());
   std::priority_queue<Candidate> parts;
-  candidate_work = 0;
+  double candidate_work = 0;
   for (int s = 0; s < ns; ++s)
-    if (!is_top[s] && (parent_[s] < 0 || is_top[parent_[s]])) {
-      parts.push({subtree[s], -s});
-      candidate_work += subtree[s];
+    if (!top.is_top[s] && (parent[s] < 0 || top.is_top[parent[s]])) {
+      parts.push({tree.work[s], -s});
+      candidate_work += tree.work[s];
     }
-  const double top_limit = top_work + 0.02 * best;
+  const double top_limit = top.work + 0.02 * top.best;
   while (static_cast<int>(parts.size()) < max_bins) {
     const int s = -parts.top().second;
-    if (subtree[s] <= candidate_work / max_bins || top_work + work_[s] > top_limit) break;
+    if (tree.work[s] <= candidate_work / max_bins || top.work + work[s] > top_limit) break;
     parts.pop();
-    is_top[s] = 1;
-    top_work += work_[s];
-    candidate_work -= subtree[s];
-    for (const int child : children[s]) {
-      parts.push({subtree[child], -child});
-      candidate_work += subtree[child];
+    top.is_top[s] = 1;
+    top.work += work[s];
+    candidate_work -= tree.work[s];
+    for (const int child : tree.children[s]) {
+      parts.push({tree.work[child], -child});
+      candidate_work += tree.work[child];
     }
     if (parts.empty()) break;
   }
-  // Heaviest subtree first onto the least loaded part (LPT); parts then in decreasing load, the order in
-  // which the threads take them.
+  return parts;
+}
+
+// Heaviest subtree first onto the least loaded bin (LPT); every supernode below the top part gets its
+// subtree root's bin. Returns the bin of each supernode (-1 for the top part) and the load of each bin.
+std::pair<std::vector<int>, std::vector<double>> assign_bins(const std::vector<int>& parent,
+                                                             const Subtrees& tree, const TopPart& top,
+                                                             int max_bins,
+                                                             std::priority_queue<Candidate> parts) {
+  const int ns = static_cast<int>(parent.size());
   std::vector<double> load(std::min<std::size_t>(max_bins, parts.size()), 0.0);
   std::vector<int> bin(ns, -1);
   for (; !parts.empty(); parts.pop()) {
     const int r = -parts.top().second;
     const int target = static_cast<int>(std::min_element(load.begin(), load.end()) - load.begin());
-    load[target] += subtree[r];
+    load[target] += tree.work[r];
     bin[r] = target;
   }
   for (int s = ns - 1; s >= 0; --s)
-    if (!is_top[s] && bin[s] < 0) bin[s] = bin[parent_[s]];
+    if (!top.is_top[s] && bin[s] < 0) bin[s] = bin[parent[s]];
+  return {std::move(bin), std::move(load)};
+}
+
+// The schedule from the bins: parts renumbered in decreasing load (the order in which the threads take
+// them), the top part's accumulator slots, and each subtree supernode's rows split into its own subtree's
+// (first) and the top part's (higher columns, as ancestors of the subtree's root). nullopt when the bins are
+// fewer than 2 or the rows are not laid out so (not a postordered tree after all).
+std::optional<SupernodalSchedule> fill_schedule(const SupernodalFactorView& L, const TopPart& top,
+                                                const std::vector<int>& bin, const std::vector<double>& load,
+                                                int threads) {
+  const int ns = L.nsuper;
+  SupernodalSchedule sc = serial_schedule(L);
   std::vector<int> by_load(load.size());
   for (std::size_t b = 0; b < load.size(); ++b) by_load[b] = static_cast<int>(b);
   std::stable_sort(by_load.begin(), by_load.end(), [&](int a, int b) { return load[a] > load[b]; });
@@ -434,31 +475,43 @@ SupernodalSchedule SupernodalSolve::make_schedule(int threads) const {
   sc.bins = 0;
   for (const int b : by_load)
     if (load[b] > 0) renumber[b] = sc.bins++;
-  if (sc.bins < 2) return serial();
+  if (sc.bins < 2) return std::nullopt;
   sc.threads = std::min(threads, sc.bins);
   sc.bin_supernodes.assign(sc.bins, {});
-  sc.top_slot.assign(L_.n, -1);
+  sc.top_slot.assign(L.n, -1);
   for (int s = 0; s < ns; ++s) {
-    if (is_top[s]) {
+    if (top.is_top[s]) {
       sc.top.push_back(s);
-      for (int col = L_.super[s]; col < L_.super[s + 1]; ++col) sc.top_slot[col] = sc.top_columns++;
+      for (int col = L.super[s]; col < L.super[s + 1]; ++col) sc.top_slot[col] = sc.top_columns++;
     } else {
       sc.bin_supernodes[renumber[bin[s]]].push_back(s);
     }
   }
-  // A subtree supernode's below-diagonal rows: first those of its own subtree, then (higher columns, as
-  // ancestors of the subtree's root) the top part's.
   for (int s = 0; s < ns; ++s) {
-    if (is_top[s]) continue;
-    const int ncol = L_.super[s + 1] - L_.super[s];
-    const int* rows = L_.s_rows + L_.pi[s];
+    if (top.is_top[s]) continue;
+    const int ncol = L.super[s + 1] - L.super[s];
+    const int* rows = L.s_rows + L.pi[s];
     int inside = 0;
     while (inside < sc.inside_rows[s] && sc.top_slot[rows[ncol + inside]] < 0) ++inside;
     for (int i = inside; i < sc.inside_rows[s]; ++i)
-      if (sc.top_slot[rows[ncol + i]] < 0) return serial(); // not a postordered tree after all
+      if (sc.top_slot[rows[ncol + i]] < 0) return std::nullopt;
     sc.inside_rows[s] = inside;
   }
   return sc;
+}
+
+} // namespace
+
+SupernodalSchedule SupernodalSolve::make_schedule(int threads) const {
+  if (threads <= 1 || L_.nsuper < 2) return serial_schedule(L_);
+  const Subtrees tree = subtrees(parent_, work_);
+  std::optional<TopPart> top = choose_top_part(L_, parent_, work_, tree, threads, parallel_overhead_);
+  if (!top) return serial_schedule(L_);
+  const int max_bins = kBinsPerThread * threads;
+  std::priority_queue<Candidate> parts = split_into_parts(parent_, work_, tree, max_bins, *top);
+  const auto [bin, load] = assign_bins(parent_, tree, *top, max_bins, std::move(parts));
+  std::optional<SupernodalSchedule> sc = fill_schedule(L_, *top, bin, load, threads);
+  return sc ? std::move(*sc) : serial_schedule(L_);
 }
 
 void SupernodalSolve::solve(const Eigen::MatrixXd& B, Eigen::MatrixXd& X, int threads,

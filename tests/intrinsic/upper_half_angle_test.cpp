@@ -1,5 +1,5 @@
 // The branch-free atan2 of the signpost corner angles against std::atan2.
-#include "../../src/intrinsic/upper_half_angle.h"
+#include "intrinsic/upper_half_angle.h"
 
 #include <gtest/gtest.h>
 

@@ -10,7 +10,7 @@
 #include "intrinsic/mesh_generators.h"
 #include "solver_fixtures.h"
 
-#include "../../src/solver/local_global_problem.h"
+#include "solver/local_global_problem.h"
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>

@@ -7,9 +7,11 @@
 #include "solver_fixtures.h"
 
 // Internal: arap_precompute's path from the traces to the elements, checked against the public one.
-#include "../../src/intrinsic/intrinsic_phases.h"
-#include "../../src/intrinsic/segments.h"
-#include "../../src/solver/traced_elements.h"
+#include "intrinsic/intrinsic_phases.h"
+#include "intrinsic/segments.h"
+#include "solver/traced_elements.h"
+
+#include "solver/streamed_layout.h" // the layout the iterations stream
 
 #include <gtest/gtest.h>
 
@@ -27,6 +29,7 @@ double relative_difference(const Eigen::SparseMatrix<double>& A, const Eigen::Sp
 }
 
 void expect_consistent(const ArapElements& el, const Eigen::MatrixXd& V) {
+  const detail::StreamedLayout& sl = detail::streamed(el);
   ASSERT_EQ(el.cell_start.size(), static_cast<size_t>(el.size()) + 1);
   for (Eigen::Index e = 0; e < el.size(); ++e) {
     EXPECT_NEAR(el.b_value.row(e).sum(), 0.0, 1e-12) << "element " << e; // b encodes a vector
@@ -39,10 +42,10 @@ void expect_consistent(const ArapElements& el, const Eigen::MatrixXd& V) {
   // The regrouped right-hand side: per vertex one term per distinct cell, in increasing cell position, and
   // together they hold what the vertex's non-zeros give straight from the elements, sum_e |cells(e)| w_e
   // (b_e)_v s_hat_e. Only the order of the additions differs: a few ulps of the sum of magnitudes.
-  ASSERT_EQ(el.rhs_term_start.size(), static_cast<size_t>(el.num_vertices) + 1);
-  std::vector<int> position(el.visit_order.size());
+  ASSERT_EQ(sl.rhs_term_start.size(), static_cast<size_t>(el.num_vertices) + 1);
+  std::vector<int> position(sl.visit_order.size());
   for (size_t p = 0; p < position.size(); ++p)
-    position[static_cast<size_t>(el.visit_order[p])] = static_cast<int>(p);
+    position[static_cast<size_t>(sl.visit_order[p])] = static_cast<int>(p);
   Eigen::MatrixX3d direct = Eigen::MatrixX3d::Zero(el.num_vertices, 3), magnitude = direct,
                    regrouped = direct;
   for (Eigen::Index e = 0; e < el.size(); ++e)
@@ -54,11 +57,11 @@ void expect_consistent(const ArapElements& el, const Eigen::MatrixXd& V) {
       magnitude.row(position[static_cast<size_t>(el.b_index(e, k))]) += q.cwiseAbs();
     }
   for (int v = 0; v < el.num_vertices; ++v)
-    for (int t = el.rhs_term_start[static_cast<size_t>(v)]; t < el.rhs_term_start[static_cast<size_t>(v) + 1];
+    for (int t = sl.rhs_term_start[static_cast<size_t>(v)]; t < sl.rhs_term_start[static_cast<size_t>(v) + 1];
          ++t) {
-      const ArapElements::RhsTerm& term = el.rhs_term[static_cast<size_t>(t)];
-      if (t > el.rhs_term_start[static_cast<size_t>(v)]) {
-        EXPECT_LT(el.rhs_term[static_cast<size_t>(t) - 1].cell, term.cell) << "vertex at position " << v;
+      const detail::RhsTerm& term = sl.rhs_term[static_cast<size_t>(t)];
+      if (t > sl.rhs_term_start[static_cast<size_t>(v)]) {
+        EXPECT_LT(sl.rhs_term[static_cast<size_t>(t) - 1].cell, term.cell) << "vertex at position " << v;
       }
       regrouped.row(v) += Eigen::RowVector3d(term.p[0], term.p[1], term.p[2]);
     }
@@ -119,13 +122,14 @@ TEST(ArapElements, StreamedLayoutDoesNotDependOnTheThreadCount) {
     for (const int threads : {2, 3}) {
       set_thread_count(threads);
       const ArapElements many = build(which);
-      EXPECT_EQ(many.visit_order, one.visit_order) << which << ", " << threads << " threads";
-      EXPECT_EQ(many.cell_entry_start, one.cell_entry_start) << which << ", " << threads << " threads";
-      ASSERT_EQ(many.rhs_term_start, one.rhs_term_start) << which << ", " << threads << " threads";
+      const detail::StreamedLayout &a = detail::streamed(many), &b = detail::streamed(one);
+      EXPECT_EQ(a.visit_order, b.visit_order) << which << ", " << threads << " threads";
+      EXPECT_EQ(a.cell_entry_start, b.cell_entry_start) << which << ", " << threads << " threads";
+      ASSERT_EQ(a.rhs_term_start, b.rhs_term_start) << which << ", " << threads << " threads";
       bool same = true;
-      for (size_t t = 0; t < one.rhs_term.size(); ++t) {
-        same = same && many.rhs_term[t].cell == one.rhs_term[t].cell;
-        for (int d = 0; d < 3; ++d) same = same && many.rhs_term[t].p[d] == one.rhs_term[t].p[d];
+      for (size_t t = 0; t < b.rhs_term.size(); ++t) {
+        same = same && a.rhs_term[t].cell == b.rhs_term[t].cell;
+        for (int d = 0; d < 3; ++d) same = same && a.rhs_term[t].p[d] == b.rhs_term[t].p[d];
       }
       EXPECT_TRUE(same) << which << ", " << threads << " threads";
     }
@@ -166,10 +170,11 @@ void expect_same_elements(const ArapElements& a, const ArapElements& b, const st
   EXPECT_EQ(a.cell, b.cell) << name;
   EXPECT_EQ(a.cell_element_start, b.cell_element_start) << name;
   EXPECT_EQ(a.cell_element, b.cell_element) << name;
-  EXPECT_EQ(a.rhs_term_start, b.rhs_term_start) << name;
-  for (size_t t = 0; t < std::min(a.rhs_term.size(), b.rhs_term.size()); ++t) {
-    EXPECT_EQ(a.rhs_term[t].cell, b.rhs_term[t].cell) << name << " term " << t;
-    for (int d = 0; d < 3; ++d) EXPECT_EQ(a.rhs_term[t].p[d], b.rhs_term[t].p[d]) << name << " term " << t;
+  const detail::StreamedLayout &sa = detail::streamed(a), &sb = detail::streamed(b);
+  EXPECT_EQ(sa.rhs_term_start, sb.rhs_term_start) << name;
+  for (size_t t = 0; t < std::min(sa.rhs_term.size(), sb.rhs_term.size()); ++t) {
+    EXPECT_EQ(sa.rhs_term[t].cell, sb.rhs_term[t].cell) << name << " term " << t;
+    for (int d = 0; d < 3; ++d) EXPECT_EQ(sa.rhs_term[t].p[d], sb.rhs_term[t].p[d]) << name << " term " << t;
   }
 }
 

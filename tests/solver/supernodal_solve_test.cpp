@@ -2,10 +2,10 @@
 // solve and CHOLMOD's own solve, on one and several threads, for 1, 3 and 5 right-hand sides; and the
 // schedules they run on: subtrees split over the threads where the elimination tree has them, nothing to
 // split on a chain.
-#include "../../src/solver/supernodal_solve.h"
 #include "iarap/core/threads.h"
 #include "iarap/solver/arap.h"
 #include "iarap/solver/sparse_cholesky.h"
+#include "solver/supernodal_solve.h"
 #include "solver_fixtures.h"
 
 #include <Eigen/CholmodSupport>

@@ -6,6 +6,8 @@
 #include "iarap/solver/arap.h"
 #include "solver_fixtures.h"
 
+#include "solver/streamed_layout.h" // the layout the iterations stream
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -62,18 +64,19 @@ TEST_F(VisitOrder, PermutesTheCellsWithTheVerticesFirst) {
   for (ArapMethod method : kMethods) {
     const ArapData data = arap_precompute(m.V, m.F, fixed, options_for(method));
     const ArapElements& el = data.elements;
+    const detail::StreamedLayout& sl = detail::streamed(el);
     const int n = el.num_vertices;
-    ASSERT_EQ(el.visit_order.size(), static_cast<size_t>(el.num_cells));
-    std::vector<int> sorted = el.visit_order;
+    ASSERT_EQ(sl.visit_order.size(), static_cast<size_t>(el.num_cells));
+    std::vector<int> sorted = sl.visit_order;
     std::sort(sorted.begin(), sorted.end());
     for (int c = 0; c < el.num_cells; ++c)
       ASSERT_EQ(sorted[static_cast<size_t>(c)], c) << arap_method_name(method);
-    EXPECT_LT(*std::max_element(el.visit_order.begin(), el.visit_order.begin() + n), n);
-    for (int p = n; p < el.num_cells; ++p) EXPECT_EQ(el.visit_order[static_cast<size_t>(p)], p);
+    EXPECT_LT(*std::max_element(sl.visit_order.begin(), sl.visit_order.begin() + n), n);
+    for (int p = n; p < el.num_cells; ++p) EXPECT_EQ(sl.visit_order[static_cast<size_t>(p)], p);
     // Each position streams exactly the elements of its cell.
     for (int p = 0; p < el.num_cells; ++p) {
-      const auto c = static_cast<size_t>(el.visit_order[static_cast<size_t>(p)]);
-      ASSERT_EQ(el.cell_entry_start[static_cast<size_t>(p) + 1] - el.cell_entry_start[static_cast<size_t>(p)],
+      const auto c = static_cast<size_t>(sl.visit_order[static_cast<size_t>(p)]);
+      ASSERT_EQ(sl.cell_entry_start[static_cast<size_t>(p) + 1] - sl.cell_entry_start[static_cast<size_t>(p)],
                 el.cell_element_start[c + 1] - el.cell_element_start[c]);
     }
   }
@@ -96,7 +99,7 @@ TEST_F(VisitOrder, KeepsNeighboursCloseWhereTheFileDoesNot) {
     std::vector<int> file(static_cast<size_t>(n)), visit(static_cast<size_t>(n));
     std::iota(file.begin(), file.end(), 0);
     for (int p = 0; p < n; ++p)
-      visit[static_cast<size_t>(data.elements.visit_order[static_cast<size_t>(p)])] = p;
+      visit[static_cast<size_t>(detail::streamed(data.elements).visit_order[static_cast<size_t>(p)])] = p;
     const double file_span = mean_edge_span(m->F, file), visit_span = mean_edge_span(m->F, visit);
     EXPECT_LT(visit_span * 10.0, file_span) << "file " << file_span << ", visit " << visit_span;
   }

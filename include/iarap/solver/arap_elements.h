@@ -11,9 +11,14 @@
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <memory>
 #include <vector>
 
 namespace iarap {
+
+namespace detail {
+struct StreamedLayout;
+} // namespace detail
 
 struct ArapElements {
   using IndexRows = Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor>;
@@ -29,43 +34,14 @@ struct ArapElements {
   std::vector<int> face;       // #E an input face holding every non-zero of b_e (system_pattern.h)
   std::vector<int> cell_start; // #E + 1: cells of element e are cell[cell_start[e] .. cell_start[e+1])
   std::vector<int> cell;       // cell (vertex) indices; a cell may repeat (intrinsic loop edges)
-  std::vector<int>
-      cell_element_start; // num_cells + 1: CSR transpose, the elements of cell c (with repetition)
+  // num_cells + 1: the CSR transpose, the elements of cell c (with repetition) are
+  // cell_element[cell_element_start[c] .. cell_element_start[c + 1]).
+  std::vector<int> cell_element_start;
   std::vector<int> cell_element;
 
-  // What the iterations stream (finish_elements fills it from the arrays above; fit_rotations.h, arap_rhs.h).
-  // They number cells and vertices in visit_order (num_cells: position -> cell; the #V vertices first, in a
-  // breadth-first order of the mesh, then the inserted boundary cells) and keep positions, rotations and
-  // the right-hand side in that order while they iterate: neighbours then sit side by side in memory and
-  // are read while in cache, whatever the file's vertex order (1-to-4 subdivision, for one, numbers the
-  // midpoints far from their corners). No cell's sum changes with it: each cell's terms keep their order.
-  // The elements of the cell at position p are cell_entry[cell_entry_start[p] .. cell_entry_start[p + 1]),
-  // in cell_element's order, each with its b (vertex positions in visit_order), s_hat and w side by side,
-  // so that the local step reads them in one forward sweep.
-  // CellEntry and RhsTerm leave their members uninitialized when constructed (the builder writes each
-  // one): resizing the vectors then does not zero tens of megabytes that are overwritten at once.
-  struct CellEntry {
-    CellEntry() {}
-    int index[3];
-    double value[3];
-    double s_hat[3];
-    double w;
-  };
-  std::vector<int> visit_order;
-  std::vector<int> cell_entry_start;
-  std::vector<CellEntry> cell_entry;
-  // The right-hand side as sum_c R_c p_vc per vertex v (Eq. 16 regrouped): one term per (vertex, cell)
-  // pair with p_vc = sum over the elements e of cell c with (b_e)_v != 0 of w_e (b_e)_v s_hat_e (a cell
-  // repeated in cells(e) counts as often), summed in element order. rhs_term_start (#V + 1) delimits the
-  // terms of the vertex at each position of visit_order, in increasing cell position; RhsTerm::cell is a
-  // position too.
-  struct RhsTerm {
-    RhsTerm() {}
-    double p[3];
-    int cell;
-  };
-  std::vector<int> rhs_term_start;
-  std::vector<RhsTerm> rhs_term;
+  // The same elements regrouped cell by cell in a cache-friendly visit order, as the iterations stream them
+  // (internal; every builder fills it, and copies of the elements share it: it is never changed).
+  std::shared_ptr<const detail::StreamedLayout> streamed;
 
   Eigen::Index size() const { return w.size(); }
 };

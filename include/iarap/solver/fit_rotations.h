@@ -14,28 +14,9 @@ namespace iarap {
 // the variant's energy minimized over the rotations (summed in cell order, so the value does not depend
 // on the thread count). When R holds elements.num_cells rotations on entry (the previous iterate's), they
 // start each fit (polar_rotation_near: the same rotations, fewer steps); otherwise each fit starts cold.
-// U_rows is a workspace (U's rows in visit order: visit_rows) reused between calls. U must be #V x 3 with
-// #V = elements.num_vertices (not checked: hot path). The arrays are in the file's order; the iterations
-// keep theirs in visit order and call fit_rotations_in_visit_order, which this wraps.
+// U_rows is a workspace reused between calls. U must be #V x 3 with #V = elements.num_vertices (not
+// checked: hot path). All arrays are in the file's order.
 double fit_rotations(const ArapElements& elements, const Eigen::MatrixXd& U, ArapElements::ValueRows& U_rows,
                      std::vector<Eigen::Matrix3d>& R, Eigen::VectorXd& cell_energy);
-
-// fit_rotations with the positions and rotations in visit order (ArapElements::visit_order): U_rows
-// (#V x 3) holds the position of vertex visit_order[p] in row p, R[p] belongs to cell visit_order[p].
-// cell_energy stays in cell order, so that E(U) is the same sum, bit for bit. One sweep over
-// elements.cell_entry; OpenMP-parallel over cells, without atomics.
-// When covariances is given, it gets S_c too (num_cells, visit order).
-double fit_rotations_in_visit_order(const ArapElements& elements, const ArapElements::ValueRows& U_rows,
-                                    std::vector<Eigen::Matrix3d>& R, Eigen::VectorXd& cell_energy,
-                                    std::vector<Eigen::Matrix3d>* covariances = nullptr);
-
-// U_rows (#V x 3, row-major) = U's rows in visit order: row p is U's row elements.visit_order[p].
-void visit_rows(const ArapElements& elements, const Eigen::MatrixXd& U, ArapElements::ValueRows& U_rows);
-
-// The covariances S_c of fit_rotations alone, in visit order (S[p] for cell visit_order[p], num_cells),
-// from positions U_rows in visit order (visit_rows), in the same sweep: the memory-bound floor of the local
-// step that `iarap bench` reports (element_pass_ms).
-void cell_covariances(const ArapElements& elements, const ArapElements::ValueRows& U_rows,
-                      std::vector<Eigen::Matrix3d>& S);
 
 } // namespace iarap
