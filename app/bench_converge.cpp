@@ -91,8 +91,8 @@ nlohmann::json converge_one(const std::string& path, const Eigen::MatrixXd& V, c
   j["runs"] = nlohmann::json::array();
   for (const std::string& accelerator : settings.accelerators) {
     ArapSolveOptions run = run_options(accelerator, settings);
-    // A run that converges to another stationary point (the energies have several: see the README) stops
-    // there as the reference runs do, instead of iterating on to the limit.
+    // A run that converges to another stationary point (the energies have several: see docs/accelerators.md)
+    // stops there as the reference runs do, instead of iterating on to the limit.
     run.gradient_tolerance = settings.reference_gradient;
     run.on_iteration = [target](const ArapReport& report) { return report.energies.back() > target; };
     Eigen::MatrixXd U = V;

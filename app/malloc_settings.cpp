@@ -11,7 +11,7 @@
 //   precompute of a process paid it. Beetle, first precompute of a `deform`: 4,800-5,900 page faults ->
 //   700-1,100; `bench` rounds, 1 thread: the first round 103-163 -> 63-66 ms (original ARAP), 108-121 ->
 //   77-81 ms (iARAP), later rounds unchanged; 2 threads, later rounds: 80-84 -> 53-56 ms (original ARAP),
-//   100-104 -> 70-77 ms (iARAP); peak memory +1-2 MB (issue 18, README "Performance").
+//   100-104 -> 70-77 ms (iARAP); peak memory +1-2 MB (issue 18, docs/performance.md).
 //
 // glibc reads GLIBC_TUNABLES in the dynamic loader, before any code of the program runs, so the tool sets
 // it and executes itself again, once (the variable then names glibc.malloc.hugetlb), from the executable's

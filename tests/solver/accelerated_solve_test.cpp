@@ -209,8 +209,8 @@ TEST_F(AcceleratedSolve, AcceleratedAndPlainReachTheSameFixedPoint) {
 
 // The default accelerator on the repo's bunny under the issue-17 edit (bend60: top 10% turned 60 degrees and
 // moved by 0.3 diagonals), where the energies have several local minima and L-BFGS, for one, can end in
-// another (README "Several minima"): Newton must end where the plain iteration does. Both run to a 1e-9
-// relative gradient; at a non-degenerate minimum the distance left is ~ |H^-1| |g|, measured 2.9e-7
+// another (docs/accelerators.md, "Several minima"): Newton must end where the plain iteration does. Both run
+// to a 1e-9 relative gradient; at a non-degenerate minimum the distance left is ~ |H^-1| |g|, measured 2.9e-7
 // (spokes-rims) and 3.0e-7 (iARAP) of the diagonal, while the other minimum Anderson ends in on iARAP here
 // lies 3.4e-2 of the diagonal away: 1e-5 separates the two cases with wide margins. (Release only: under the
 // sanitizers plain's 2400-2800 iterations take a minute.)

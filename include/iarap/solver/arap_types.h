@@ -125,12 +125,10 @@ struct ArapSolveOptions {
   // accepted one is replaced by the plain iterate and the history restarts. L-BFGS: Armijo backtracking on
   // the rotation-minimized energy; when it fails, the plain step (which never increases the energy while
   // L_ff is positive definite) and a fresh history. Newton: a trust region; a step that achieves less than
-  // 10% of the predicted decrease is replaced by the plain step. Default Newton, measured with
-  // `iarap bench --converge 1e-6` on the bend60 scene (README "Accelerated solves"): on bunny, beetle and
-  // armadillo it ended at the lowest minimum found for all three energies (these large edits have several),
-  // with over 30x fewer iterations and over 5.5x less time than plain on spokes-rims and iARAP; L-BFGS is up
-  // to 1.7x faster where it ends at the same minimum but ended higher on armadillo iARAP (2.5e-2 of the
-  // diagonal away) and on original ARAP. Each Newton iteration runs up to `window` CG steps (one solve each):
+  // 10% of the predicted decrease is replaced by the plain step. Default Newton: on the bend60 scene
+  // (`iarap bench --converge 1e-6`, docs/accelerators.md) it ended at the lowest minimum found for all three
+  // energies on bunny, beetle and armadillo, in over 30x fewer iterations and over 5.5x less time than
+  // plain on spokes-rims and iARAP. Each Newton iteration runs up to `window` CG steps (one solve each):
   // for a bounded cost per iteration (interactive updates, as the viewer does) choose L-BFGS.
   ArapAccelerator accelerator = ArapAccelerator::Newton;
   // History length m of the accelerator (Anderson: past residual differences; L-BFGS: (s, y) pairs; Newton:
