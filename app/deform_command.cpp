@@ -153,7 +153,7 @@ void run_deform(const DeformArguments& args) {
   if (!check.usable()) {
     std::string message = args.mesh + (args.repair ? ": mesh not usable for ARAP after --repair:"
                                                    : ": mesh not usable for ARAP:");
-    for (const auto& error : check.errors) message += "\n  " + error;
+    for (const auto& error : check.errors) message += "\n  " + name_repair(error, deform_repair_flag);
     throw TopologyError(message + (args.repair
                                        ? "\n(numbers refer to the repaired mesh; `iarap info " + args.mesh +
                                              "` reports the file as it is)"
@@ -161,7 +161,8 @@ void run_deform(const DeformArguments& args) {
   }
   for (const auto& warning : constraints.warnings) std::cerr << "deform: warning: " << warning << "\n";
   if (!args.quiet) {
-    for (const auto& warning : check.warnings) std::cerr << "deform: mesh warning: " << warning << "\n";
+    for (const auto& warning : check.warnings)
+      std::cerr << "deform: mesh warning: " << name_repair(warning, deform_repair_flag) << "\n";
   }
 
   set_thread_count(args.threads == 0 ? automatic_thread_count(static_cast<int>(mesh.V.rows()))

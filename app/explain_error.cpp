@@ -9,6 +9,23 @@ bool has(const std::string& text, const char* part) {
 
 } // namespace
 
+std::string name_repair(const std::string& message, const std::string& how) {
+  const std::string library = "repair_mesh ", option = " (RepairOptions::";
+  const std::size_t at = message.find(library);
+  const std::size_t open = at == std::string::npos ? at : message.find(option, at);
+  const std::size_t close = open == std::string::npos ? open : message.find(')', open);
+  if (close == std::string::npos) return message;
+  return message.substr(0, at) + how + " " + message.substr(at + library.size(), open - at - library.size()) +
+         message.substr(close + 1);
+}
+
+std::vector<std::string> name_repair(const std::vector<std::string>& messages, const std::string& how) {
+  std::vector<std::string> named;
+  named.reserve(messages.size());
+  for (const std::string& message : messages) named.push_back(name_repair(message, how));
+  return named;
+}
+
 std::string explain_solver_error(const std::string& what, const ErrorContext& context) {
   std::string message = what;
   const std::string info = "`iarap info " + context.mesh + "`";

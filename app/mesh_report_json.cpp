@@ -1,5 +1,7 @@
 #include "mesh_report_json.h"
 
+#include "explain_error.h"
+
 #include <algorithm>
 
 namespace iarap::cli {
@@ -26,8 +28,8 @@ nlohmann::json mesh_report_json(const MeshReport& report) {
   j["edges"] = report.edges;
   j["boundary_edges"] = report.boundary_edges;
   j["bbox_diagonal"] = report.bbox_diagonal;
-  j["errors"] = report.errors;
-  j["warnings"] = report.warnings;
+  j["errors"] = name_repair(report.errors, deform_repair_flag);
+  j["warnings"] = name_repair(report.warnings, deform_repair_flag);
   j["usable"] = report.usable();
   return j;
 }

@@ -1,5 +1,6 @@
 #include "serve_state.h"
 
+#include "../explain_error.h"
 #include "http_error.h"
 
 #include "iarap/core/errors.h"
@@ -12,6 +13,9 @@
 
 namespace iarap::serve {
 namespace {
+
+// The viewer loads a mesh as it is; the repair a warning names runs in the tool, before serving.
+const std::string viewer_repair = std::string("outside the viewer, ") + cli::deform_repair_flag;
 
 std::vector<float> to_float_rows(const Eigen::MatrixXd& X) {
   std::vector<float> out(static_cast<std::size_t>(X.rows() * X.cols()));
@@ -75,7 +79,7 @@ void ServeState::load_mesh(const std::string& name, MeshData mesh) {
   const MeshReport report = check_mesh(mesh.V, mesh.F);
   if (!report.usable()) {
     std::string message = name + ": mesh not usable for ARAP:";
-    for (const auto& error : report.errors) message += "\n  " + error;
+    for (const auto& error : report.errors) message += "\n  " + cli::name_repair(error, viewer_repair);
     throw TopologyError(message);
   }
   std::lock_guard<std::mutex> lock(mutex_);
@@ -84,7 +88,7 @@ void ServeState::load_mesh(const std::string& name, MeshData mesh) {
                          static_cast<int>(mesh.F.rows()),
                          report.bbox_diagonal,
                          mesh.notes,
-                         report.warnings};
+                         cli::name_repair(report.warnings, viewer_repair)};
   for (MethodState& state : methods_) {
     state.data.reset();
     state.U = mesh.V;

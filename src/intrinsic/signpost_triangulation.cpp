@@ -1,4 +1,5 @@
 #include "signpost_triangulation.h"
+#include "../mesh/face_index_range.h"
 #include "upper_half_angle.h"
 
 #include "iarap/core/errors.h"
@@ -76,10 +77,7 @@ void check_signpost_input(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
     for (int k = 0; k < 3; ++k)
       if (F(f, k) < 0 || F(f, k) >= nv || F(f, k) == F(f, (k + 1) % 3)) bad_face = std::min(bad_face, f);
   if (bad_face < nf) {
-    for (int k = 0; k < 3; ++k)
-      if (F(bad_face, k) < 0 || F(bad_face, k) >= nv)
-        throw InputError("face " + std::to_string(bad_face) + " uses vertex " +
-                         std::to_string(F(bad_face, k)) + "; mesh has " + std::to_string(nv));
+    require_face_indices_in_range(F.topRows(bad_face + 1), nv, "", bad_face);
     throw TopologyError("face " + std::to_string(bad_face) + " repeats a vertex");
   }
   if (!V.allFinite()) throw InputError("vertex coordinates contain NaN or Inf");
@@ -141,62 +139,63 @@ SignpostInput signpost_input(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
   return input;
 }
 
-SignpostTriangulation build_signpost_triangulation(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
-                                                   bool mollify, double mollify_epsilon, VertexFans& fans_out,
-                                                   bool room_for_boundary_splits, SignpostInput* input) {
-  const int nv = static_cast<int>(V.rows());
-  const int nf = static_cast<int>(F.rows());
-  if (!input) check_signpost_input(V, F); // signpost_input checked them
-  // Released once twins and lengths are set (peak memory).
-  std::shared_ptr<const EdgeTopology> topology =
-      input ? std::move(input->topology) : std::make_shared<const EdgeTopology>(edge_topology(F, nv));
-  const EdgeTopology& topo = *topology;
+namespace {
+
+// The build's steps, in order. Each parallel loop writes only its own face's, edge's or vertex's entries.
+
+// A split adds one face, one vertex and two edges. Reserving before the arrays are filled costs no copy,
+// and untouched capacity costs no page faults. Lengths and angles taken over from a SignpostInput come with
+// this room already.
+void reserve_boundary_splits(SignpostTriangulation& tri, const EdgeTopology& topo, int nv, int nf,
+                             bool lengths_and_angles) {
   const int ne = static_cast<int>(topo.E.rows());
-  SignpostTriangulation tri;
-  tri.num_vertices = nv;
-  tri.num_input_vertices = nv;
-  if (room_for_boundary_splits) {
-    // A split adds one face, one vertex and two edges. Reserving before the arrays are filled costs no copy,
-    // and untouched capacity costs no page faults.
-    const size_t boundary_edges = static_cast<size_t>(boundary_edge_count(topo));
-    const size_t halfedges = 3 * (static_cast<size_t>(nf) + boundary_edges);
-    const size_t edges = static_cast<size_t>(ne) + 2 * boundary_edges;
-    for (auto* v : {&tri.corner_vertex, &tri.twin, &tri.edge}) v->reserve(halfedges);
-    tri.phi.reserve(halfedges);
-    tri.cot.reserve(halfedges);
-    if (!input) { // else taken over from input, with this room
-      tri.angle.reserve(halfedges);
-      tri.length.reserve(edges);
-    }
-    for (auto* v : {&tri.edge_halfedge, &tri.original_edge}) v->reserve(edges);
-    tri.edge_vertex.reserve(2 * edges);
-    tri.vertex_angle_sum.reserve(static_cast<size_t>(nv) + boundary_edges);
-    tri.boundary_vertex.reserve(static_cast<size_t>(nv) + boundary_edges);
+  const size_t boundary_edges = static_cast<size_t>(boundary_edge_count(topo));
+  const size_t halfedges = 3 * (static_cast<size_t>(nf) + boundary_edges);
+  const size_t edges = static_cast<size_t>(ne) + 2 * boundary_edges;
+  for (auto* v : {&tri.corner_vertex, &tri.twin, &tri.edge}) v->reserve(halfedges);
+  tri.phi.reserve(halfedges);
+  tri.cot.reserve(halfedges);
+  if (lengths_and_angles) {
+    tri.angle.reserve(halfedges);
+    tri.length.reserve(edges);
   }
+  for (auto* v : {&tri.edge_halfedge, &tri.original_edge}) v->reserve(edges);
+  tri.edge_vertex.reserve(2 * edges);
+  tri.vertex_angle_sum.reserve(static_cast<size_t>(nv) + boundary_edges);
+  tri.boundary_vertex.reserve(static_cast<size_t>(nv) + boundary_edges);
+}
+
+// Halfedge 3f + k runs from corner k to corner k + 1 of face f and lies on edge FE(f, k + 2).
+void set_halfedges(SignpostTriangulation& tri, const EdgeTopology& topo, const Eigen::MatrixXi& F) {
+  const int nf = static_cast<int>(F.rows());
   tri.corner_vertex.resize(static_cast<size_t>(3 * nf));
-  tri.twin.assign(static_cast<size_t>(3 * nf), -1);
   tri.edge.resize(static_cast<size_t>(3 * nf));
-  tri.edge_halfedge.assign(static_cast<size_t>(ne), -1);
-  tri.original_edge.resize(static_cast<size_t>(ne));
-  tri.edge_vertex.resize(static_cast<size_t>(2 * ne));
 #pragma omp parallel for num_threads(loop_thread_count()) schedule(static)
   for (int f = 0; f < nf; ++f)
     for (int k = 0; k < 3; ++k) {
       tri.corner_vertex[static_cast<size_t>(3 * f + k)] = F(f, k);
       tri.edge[static_cast<size_t>(3 * f + k)] = topo.FE(f, (k + 2) % 3);
     }
-  // Twins and lengths per edge (each edge writes only its own halfedges), with the mean length.
-  if (input)
-    tri.length = std::move(input->length);
-  else
-    tri.length.resize(static_cast<size_t>(ne));
+}
+
+// Twins and lengths per edge (V's distances unless tri.length holds them already), with the edge's end
+// vertices and halfedge; returns the sum of the lengths. Throws TopologyError for a non-manifold or an
+// inconsistently oriented edge.
+double set_edges(SignpostTriangulation& tri, const EdgeTopology& topo, const Eigen::MatrixXd& V,
+                 bool lengths_given) {
+  const int ne = static_cast<int>(topo.E.rows());
+  tri.twin.assign(tri.corner_vertex.size(), -1);
+  tri.edge_halfedge.assign(static_cast<size_t>(ne), -1);
+  tri.original_edge.resize(static_cast<size_t>(ne));
+  tri.edge_vertex.resize(static_cast<size_t>(2 * ne));
+  if (!lengths_given) tri.length.resize(static_cast<size_t>(ne));
   double length_sum = 0.0;
   int bad_edge = ne;
 #pragma omp parallel for num_threads(loop_thread_count()) schedule(static) reduction(+ : length_sum) reduction(min : bad_edge)
   for (int e = 0; e < ne; ++e) {
     tri.original_edge[static_cast<size_t>(e)] = e;
     const int i = topo.E(e, 0), j = topo.E(e, 1);
-    if (!input) tri.length[static_cast<size_t>(e)] = input_distance(V, i, j);
+    if (!lengths_given) tri.length[static_cast<size_t>(e)] = input_distance(V, i, j);
     length_sum += tri.length[static_cast<size_t>(e)];
     if (topo.face_count(e) > 2) {
       bad_edge = std::min(bad_edge, e);
@@ -226,11 +225,14 @@ SignpostTriangulation build_signpost_triangulation(const Eigen::MatrixXd& V, con
     throw TopologyError("faces " + std::to_string(topo.EF(e, 0)) + " and " + std::to_string(topo.EF(e, 1)) +
                         " are inconsistently oriented across edge " + edge_name(topo.E(e, 0), topo.E(e, 1)));
   }
-  topology.reset();
+  return length_sum;
+}
 
-  // The mollification of Sharp & Crane 2020: one delta for all edges so that every triangle inequality
-  // holds with margin eps.
-  const double eps = mollify_epsilon * length_sum / std::max(ne, 1);
+// The mollification of Sharp & Crane 2020: one delta added to all lengths so that every triangle
+// inequality holds with margin eps; returns delta. Without mollify, a face short of the margin throws
+// TopologyError.
+double mollify_lengths(SignpostTriangulation& tri, bool mollify, double eps) {
+  const int nf = tri.num_faces();
   double delta = 0.0;
   int bad_face = nf;
 #pragma omp parallel for num_threads(loop_thread_count()) schedule(static) reduction(max                     \
@@ -258,32 +260,30 @@ SignpostTriangulation build_signpost_triangulation(const Eigen::MatrixXd& V, con
   }
   if (delta > 0)
     for (double& l : tri.length) l += delta;
-  tri.mollify_delta = delta;
+  return delta;
+}
 
-  // Angle sums and signposts: sweep each vertex's fans counter-clockwise. A fan that ends on the boundary
-  // starts at its outgoing boundary halfedge, so its angles run from 0 to its total without wrapping.
-  // A vertex where several open fans meet (a "bowtie", common in scanned meshes) keeps one rotation cell;
-  // its fans get disjoint angle ranges separated by a gap, so a signpost never points between fans.
-  // The fans' CSR first holds the halfedges leaving each vertex in increasing index (counting sort by tail);
-  // each vertex's sweep copies its range out, then overwrites it in sweep order. phi < 0 marks a halfedge
-  // not swept yet. (No separate outgoing / swept arrays: 5 bytes per halfedge less at the peak.)
-  fans_out.start.assign(static_cast<size_t>(nv) + 1, 0);
-  std::vector<int>& start = fans_out.start;
-  for (int h = 0; h < 3 * nf; ++h) ++start[static_cast<size_t>(tri.tail(h)) + 1];
+// The fans' CSR holding, per vertex, the halfedges leaving it in increasing index (counting sort by tail);
+// each vertex's sweep then overwrites its range in sweep order. (No separate outgoing / swept arrays: 5
+// bytes per halfedge less at the peak.)
+void bucket_halfedges_by_tail(const SignpostTriangulation& tri, VertexFans& fans) {
+  const int nv = tri.num_vertices, nh = static_cast<int>(tri.corner_vertex.size());
+  fans.start.assign(static_cast<size_t>(nv) + 1, 0);
+  std::vector<int>& start = fans.start;
+  for (int h = 0; h < nh; ++h) ++start[static_cast<size_t>(tri.tail(h)) + 1];
   for (int v = 0; v < nv; ++v) start[static_cast<size_t>(v) + 1] += start[static_cast<size_t>(v)];
-  fans_out.entry.resize(static_cast<size_t>(3 * nf));
-  {
-    std::vector<int> fill(start.begin(), start.end() - 1);
-    for (int h = 0; h < 3 * nf; ++h)
-      fans_out.entry[static_cast<size_t>(fill[static_cast<size_t>(tri.tail(h))]++)] = {0.0, h};
-  }
-  tri.phi.assign(static_cast<size_t>(3 * nf), -1.0);
-  tri.vertex_angle_sum.assign(static_cast<size_t>(nv), 0.0);
-  tri.boundary_vertex.assign(static_cast<size_t>(nv), 0);
-  // Corner angles and cotangents once per face, in parallel; the fan sweeps below only add angles up. The
-  // input's, when the lengths are the input's (not mollified).
+  fans.entry.resize(static_cast<size_t>(nh));
+  std::vector<int> fill(start.begin(), start.end() - 1);
+  for (int h = 0; h < nh; ++h)
+    fans.entry[static_cast<size_t>(fill[static_cast<size_t>(tri.tail(h))]++)] = {0.0, h};
+}
+
+// Corner angles and cotangents once per face, in parallel (the fan sweeps only add angles up): the input's
+// when the lengths are the input's (not mollified), which it then releases.
+void set_corner_geometry(SignpostTriangulation& tri, SignpostInput* input) {
+  const int nf = tri.num_faces();
   tri.cot.resize(static_cast<size_t>(3 * nf));
-  if (input && delta == 0) {
+  if (input && tri.mollify_delta == 0) {
     tri.angle = std::move(input->angle);
     const Eigen::MatrixXd& C = *input->C;
 #pragma omp parallel for num_threads(loop_thread_count()) schedule(static)
@@ -298,6 +298,19 @@ SignpostTriangulation build_signpost_triangulation(const Eigen::MatrixXd& V, con
     input->C.reset();
     input->angle = {};
   }
+}
+
+// Angle sums and signposts: sweeps each vertex's fans counter-clockwise. A fan that ends on the boundary
+// starts at its outgoing boundary halfedge, so its angles run from 0 to its total without wrapping. A
+// vertex where several open fans meet (a "bowtie", common in scanned meshes) keeps one rotation cell; its
+// fans get disjoint angle ranges separated by a gap, so a signpost never points between fans. phi < 0
+// marks a halfedge not swept yet. Throws TopologyError for a vertex where a closed fan meets another.
+void sweep_vertex_fans(SignpostTriangulation& tri, VertexFans& fans_out) {
+  const int nv = tri.num_vertices, nh = static_cast<int>(tri.corner_vertex.size());
+  const std::vector<int>& start = fans_out.start;
+  tri.phi.assign(static_cast<size_t>(nh), -1.0);
+  tri.vertex_angle_sum.assign(static_cast<size_t>(nv), 0.0);
+  tri.boundary_vertex.assign(static_cast<size_t>(nv), 0);
   const std::vector<double>& corner = tri.angle;
   // Each vertex's sweeps touch only the halfedges leaving it, so vertices run in parallel. Open fans come
   // first, from their boundary halfedge, then the closed fan; within each, in increasing halfedge index.
@@ -370,12 +383,37 @@ SignpostTriangulation build_signpost_triangulation(const Eigen::MatrixXd& V, con
   }
   if (bad_vertex < nv) {
     int fans = 0;
-    for (int h = 0; h < 3 * nf; ++h)
-      fans += tri.tail(h) == bad_vertex && tri.twin[static_cast<size_t>(h)] < 0;
+    for (int h = 0; h < nh; ++h) fans += tri.tail(h) == bad_vertex && tri.twin[static_cast<size_t>(h)] < 0;
     throw TopologyError("non-manifold vertex " + std::to_string(bad_vertex) + ": a closed fan of faces and " +
                         std::to_string(std::max(fans, 1)) +
                         " more fans meet there (two surfaces touching at a point)");
   }
+}
+
+} // namespace
+
+SignpostTriangulation build_signpost_triangulation(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
+                                                   bool mollify, double mollify_epsilon, VertexFans& fans_out,
+                                                   bool room_for_boundary_splits, SignpostInput* input) {
+  const int nv = static_cast<int>(V.rows());
+  const int nf = static_cast<int>(F.rows());
+  if (!input) check_signpost_input(V, F); // signpost_input checked them
+  // Released once twins and lengths are set (peak memory).
+  std::shared_ptr<const EdgeTopology> topology =
+      input ? std::move(input->topology) : std::make_shared<const EdgeTopology>(edge_topology(F, nv));
+  const int ne = static_cast<int>(topology->E.rows());
+  SignpostTriangulation tri;
+  tri.num_vertices = nv;
+  tri.num_input_vertices = nv;
+  if (room_for_boundary_splits) reserve_boundary_splits(tri, *topology, nv, nf, !input);
+  set_halfedges(tri, *topology, F);
+  if (input) tri.length = std::move(input->length);
+  const double length_sum = set_edges(tri, *topology, V, input != nullptr);
+  topology.reset();
+  tri.mollify_delta = mollify_lengths(tri, mollify, mollify_epsilon * length_sum / std::max(ne, 1));
+  bucket_halfedges_by_tail(tri, fans_out);
+  set_corner_geometry(tri, input);
+  sweep_vertex_fans(tri, fans_out);
   return tri;
 }
 

@@ -1,4 +1,5 @@
 #include "writer_support.h"
+#include "../mesh/face_index_range.h"
 
 #include "iarap/core/errors.h"
 
@@ -9,11 +10,7 @@ namespace iarap::io_detail {
 void check_mesh_arrays(const std::string& path, const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
   if (V.cols() != 3) throw InputError(path + ": V has " + std::to_string(V.cols()) + " columns; 3 needed");
   if (F.cols() != 3) throw InputError(path + ": F has " + std::to_string(F.cols()) + " columns; 3 needed");
-  for (Eigen::Index f = 0; f < F.rows(); ++f)
-    for (int k = 0; k < 3; ++k)
-      if (F(f, k) < 0 || F(f, k) >= V.rows())
-        throw InputError(path + ": face " + std::to_string(f) + " uses vertex " + std::to_string(F(f, k)) +
-                         "; mesh has " + std::to_string(V.rows()) + " vertices");
+  require_face_indices_in_range(F, V.rows(), path + ": ");
 }
 
 void append_double(std::string& out, double x) {

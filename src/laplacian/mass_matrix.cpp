@@ -1,4 +1,5 @@
 #include "iarap/laplacian/mass_matrix.h"
+#include "../mesh/face_index_range.h"
 
 #include "iarap/core/errors.h"
 #include "iarap/mesh/cotan.h"
@@ -45,11 +46,7 @@ Eigen::VectorXd lumped_vertex_areas(const Eigen::MatrixXi& F, const Eigen::Matri
 Eigen::SparseMatrix<double> mass_matrix(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, MassKind kind,
                                         bool intrinsic, const IntrinsicDelaunay* precomputed) {
   const int num_vertices = static_cast<int>(V.rows());
-  for (Eigen::Index f = 0; f < F.rows(); ++f)
-    for (int k = 0; k < 3; ++k)
-      if (F(f, k) < 0 || F(f, k) >= num_vertices)
-        throw InputError("face " + std::to_string(f) + " uses vertex " + std::to_string(F(f, k)) +
-                         "; mesh has " + std::to_string(num_vertices));
+  require_face_indices_in_range(F, num_vertices);
   Eigen::VectorXd area;
   if (intrinsic) {
     std::optional<IntrinsicDelaunay> storage;

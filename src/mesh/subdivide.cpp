@@ -1,4 +1,5 @@
 #include "iarap/mesh/subdivide.h"
+#include "face_index_range.h"
 
 #include <utility>
 
@@ -14,11 +15,7 @@ void subdivide_midpoint(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, Eige
   if (F.cols() != 3)
     throw InputError("subdivide_midpoint: F has " + std::to_string(F.cols()) + " columns; 3 needed");
   const int nv = static_cast<int>(V.rows());
-  for (Eigen::Index f = 0; f < F.rows(); ++f)
-    for (int k = 0; k < 3; ++k)
-      if (F(f, k) < 0 || F(f, k) >= nv)
-        throw InputError("subdivide_midpoint: face " + std::to_string(f) + " uses vertex " +
-                         std::to_string(F(f, k)) + "; mesh has " + std::to_string(nv) + " vertices");
+  require_face_indices_in_range(F, nv, "subdivide_midpoint: ");
   const EdgeTopology t = edge_topology(F, nv);
   const Eigen::Index ne = t.E.rows();
   Eigen::MatrixXd out(nv + ne, 3); // separate buffer: V_out may alias V

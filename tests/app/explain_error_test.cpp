@@ -54,3 +54,18 @@ TEST(ExplainError, RepairedRunSaysWhichNumbering) {
       "ARAP: face 3 is degenerate (zero area): its cotangent weights are not finite", {"m.obj", true});
   EXPECT_TRUE(contains(m, "refer to the repaired mesh, not to m.obj")) << m;
 }
+
+// check_mesh names its repair in library terms; the tool names its flag instead, the rest of the message
+// as it was.
+TEST(ExplainError, MeshWarningsNameTheRepairFlag) {
+  using iarap::cli::deform_repair_flag;
+  using iarap::cli::name_repair;
+  EXPECT_EQ(name_repair("3 vertices are used by no face; first: vertex 7; repair_mesh removes them "
+                        "(RepairOptions::remove_unreferenced)",
+                        deform_repair_flag),
+            "3 vertices are used by no face; first: vertex 7; `iarap deform --repair` removes them");
+  EXPECT_EQ(name_repair("the mesh falls apart (STL); repair_mesh welds it (RepairOptions::weld)", "the tool"),
+            "the mesh falls apart (STL); the tool welds it");
+  const std::string other = "2 edges are non-manifold (3 or more faces); first: edge (0, 1) with 3 faces";
+  EXPECT_EQ(name_repair(other, deform_repair_flag), other);
+}

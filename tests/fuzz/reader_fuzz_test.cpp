@@ -74,7 +74,8 @@ std::vector<std::string> corpus(const std::string& reader) {
   return seeds;
 }
 
-// Tokens that have broken readers elsewhere: overflow, negative and huge indices, non-numbers, a BOM.
+// Tokens that have broken readers elsewhere: overflow, negative and huge indices, non-numbers, a BOM,
+// outlier and extreme coordinates (issue 33: the coincident-vertex check).
 const std::vector<std::string> kHostile = {"1e400",
                                            "-1e400",
                                            "nan",
@@ -87,6 +88,10 @@ const std::vector<std::string> kHostile = {"1e400",
                                            "-2147483649",
                                            "99999999999999999999",
                                            "1e-400",
+                                           "1e30",
+                                           "-1e30",
+                                           "1e300",
+                                           "1e-300",
                                            "0x10",
                                            "+",
                                            "-",

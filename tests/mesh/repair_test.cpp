@@ -78,26 +78,6 @@ TEST(RepairMesh, OutOfRangeIndexThrows) {
   }
 }
 
-TEST(WeldRepresentatives, ExactModeAndNonFinite) {
-  Eigen::MatrixXd V(5, 3);
-  V << 0, 0, 0, 0, 0, 1e-300, NAN, 0, 0, 0, 0, 0, NAN, 0, 0;
-  const Eigen::VectorXi r = iarap::weld_representatives(V, 0.0);
-  Eigen::VectorXi expected(5);
-  expected << 0, 1, 2, 0, 4;
-  EXPECT_EQ(r, expected);
-}
-
-// Issue 20: 20K copies of one point (a pile a broken exporter leaves) weld through the position sort, not
-// the pairwise grid search that was quadratic in such a pile; the result names the smallest index.
-TEST(Repair, PileOfIdenticalPointsWelds) {
-  const int n = 20000;
-  Eigen::MatrixXd V = Eigen::MatrixXd::Constant(n, 3, 0.25);
-  V.row(n - 1) << 1, 1, 1; // one point elsewhere, so the bounding box is not empty
-  const Eigen::VectorXi r = iarap::weld_representatives(V, 1e-12);
-  EXPECT_EQ((r.head(n - 1).array() == 0).count(), n - 1);
-  EXPECT_EQ(r(n - 1), n - 1);
-}
-
 // Repair at 1e-300: areas there underflow to 0 unless computed on normalised coordinates, so every face
 // was "zero area" and dropped.
 TEST(Repair, TinyScaleKeepsEveryFace) {

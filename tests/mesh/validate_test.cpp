@@ -107,6 +107,31 @@ TEST(CheckMesh, SoupWarnsAboutCoincidentVertices) {
   EXPECT_TRUE(any_contains(r.warnings, "one component per face")) << joined(r.warnings);
 }
 
+// Issue 36: the library names its own repair (repair_mesh and the option that does it), never a flag of
+// the tool; `iarap info`, `deform` and the viewer put their own words in its place (app/explain_error.h).
+TEST(CheckMesh, WarningsNameTheLibraryRepair) {
+  auto soup = iarap::test::as_soup(iarap::test::octahedron());
+  soup.V.conservativeResize(soup.V.rows() + 1, 3);
+  soup.V.bottomRows(1) << 5, 5, 5;                                // used by no face
+  soup.V.row(0) = soup.V.row(1) + Eigen::RowVector3d(1e-3, 0, 0); // face 0 becomes a sliver...
+  soup.V.row(2) = soup.V.row(1) + Eigen::RowVector3d(2e-3, 0, 0); // ...of zero width: zero area
+  const MeshReport r = check_mesh(soup.V, soup.F);
+  ASSERT_EQ(r.warnings.size(), 4u) << joined(r.warnings);
+  EXPECT_TRUE(any_contains(r.warnings, "first: vertex 24; repair_mesh removes them "
+                                       "(RepairOptions::remove_unreferenced)"))
+      << joined(r.warnings);
+  EXPECT_TRUE(
+      any_contains(r.warnings, "first: face 0; repair_mesh drops them (RepairOptions::remove_zero_area)"))
+      << joined(r.warnings);
+  EXPECT_TRUE(any_contains(r.warnings, "repair_mesh welds them (RepairOptions::weld)")) << joined(r.warnings);
+  EXPECT_TRUE(any_contains(r.warnings, "(STL); repair_mesh welds it (RepairOptions::weld)"))
+      << joined(r.warnings);
+  for (const std::string& line : r.warnings) {
+    EXPECT_EQ(line.find("iarap "), std::string::npos) << line;
+    EXPECT_EQ(line.find("--"), std::string::npos) << line;
+  }
+}
+
 TEST(CheckMesh, FlippedFace) {
   auto m = iarap::test::octahedron();
   std::swap(m.F(3, 1), m.F(3, 2));

@@ -263,6 +263,11 @@ describe('bad requests leave the server running with its state intact', () => {
     assert.equal(loaded.mesh.name, 'tet.off');
     assert.equal(loaded.mesh.vertices, 4);
     assert.deepEqual(loaded.fixed, []);
+    // check_mesh names repair_mesh; the viewer says where the repair runs instead (issue 36).
+    const stray = await (await upload('stray.off', tetra.replace('4 4 0', '5 4 0').replace('0 0 1\n3', '0 0 1\n5 5 5\n3'))).json();
+    assert.equal(stray.mesh.vertices, 5);
+    assert.match(stray.mesh.warnings.join('\n'), /first: vertex 4; outside the viewer, `iarap deform --repair` removes them/);
+    assert.doesNotMatch(stray.mesh.warnings.join('\n'), /RepairOptions/);
     const back = await (await postJson('/api/load', { mesh: 'bunny.off' })).json();
     assert.equal(back.mesh.vertices, 3485);
   });

@@ -1,6 +1,8 @@
 // Opt-in repair of the defects check_mesh warns about: unwelded copies of a vertex, unreferenced vertices,
 // zero-area faces. Vertex order is kept for the vertices that stay.
 #pragma once
+#include "iarap/mesh/weld_representatives.h"
+
 #include <Eigen/Core>
 #include <string>
 #include <vector>
@@ -25,10 +27,5 @@ struct RepairResult {
 // removed. Throws InputError when V is not #V x 3, F not #F x 3, or a face index is out of range.
 RepairResult repair_mesh(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
                          const RepairOptions& options = {});
-
-// representative(i): the smallest vertex index in i's cluster, clusters being the connected groups of
-// finite vertices within `tolerance` (absolute, Euclidean) of each other. Non-finite vertices stay alone.
-// Hash grid of cell size `tolerance` over a sorted key array: O(#V log #V).
-Eigen::VectorXi weld_representatives(const Eigen::MatrixXd& V, double tolerance);
 
 } // namespace iarap

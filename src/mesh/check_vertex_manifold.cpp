@@ -1,0 +1,94 @@
+#include "mesh_checks.h"
+
+#include <algorithm>
+#include <utility>
+
+namespace iarap::mesh_checks {
+
+namespace {
+
+// Per corner 3 g + k of G, its fan: corners of one vertex in faces sharing an edge at it are joined, so a
+// vertex whose corners fall into more than one group has more than one fan.
+Eigen::VectorXi corner_fans(const Eigen::MatrixXi& G, const EdgeTopology& t) {
+  const int ng = static_cast<int>(G.rows());
+  std::vector<int> join_a, join_b;
+  join_a.reserve(static_cast<std::size_t>(6 * ng));
+  join_b.reserve(static_cast<std::size_t>(6 * ng));
+  std::vector<int> first_corner(static_cast<std::size_t>(2 * t.E.rows()), -1); // per edge end: a corner seen
+  for (int g = 0; g < ng; ++g)
+    for (int k = 0; k < 3; ++k) {
+      const int e = t.FE(g, k);
+      for (int end = 0; end < 2; ++end) {
+        const int corner_k = G(g, (k + 1) % 3) == t.E(e, end) ? (k + 1) % 3 : (k + 2) % 3;
+        const int corner = 3 * g + corner_k;
+        int& seen = first_corner[static_cast<std::size_t>(2 * e + end)];
+        if (seen < 0) {
+          seen = corner;
+        } else {
+          join_a.push_back(seen);
+          join_b.push_back(corner);
+        }
+      }
+    }
+  return group_pairs(join_a, join_b, 3 * ng, nullptr);
+}
+
+} // namespace
+
+void check_vertex_manifold(const CheckedFaces& faces, const EdgeTopology& t, int num_vertices,
+                           MeshReport& r) {
+  const Eigen::MatrixXi& G = faces.G;
+  const int ng = static_cast<int>(G.rows()), nv = num_vertices;
+  const Eigen::VectorXi fan = corner_fans(G, t);
+  std::vector<int> fan_of(static_cast<std::size_t>(nv), -1);
+  std::vector<char> pinched(static_cast<std::size_t>(nv), 0);
+  for (int c = 0; c < 3 * ng; ++c) {
+    const int v = G(c / 3, c % 3);
+    int& seen = fan_of[static_cast<std::size_t>(v)];
+    if (seen < 0)
+      seen = fan(c);
+    else if (seen != fan(c))
+      pinched[static_cast<std::size_t>(v)] = 1;
+  }
+  // A pinched vertex whose fans are all open (each fan ends on two boundary edges) is where separate
+  // sheets touch, common in scans: ARAP keeps one rotation cell there and the intrinsic triangulation gives
+  // each fan its own angle range, so it is only a warning. A closed fan touching another is an error.
+  std::vector<std::pair<int, int>> vertex_fans;
+  for (int c = 0; c < 3 * ng; ++c) {
+    const int v = G(c / 3, c % 3);
+    if (pinched[static_cast<std::size_t>(v)]) vertex_fans.emplace_back(v, fan(c));
+  }
+  std::sort(vertex_fans.begin(), vertex_fans.end());
+  vertex_fans.erase(std::unique(vertex_fans.begin(), vertex_fans.end()), vertex_fans.end());
+  std::vector<int> fan_count(static_cast<std::size_t>(nv), 0), boundary_at(static_cast<std::size_t>(nv), 0);
+  for (const auto& vf : vertex_fans) ++fan_count[static_cast<std::size_t>(vf.first)];
+  for (int e = 0; e < static_cast<int>(t.E.rows()); ++e)
+    if (t.face_count(e) == 1) {
+      ++boundary_at[static_cast<std::size_t>(t.E(e, 0))];
+      ++boundary_at[static_cast<std::size_t>(t.E(e, 1))];
+    }
+  const auto all_open = [&](int v) {
+    return boundary_at[static_cast<std::size_t>(v)] == 2 * fan_count[static_cast<std::size_t>(v)];
+  };
+  int first_closed = -1, first_open = -1, open = 0;
+  for (int v = 0; v < nv; ++v) {
+    if (!pinched[static_cast<std::size_t>(v)]) continue;
+    ++r.non_manifold_vertices;
+    if (all_open(v)) {
+      if (open++ == 0) first_open = v;
+    } else if (first_closed < 0) {
+      first_closed = v;
+    }
+  }
+  if (open > 0)
+    r.warnings.push_back(plural(open, "vertex joins", "vertices join") +
+                         " several open fans of faces (sheets touching at a point; handled as one rotation "
+                         "cell); first: vertex " +
+                         std::to_string(first_open));
+  if (r.non_manifold_vertices > open)
+    r.errors.push_back(plural(r.non_manifold_vertices - open, "vertex is", "vertices are") +
+                       " non-manifold (a closed fan of faces touches another fan there); first: vertex " +
+                       std::to_string(first_closed));
+}
+
+} // namespace iarap::mesh_checks
