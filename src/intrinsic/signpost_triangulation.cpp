@@ -1,4 +1,5 @@
 #include "signpost_triangulation.h"
+#include "../core/math_constants.h"
 #include "../mesh/face_index_range.h"
 #include "upper_half_angle.h"
 
@@ -16,8 +17,6 @@
 namespace iarap::detail {
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 std::string edge_name(int a, int b) {
   return "(" + std::to_string(a) + ", " + std::to_string(b) + ")";

@@ -68,7 +68,7 @@ struct SignpostTriangulation {
 // One record per entry (angle and halfedge side by side): the tracer's lookups are random, so each costs
 // one cache miss instead of two.
 struct VertexFans {
-  // Left uninitialized when default-constructed (as ArapElements::CellEntry): the build writes every entry,
+  // Left uninitialized when default-constructed (as the solver's CellEntry): the build writes every entry,
   // and zeroing them first would cost a pass over 16 bytes per halfedge.
   struct Entry {
     Entry() {}

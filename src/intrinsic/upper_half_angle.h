@@ -10,6 +10,7 @@
 // unit test: UpperHalfAngle.*).
 #pragma once
 
+#include "../core/math_constants.h"
 #include <algorithm>
 #include <cmath>
 
@@ -30,7 +31,6 @@ inline double one_if_greater(double a, double b) {
 }
 
 inline double upper_half_angle(double y, double x) {
-  constexpr double kPi = 3.14159265358979323846;
   constexpr double kTanPiOver8 = 0.41421356237309504880;
   const double ax = std::fabs(x);
   const double lo = std::min(y, ax), hi = std::max(y, ax);

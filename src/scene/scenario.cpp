@@ -1,4 +1,5 @@
 #include "iarap/scene/scenario.h"
+#include "../core/math_constants.h"
 
 #include "iarap/core/errors.h"
 
@@ -9,8 +10,6 @@
 
 namespace iarap {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 std::vector<int> select_union(const std::vector<Region>& regions, const Eigen::MatrixXd& V,
                               const BoundingBox& box) {

@@ -6,6 +6,7 @@
 #include "iarap/mesh/edge_topology.h"
 
 #include "../intrinsic/segments.h"
+#include "../mesh/face_index_range.h"
 #include "streamed_layout.h"
 #include "traced_elements.h"
 
@@ -109,11 +110,7 @@ void check_arap_mesh(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
   for (Eigen::Index v = 0; v < V.rows(); ++v)
     if (!V.row(v).allFinite())
       throw InputError("ARAP: vertex " + std::to_string(v) + " has a non-finite coordinate");
-  for (Eigen::Index f = 0; f < F.rows(); ++f)
-    for (int k = 0; k < 3; ++k)
-      if (F(f, k) < 0 || F(f, k) >= V.rows())
-        throw InputError("ARAP: face " + std::to_string(f) + " uses vertex " + std::to_string(F(f, k)) +
-                         "; mesh has " + std::to_string(V.rows()));
+  require_face_indices_in_range(F, V.rows(), "ARAP: ");
 }
 
 ArapElements arap_edge_elements(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
