@@ -35,6 +35,35 @@ void check_positions(const Eigen::MatrixXd& U, Eigen::Index rows, const std::str
       throw InputError("ARAP: " + what + " row " + std::to_string(r) + " is not finite");
 }
 
+// Checks X: rows x 3, or for planar data rows x 2 or rows x 3 in the plane z = 0.
+void check_solver_positions(const ArapData& data, const Eigen::MatrixXd& X, Eigen::Index rows,
+                            const std::string& what) {
+  if (data.planar && X.cols() == 2) {
+    if (X.rows() != rows)
+      throw InputError("ARAP: " + what + " must be " + std::to_string(rows) + " x 2 (planar), got " +
+                       std::to_string(X.rows()) + " x 2");
+    for (Eigen::Index r = 0; r < rows; ++r)
+      if (!X.row(r).allFinite())
+        throw InputError("ARAP: " + what + " row " + std::to_string(r) + " is not finite");
+    return;
+  }
+  check_positions(X, rows, what);
+  if (!data.planar) return;
+  for (Eigen::Index r = 0; r < rows; ++r)
+    if (X(r, 2) != 0.0)
+      throw InputError("ARAP: " + what + " row " + std::to_string(r) + " has z = " + std::to_string(X(r, 2)) +
+                       "; a planar ARAP deforms in the plane z = 0 (give #rows x 2 positions, or precompute "
+                       "without ArapOptions::planar for a 3D deformation)");
+}
+
+// A rows x 2 X as rows x 3 at z = 0.
+Eigen::MatrixXd embedded(const Eigen::MatrixXd& X) {
+  Eigen::MatrixXd X3(X.rows(), 3);
+  X3.leftCols(2) = X;
+  X3.col(2).setZero();
+  return X3;
+}
+
 // The system of the global step as arap_precompute builds it. The pattern of L (hence of L_ff) follows from F
 // alone, so the pattern and CHOLMOD's symbolic analysis are built beside the elements (for iARAP: beside the
 // intrinsic flips); with one thread, first. The values and the numeric factorization follow once L is known.
@@ -58,6 +87,18 @@ void factorize(const Eigen::SparseMatrix<double>& L, const detail::ConstraintLay
   detail::split_system(L, layout, system.L_ff, &system.L_fc);
   system.solver.factorize(system.L_ff);
   system.factorized = true;
+}
+
+// The rest mesh as the builders take it, #V x 3: a #V x 2 V embedded at z = 0; a planar #V x 3 one must lie
+// in that plane (InputError naming the first vertex off it).
+Eigen::MatrixXd rest_positions(const Eigen::MatrixXd& V, bool planar) {
+  if (V.cols() == 2) return embedded(V);
+  if (planar && V.cols() == 3)
+    for (Eigen::Index v = 0; v < V.rows(); ++v)
+      if (V(v, 2) != 0.0)
+        throw InputError("ARAP: vertex " + std::to_string(v) + " has z = " + std::to_string(V(v, 2)) +
+                         "; ArapOptions::planar needs a mesh in the plane z = 0");
+  return V;
 }
 
 // What arap_precompute knows before any element: the rest mesh, the method and the connected components.
@@ -168,10 +209,12 @@ void factorize_element_system(const Eigen::MatrixXi& F, const detail::Constraint
 
 } // namespace
 
-ArapData arap_precompute(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const Eigen::VectorXi& fixed,
+ArapData arap_precompute(const Eigen::MatrixXd& V_in, const Eigen::MatrixXi& F, const Eigen::VectorXi& fixed,
                          const ArapOptions& options) {
+  const Eigen::MatrixXd V = rest_positions(V_in, options.planar);
   check_arap_mesh(V, F);
   ArapData data = rest_data(V, F, options);
+  data.planar = options.planar || V_in.cols() == 2;
   // Bad constraints fail before any heavy work.
   detail::ConstraintLayout layout = detail::constraint_layout(data, fixed);
   SystemBuild system;
@@ -180,6 +223,7 @@ ArapData arap_precompute(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, con
   else
     build_cotan_elements(V, F, options.method, layout, data, system);
   if (!system.factorized) factorize_element_system(F, layout, data, system);
+  data.elements.planar = data.planar;
   data.timings.analyze_ms = system.analyze_ms;
   data.R.assign(static_cast<size_t>(data.elements.num_cells), Eigen::Matrix3d::Identity());
   detail::commit_layout(data, fixed, layout, system.solver, system.L_fc);
@@ -197,6 +241,16 @@ void arap_set_fixed(ArapData& data, const Eigen::VectorXi& fixed) {
   data.timings.factor_ms = ms_since(start);
 }
 
+namespace {
+
+ArapReport solve_checked(ArapData& data, const Eigen::MatrixXd& targets, Eigen::MatrixXd& U,
+                         const ArapSolveOptions& options, Clock::time_point start) {
+  detail::LocalGlobalProblem problem(data, targets, U);
+  return detail::run_local_global(problem, options, data.solver.kind(), start);
+}
+
+} // namespace
+
 ArapReport arap_solve(ArapData& data, const Eigen::MatrixXd& targets, Eigen::MatrixXd& U,
                       const ArapSolveOptions& options) {
   const auto start = Clock::now();
@@ -208,10 +262,16 @@ ArapReport arap_solve(ArapData& data, const Eigen::MatrixXd& targets, Eigen::Mat
                      std::to_string(options.gradient_tolerance));
   if (options.window < 0)
     throw InputError("ARAP: window must be >= 0, got " + std::to_string(options.window));
-  check_positions(targets, data.fixed.size(), "targets");
-  check_positions(U, data.V.rows(), "initial guess U");
-  detail::LocalGlobalProblem problem(data, targets, U);
-  return detail::run_local_global(problem, options, data.solver.kind(), start);
+  check_solver_positions(data, targets, data.fixed.size(), "targets");
+  check_solver_positions(data, U, data.V.rows(), "initial guess U");
+  const Eigen::MatrixXd target_rows = targets.cols() == 2 ? embedded(targets) : targets;
+  if (U.cols() == 2) { // planar: solved embedded at z = 0, handed back in the caller's two columns
+    Eigen::MatrixXd U3 = embedded(U);
+    ArapReport report = solve_checked(data, target_rows, U3, options, start);
+    U = U3.leftCols(2);
+    return report;
+  }
+  return solve_checked(data, target_rows, U, options, start);
 }
 
 double arap_energy(const ArapData& data, const Eigen::MatrixXd& U) {
@@ -219,7 +279,8 @@ double arap_energy(const ArapData& data, const Eigen::MatrixXd& U) {
 }
 
 Eigen::VectorXd arap_cell_energy(const ArapData& data, const Eigen::MatrixXd& U) {
-  check_positions(U, data.V.rows(), "positions U");
+  check_solver_positions(data, U, data.V.rows(), "positions U");
+  if (U.cols() == 2) return arap_cell_energy(data, embedded(U));
   ArapElements::ValueRows U_rows;
   std::vector<Eigen::Matrix3d> R;
   Eigen::VectorXd cell_energy;
@@ -228,7 +289,8 @@ Eigen::VectorXd arap_cell_energy(const ArapData& data, const Eigen::MatrixXd& U)
 }
 
 Eigen::MatrixXd arap_gradient(const ArapData& data, const Eigen::MatrixXd& U) {
-  check_positions(U, data.V.rows(), "positions U");
+  check_solver_positions(data, U, data.V.rows(), "positions U");
+  if (U.cols() == 2) return arap_gradient(data, embedded(U)).leftCols(2);
   ArapElements::ValueRows U_rows;
   std::vector<Eigen::Matrix3d> R;
   Eigen::VectorXd cell_energy;

@@ -98,7 +98,9 @@ double fit_rotations_in_visit_order(const ArapElements& el, const ArapElements::
           for (int d = 0; d < 3; ++d) kept[l][k - begin][d] = s[d];
       }
     }
-    if (warm)
+    if (el.planar)
+      for (int l = 0; l < count; ++l) Rc[l] = planar_rotation(S[l]);
+    else if (warm)
       polar_rotation_near(S, &R[static_cast<size_t>(first)], Rc, count);
     else
       for (int l = 0; l < count; ++l) Rc[l] = polar_rotation(S[l]);

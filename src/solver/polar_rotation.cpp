@@ -1,5 +1,7 @@
 #include "iarap/solver/polar_rotation.h"
 
+#include "iarap/solver/closest_rotation_2d.h"
+
 #include <Eigen/Geometry>
 #include <Eigen/LU>
 #include <Eigen/SVD>
@@ -273,6 +275,12 @@ void polar_rotation_near(const Eigen::Matrix3d* S, const Eigen::Matrix3d* guess,
         for (int j = 0; j < 3; ++j) R[first + l](i, j) = Rq[3 * i + j][l];
     }
   }
+}
+
+Eigen::Matrix3d planar_rotation(const Eigen::Matrix3d& S) {
+  Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
+  R.topLeftCorner<2, 2>() = closest_rotation_2d(S.topLeftCorner<2, 2>());
+  return R;
 }
 
 } // namespace iarap

@@ -17,7 +17,10 @@
 namespace iarap {
 
 // Builds the elements of options.method on the rest mesh (V #V x 3, F #F x 3, a manifold triangle mesh),
-// assembles L and factorizes L_ff for the constrained vertices `fixed` (#fixed, 0-based).
+// assembles L and factorizes L_ff for the constrained vertices `fixed` (#fixed, 0-based). A planar mesh
+// (V #V x 2, or #V x 3 in the plane z = 0 with ArapOptions::planar) is deformed in its plane with 2x2
+// rotations (planar_rotation): the result is the 3D solver's on the mesh embedded at z = 0 wherever no cell
+// is squeezed through a reflection, with z exactly 0.
 // Throws InputError (bad shapes, face indices, non-finite V, bad fixed set: see arap_set_fixed),
 // TopologyError (non-manifold edge, degenerate face without mollification), SolverError (a component
 // without constrained vertex, failed factorization).
@@ -30,7 +33,8 @@ ArapData arap_precompute(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, con
 // pin_unconstrained_components. On a throw, data keeps its previous constrained set.
 void arap_set_fixed(ArapData& data, const Eigen::VectorXi& fixed);
 
-// Runs local/global iterations. targets: #fixed x 3 positions of data.fixed (same order). U: #V x 3,
+// Runs local/global iterations. targets: #fixed x 3 positions of data.fixed (same order); for planar data
+// #fixed x 2, or x 3 with z = 0 (InputError naming the row otherwise). U: #V x 3 (planar: #V x 2 or x 3),
 // in: the initial guess (its constrained rows are overwritten by the targets first; warm starts pass the
 // previous solution), out: the result. Plain iteration k: rhs from the rotations fitted to U_{k-1}
 // (Eq. 16), U_k,f = L_ff^{-1}(rhs_f - L_fc U_c), then the local step on U_k gives E(U_k) and the rotations
@@ -43,14 +47,15 @@ void arap_set_fixed(ArapData& data, const Eigen::VectorXi& fixed);
 ArapReport arap_solve(ArapData& data, const Eigen::MatrixXd& targets, Eigen::MatrixXd& U,
                       const ArapSolveOptions& options = {});
 
-// E(U) = min_R sum_e sum_{c in cells(e)} (w_e / 2) ||U^T b_e - R_c s_hat_e||^2 for U #V x 3.
+// E(U) = min_R sum_e sum_{c in cells(e)} (w_e / 2) ||U^T b_e - R_c s_hat_e||^2 for U #V x 3 (planar data:
+// #V x 2 or x 3 in the plane, R_c rotations about z).
 double arap_energy(const ArapData& data, const Eigen::MatrixXd& U);
 
 // Per-cell energies of U (they sum to arap_energy), e.g. for colour maps: #V entries, one per vertex, then
 // (iARAP with refine_boundary only) one per inserted boundary point.
 Eigen::VectorXd arap_cell_energy(const ArapData& data, const Eigen::MatrixXd& U);
 
-// dE/dU (#V x 3) = L U - rhs(R*(U)) with R*(U) the optimal rotations (Eq. 14; the envelope theorem makes
+// dE/dU (shaped as U) = L U - rhs(R*(U)) with R*(U) the optimal rotations (Eq. 14; the envelope theorem makes
 // it the gradient of the minimized energy).
 Eigen::MatrixXd arap_gradient(const ArapData& data, const Eigen::MatrixXd& U);
 

@@ -24,7 +24,10 @@ struct ArapElements {
   using IndexRows = Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor>;
   using ValueRows = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
 
-  int num_vertices = 0;        // #V
+  int num_vertices = 0; // #V
+  // Rotations about the z axis only (planar_rotation): a planar mesh deformed in its plane. arap_precompute
+  // sets it for planar data; the builders leave it false.
+  bool planar = false;
   int num_cells = 0;           // rotation cells: one per vertex, plus (iARAP with refine_boundary) one per
                                // inserted boundary point, numbered #V, #V + 1, ... as in the triangulation
   IndexRows b_index;           // #E x 3 vertices of b_e; an unused slot repeats slot 0 with value 0

@@ -41,6 +41,11 @@ struct ArapOptions {
   // A connected component without a constrained vertex makes L_ff singular. false: SolverError naming
   // it; true: its first (smallest-index) vertex is pinned where the initial guess of arap_solve puts it.
   bool pin_unconstrained_components = false;
+  // A planar mesh deformed in its plane: cell rotations about the z axis only (2x2 rotations,
+  // planar_rotation), so that a cell squeezed through a reflection is fitted the closest rotation, never
+  // one that turns the plane over. V must then lie in the plane z = 0, and targets and positions too
+  // (arap_solve). A #V x 2 V is planar whatever this says.
+  bool planar = false;
 };
 
 // Wall-clock parts of arap_precompute; they add up to its duration.
@@ -75,7 +80,8 @@ struct ArapIntrinsicSummary {
 struct ArapData {
   ArapMethod method = ArapMethod::Iarap;
   bool pin_unconstrained_components = false;
-  Eigen::MatrixXd V;             // #V x 3 rest positions
+  bool planar = false;           // rotations about z only; positions in the plane z = 0 (ArapOptions::planar)
+  Eigen::MatrixXd V;             // #V x 3 rest positions (z = 0 for planar data given as #V x 2)
   Eigen::MatrixXi F;             // #F x 3 faces
   ArapElements elements;         // the variant's elements (arap_elements.h)
   Eigen::SparseMatrix<double> L; // #V x #V system matrix, sum_e |cells(e)| w_e b_e b_e^T

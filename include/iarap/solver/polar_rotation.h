@@ -31,4 +31,11 @@ Eigen::Matrix3d polar_rotation_near(const Eigen::Matrix3d& S, const Eigen::Matri
 void polar_rotation_near(const Eigen::Matrix3d* S, const Eigen::Matrix3d* guess, Eigen::Matrix3d* R,
                          int count);
 
+// The rotation about the z axis maximizing tr(R^T S) for a planar cell (S's third row and column are zero:
+// positions and rest vectors in the xy plane): closest_rotation_2d of S's upper-left 2x2 block, with
+// R(2, 2) = 1. Unlike polar_rotation it never returns a rotation that turns the plane over (which is what
+// polar_rotation gives for det S_2x2 < 0): a planar mesh deformed in its plane keeps 2x2 rotations. At rest
+// (S_2x2 bitwise symmetric with positive trace) it is exactly the identity.
+Eigen::Matrix3d planar_rotation(const Eigen::Matrix3d& S);
+
 } // namespace iarap
