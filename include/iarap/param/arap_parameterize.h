@@ -1,0 +1,54 @@
+// ARAP parameterization (Liu, Zhang, Xu, Gotsman and Gortler 2008): the UV map of a disk-like surface
+// closest to an isometry, triangle by triangle, flip-free by default.
+//
+// The energy is E(U) = sum_f area_f ||J_f(U) - R_f||_F^2 over the triangles, J_f the 2x2 Jacobian of the
+// map in the triangle's own isometric frame (triangle_frames.h), minimized by the local/global iteration:
+// R_f = closest_rotation_2d(J_f) (local), then U minimizing E with the R_f held (global), one
+// sparse system L U = sum_f area_f D_f R_f^T with L the cotan Laplacian, factorized once. It is the energy
+// libigl's igl::arap (dim 2) and CGAL's ARAP_parameterizer_3 minimize.
+//
+// Flip-free (the default): from an injective start each step goes from U to
+// U + t (U_global - U) with t = min(1, step_fraction * t_max), t_max the first step at which some
+// triangle degenerates (injective_step.h). The energy never increases along such a step, for any t in
+// [0, 1]: E(U + t dU) <= E(U + t dU; R) <= E(U; R) = E(U), the first because the R_f minimize E for a
+// fixed map, the second because E(.; R) is a convex quadratic minimized at t = 1. So no backtracking is
+// needed and the iteration is monotone.
+#pragma once
+#include "iarap/param/map_distortion.h"
+#include "iarap/param/param_options.h"
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+namespace iarap {
+
+struct ParamReport {
+  ParamInit requested_init = ParamInit::Lscm;
+  ParamInit init = ParamInit::Lscm; // the initial map the iteration started from
+  int init_flipped = 0;             // flipped triangles of the requested initial map
+  bool init_fallback = false;       // it flipped, so the flip-free iteration started from Tutte's map
+  int iterations = 0;
+  bool converged = false;       // stopped by the tolerance, not by the iteration limit
+  double initial_energy = 0;    // E of the initial map (squared mesh units)
+  std::vector<double> energies; // E after each iteration
+  std::vector<double> steps;    // t of each iteration (1 = the full global step)
+  MapDistortion distortion;     // of the final map
+  int pinned = 0;               // vertices held by the global step
+  double check_ms = 0, init_ms = 0, factor_ms = 0, iterate_ms = 0, total_ms = 0;
+};
+
+struct ParamResult {
+  Eigen::MatrixXd UV; // #V x 2, in the units of V
+  ParamReport report;
+};
+
+// The ARAP parameterization of (V #V x 3, F #F x 3). Runs on V divided by normalizing_scale(V) (exact),
+// so any scale works; UV and energies come back in V's units. Throws what prepare_disk throws (InputError,
+// TopologyError), InputError for options out of range (iterations < 0, tolerance < 0 or NaN,
+// step_fraction outside (0, 1), a circular boundary with the LSCM start) and SolverError when a system
+// cannot be factorized.
+ParamResult arap_parameterize(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
+                              const ParamOptions& options = {});
+
+} // namespace iarap

@@ -1,0 +1,35 @@
+#include "iarap/param/param_options.h"
+
+#include "iarap/core/errors.h"
+
+namespace iarap {
+
+std::string param_init_name(ParamInit init) {
+  switch (init) {
+  case ParamInit::Lscm:
+    return "lscm";
+  case ParamInit::Tutte:
+    return "tutte";
+  case ParamInit::Harmonic:
+    return "harmonic";
+  }
+  return "unknown";
+}
+
+ParamInit parse_param_init(const std::string& name) {
+  for (ParamInit init : {ParamInit::Lscm, ParamInit::Tutte, ParamInit::Harmonic})
+    if (name == param_init_name(init)) return init;
+  throw InputError("unknown initial map '" + name + "'; expected lscm, tutte or harmonic");
+}
+
+std::string param_boundary_name(ParamBoundary boundary) {
+  return boundary == ParamBoundary::Free ? "free" : "circle";
+}
+
+ParamBoundary parse_param_boundary(const std::string& name) {
+  for (ParamBoundary boundary : {ParamBoundary::Free, ParamBoundary::Circle})
+    if (name == param_boundary_name(boundary)) return boundary;
+  throw InputError("unknown boundary '" + name + "'; expected free or circle");
+}
+
+} // namespace iarap
