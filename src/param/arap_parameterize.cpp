@@ -132,12 +132,12 @@ public:
     assemble_rhs();
     d_.setZero(rhs_.rows(), 2);
     system_.solve(rhs_, d_);
-    dJ_ = face_jacobians(disk_.frames, disk_.F, d_);
+    face_jacobians(disk_.frames, disk_.F, d_, dJ_);
     R_try_.resize(J_.rows(), 4);
     double energy = 0, total = 0;
     step = 1;
     if (flip_fraction_ == 0) {
-      J_try_ = J_ + dJ_;
+      J_try_.noalias() = J_ + dJ_;
       total = evaluate(J_try_, R_try_, energy);
     } else {
       step = std::min(1.0, flip_fraction_ * largest_injective_step());
@@ -147,7 +147,7 @@ public:
           step = 0;
           return energy_;
         }
-        J_try_ = J_ + step * dJ_;
+        J_try_.noalias() = J_ + step * dJ_;
         total = evaluate(J_try_, R_try_, energy);
         if (total <= total_ + armijo * step * descent) break;
       }

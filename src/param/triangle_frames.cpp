@@ -46,12 +46,18 @@ Eigen::Matrix2d face_jacobian(const TriangleFrames& frames, const Eigen::MatrixX
 
 Eigen::MatrixXd face_jacobians(const TriangleFrames& frames, const Eigen::MatrixXi& F,
                                const Eigen::MatrixXd& UV) {
-  Eigen::MatrixXd J(F.rows(), 4);
+  Eigen::MatrixXd J;
+  face_jacobians(frames, F, UV, J);
+  return J;
+}
+
+void face_jacobians(const TriangleFrames& frames, const Eigen::MatrixXi& F, const Eigen::MatrixXd& UV,
+                    Eigen::MatrixXd& J) {
+  J.resize(F.rows(), 4);
   for (Eigen::Index f = 0; f < F.rows(); ++f) {
     const Eigen::Matrix2d Jf = face_jacobian(frames, F, UV, f);
     J.row(f) << Jf(0, 0), Jf(0, 1), Jf(1, 0), Jf(1, 1);
   }
-  return J;
 }
 
 } // namespace iarap

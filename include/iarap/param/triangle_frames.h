@@ -26,5 +26,8 @@ Eigen::Matrix2d face_jacobian(const TriangleFrames& frames, const Eigen::MatrixX
 // #F x 4: J_f row by row (J(0,0), J(0,1), J(1,0), J(1,1)) for every face.
 Eigen::MatrixXd face_jacobians(const TriangleFrames& frames, const Eigen::MatrixXi& F,
                                const Eigen::MatrixXd& UV);
+// The same into J, resized only when its shape differs (an iteration reuses one buffer).
+void face_jacobians(const TriangleFrames& frames, const Eigen::MatrixXi& F, const Eigen::MatrixXd& UV,
+                    Eigen::MatrixXd& J);
 
 } // namespace iarap
