@@ -66,10 +66,7 @@ void check_paths(const ParamArguments& args) {
 ParamOptions options_of(const ParamArguments& args) {
   ParamOptions options;
   options.boundary = parse_param_boundary(args.boundary);
-  // A circular boundary starts from a map with that boundary: harmonic unless --init says otherwise.
-  options.init = !args.init.empty()
-                     ? parse_param_init(args.init)
-                     : (options.boundary == ParamBoundary::Circle ? ParamInit::Harmonic : ParamInit::Lscm);
+  options.init = args.init.empty() ? default_param_init(options.boundary) : parse_param_init(args.init);
   if (options.boundary == ParamBoundary::Circle && options.init == ParamInit::Lscm)
     throw CLI::ValidationError("--boundary circle needs --init tutte or harmonic (lscm has a free boundary)");
   options.allow_flips = args.allow_flips;

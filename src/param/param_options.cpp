@@ -4,6 +4,10 @@
 
 namespace iarap {
 
+ParamInit default_param_init(ParamBoundary boundary) {
+  return boundary == ParamBoundary::Circle ? ParamInit::Harmonic : ParamInit::Lscm;
+}
+
 std::string param_init_name(ParamInit init) {
   switch (init) {
   case ParamInit::Lscm:

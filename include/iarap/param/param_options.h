@@ -38,6 +38,10 @@ struct ParamOptions {
   double barrier_threshold = 1e-1; // eps > 0, dimensionless (det J is an area ratio)
 };
 
+// The initial map to use when none is named: lscm for a free boundary, harmonic for a circular one (the
+// start must have the boundary the iteration holds).
+ParamInit default_param_init(ParamBoundary boundary);
+
 // "lscm", "tutte", "harmonic".
 std::string param_init_name(ParamInit init);
 // The inverse; throws InputError naming the name and the valid ones.

@@ -1,0 +1,90 @@
+// parameterize(V, F, ...): the ARAP parameterization of a disk-like mesh (UV map) and its report.
+#include "bindings.h"
+#include "numpy_arrays.h"
+
+#include "iarap/param/arap_parameterize.h"
+
+namespace iarap::python {
+namespace {
+
+py::dict range_dict(const DistortionRange& r) {
+  py::dict d;
+  d["min"] = r.min;
+  d["median"] = r.median;
+  d["max"] = r.max;
+  return d;
+}
+
+py::dict report_dict(const ParamReport& report) {
+  const MapDistortion& distortion = report.distortion;
+  py::dict d;
+  d["requested_init"] = param_init_name(report.requested_init);
+  d["init"] = param_init_name(report.init);
+  d["init_flipped"] = report.init_flipped;
+  d["init_fallback"] = report.init_fallback;
+  d["pinned"] = report.pinned;
+  d["iterations"] = report.iterations;
+  d["converged"] = report.converged;
+  d["initial_energy"] = report.initial_energy;
+  d["energies"] = to_numpy(report.energies);
+  d["steps"] = to_numpy(report.steps);
+  d["energy"] = distortion.energy;
+  d["scaled_energy"] = distortion.scaled_energy;
+  d["best_scale"] = distortion.best_scale;
+  d["flipped"] = distortion.flipped;
+  d["min_det_J"] = distortion.min_det_J;
+  d["area_distortion"] = range_dict(distortion.area_ratio);
+  d["angle_distortion"] = range_dict(distortion.angle_ratio);
+  d["check_ms"] = report.check_ms;
+  d["init_ms"] = report.init_ms;
+  d["factor_ms"] = report.factor_ms;
+  d["iterate_ms"] = report.iterate_ms;
+  d["total_ms"] = report.total_ms;
+  return d;
+}
+
+py::tuple parameterize_py(const py::object& V, const py::object& F, const py::object& init,
+                          const std::string& boundary, bool allow_flips, int iterations, double tolerance) {
+  const Eigen::MatrixXd positions = to_points(V, "V");
+  const Eigen::MatrixXi faces = to_faces(F, "F", positions.rows());
+  ParamOptions options;
+  options.boundary = parse_param_boundary(boundary);
+  options.init =
+      init.is_none() ? default_param_init(options.boundary) : parse_param_init(init.cast<std::string>());
+  options.allow_flips = allow_flips;
+  options.max_iterations = iterations;
+  options.tolerance = tolerance;
+  ParamResult result;
+  {
+    py::gil_scoped_release release;
+    result = arap_parameterize(positions, faces, options);
+  }
+  return py::make_tuple(to_numpy(result.UV), report_dict(result.report));
+}
+
+} // namespace
+
+void bind_param(py::module_& m) {
+  m.def("parameterize", &parameterize_py, py::arg("V"), py::arg("F"), py::kw_only(),
+        py::arg("init") = py::none(), py::arg("boundary") = "free", py::arg("allow_flips") = false,
+        py::arg("iterations") = ParamOptions{}.max_iterations,
+        py::arg("tolerance") = ParamOptions{}.tolerance,
+        R"(ARAP parameterization (Liu et al. 2008) of a disk-like mesh: (UV (#V, 2), report dict).
+
+V: (#V, 3) positions. F: (#F, 3) faces of a topological disk (one component, one boundary loop, genus 0).
+init: "lscm" (free boundary), "tutte" or "harmonic" (boundary on a circle of the surface's area); None:
+lscm, or harmonic with boundary="circle". boundary: "free" (one vertex pinned) or "circle" (held on that
+circle). allow_flips: the plain local/global iteration; by default it is flip-free (an injective start,
+Tutte's map if the requested one flips, and a line search that keeps every det J > 0). iterations: at most
+this many; tolerance: stop when an iteration lowers the energy by at most this fraction of it.
+
+The report: energy = sum_f area_f ||J_f - R_f||_F^2 (squared mesh units), scaled_energy at the best uniform
+scale best_scale, flipped (triangles with det J <= 0), min_det_J (UV area over surface area, signed),
+area_distortion and angle_distortion (min / median / max of sigma1 * sigma2 and sigma1 / sigma2),
+initial_energy, energies and steps per iteration, iterations, converged, requested_init, init, init_flipped,
+init_fallback, pinned, check_ms, init_ms, factor_ms, iterate_ms, total_ms.
+Raises InputError for bad arrays or options, TopologyError for a mesh that is not a disk (saying what it has:
+components, boundary loops, genus) or has degenerate triangles.)");
+}
+
+} // namespace iarap::python
