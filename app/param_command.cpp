@@ -11,6 +11,7 @@
 #include "iarap/io/check_output_path.h"
 #include "iarap/io/read_mesh.h"
 #include "iarap/param/arap_parameterize.h"
+#include "iarap/param/param_report_fields.h"
 #include "iarap/param/write_uv_map.h"
 
 #include <nlohmann/json.hpp>
@@ -21,6 +22,7 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <type_traits>
 
 namespace iarap::cli {
 namespace {
@@ -75,13 +77,8 @@ ParamOptions options_of(const ParamArguments& args) {
   return options;
 }
 
-nlohmann::json range_json(const DistortionRange& r) {
-  return {{"min", r.min}, {"median", r.median}, {"max", r.max}};
-}
-
 nlohmann::json report_json(const ParamArguments& args, const MeshData& mesh, const ParamOptions& options,
                            const ParamReport& report) {
-  const MapDistortion& d = report.distortion;
   nlohmann::json j;
   j["input"] = args.mesh;
   j["output"] = args.out;
@@ -90,29 +87,14 @@ nlohmann::json report_json(const ParamArguments& args, const MeshData& mesh, con
   j["energy_kind"] = args.energy;
   j["boundary"] = param_boundary_name(options.boundary);
   j["allow_flips"] = options.allow_flips;
-  j["requested_init"] = param_init_name(report.requested_init);
-  j["init"] = param_init_name(report.init);
-  j["init_flipped"] = report.init_flipped;
-  j["init_fallback"] = report.init_fallback;
-  j["pinned"] = report.pinned;
-  j["iterations"] = report.iterations;
-  j["converged"] = report.converged;
-  j["initial_energy"] = report.initial_energy;
-  j["energies"] = report.energies;
-  j["steps"] = report.steps;
-  j["energy"] = d.energy;
-  j["scaled_energy"] = d.scaled_energy;
-  j["best_scale"] = d.best_scale;
-  j["flipped"] = d.flipped;
-  j["min_det_J"] = d.min_det_J;
-  j["area_distortion"] = range_json(d.area_ratio);
-  j["angle_distortion"] = range_json(d.angle_ratio); // max is null (JSON has no infinity) where sigma2 = 0
   j["threads"] = thread_count();
-  j["check_ms"] = report.check_ms;
-  j["init_ms"] = report.init_ms;
-  j["factor_ms"] = report.factor_ms;
-  j["iterate_ms"] = report.iterate_ms;
-  j["parameterize_ms"] = report.total_ms;
+  // angle_distortion's max is null (JSON has no infinity) where a triangle's sigma2 = 0.
+  visit_param_report(report, [&j](const char* name, const auto& value) {
+    if constexpr (std::is_same_v<std::decay_t<decltype(value)>, DistortionRange>)
+      j[name] = {{"min", value.min}, {"median", value.median}, {"max", value.max}};
+    else
+      j[name] = value;
+  });
   return j;
 }
 

@@ -3,43 +3,29 @@
 #include "numpy_arrays.h"
 
 #include "iarap/param/arap_parameterize.h"
+#include "iarap/param/param_report_fields.h"
+
+#include <type_traits>
 
 namespace iarap::python {
 namespace {
 
-py::dict range_dict(const DistortionRange& r) {
-  py::dict d;
-  d["min"] = r.min;
-  d["median"] = r.median;
-  d["max"] = r.max;
-  return d;
-}
-
 py::dict report_dict(const ParamReport& report) {
-  const MapDistortion& distortion = report.distortion;
   py::dict d;
-  d["requested_init"] = param_init_name(report.requested_init);
-  d["init"] = param_init_name(report.init);
-  d["init_flipped"] = report.init_flipped;
-  d["init_fallback"] = report.init_fallback;
-  d["pinned"] = report.pinned;
-  d["iterations"] = report.iterations;
-  d["converged"] = report.converged;
-  d["initial_energy"] = report.initial_energy;
-  d["energies"] = to_numpy(report.energies);
-  d["steps"] = to_numpy(report.steps);
-  d["energy"] = distortion.energy;
-  d["scaled_energy"] = distortion.scaled_energy;
-  d["best_scale"] = distortion.best_scale;
-  d["flipped"] = distortion.flipped;
-  d["min_det_J"] = distortion.min_det_J;
-  d["area_distortion"] = range_dict(distortion.area_ratio);
-  d["angle_distortion"] = range_dict(distortion.angle_ratio);
-  d["check_ms"] = report.check_ms;
-  d["init_ms"] = report.init_ms;
-  d["factor_ms"] = report.factor_ms;
-  d["iterate_ms"] = report.iterate_ms;
-  d["total_ms"] = report.total_ms;
+  visit_param_report(report, [&d](const char* name, const auto& value) {
+    using Value = std::decay_t<decltype(value)>;
+    if constexpr (std::is_same_v<Value, DistortionRange>) {
+      py::dict range;
+      range["min"] = value.min;
+      range["median"] = value.median;
+      range["max"] = value.max;
+      d[name] = range;
+    } else if constexpr (std::is_same_v<Value, std::vector<double>>) {
+      d[name] = to_numpy(value);
+    } else {
+      d[name] = value;
+    }
+  });
   return d;
 }
 
@@ -82,7 +68,7 @@ The report: energy = sum_f area_f ||J_f - R_f||_F^2 (squared mesh units), scaled
 scale best_scale, flipped (triangles with det J <= 0), min_det_J (UV area over surface area, signed),
 area_distortion and angle_distortion (min / median / max of sigma1 * sigma2 and sigma1 / sigma2),
 initial_energy, energies and steps per iteration, iterations, converged, requested_init, init, init_flipped,
-init_fallback, pinned, check_ms, init_ms, factor_ms, iterate_ms, total_ms.
+init_fallback, pinned, check_ms, init_ms, factor_ms, iterate_ms, parameterize_ms.
 Raises InputError for bad arrays or options, TopologyError for a mesh that is not a disk (saying what it has:
 components, boundary loops, genus) or has degenerate triangles.)");
 }
