@@ -35,16 +35,6 @@ struct ParamArguments {
   bool allow_flips = false, json = false, quiet = false;
 };
 
-// --energy: the per-triangle energy only, for now; the per-vertex ones of issue 31 get a clear refusal.
-const CLI::Validator energy_name(
-    [](const std::string& name) -> std::string {
-      if (name == "triangle") return {};
-      if (name == "iarap" || name == "arap")
-        return "--energy " + name + " (per-vertex cells in the plane) is not available yet; use triangle";
-      return "unknown energy '" + name + "'; expected triangle";
-    },
-    "triangle");
-
 std::string lower_extension(const std::string& path) {
   std::string extension = std::filesystem::path(path).extension().string();
   std::transform(extension.begin(), extension.end(), extension.begin(),
@@ -67,6 +57,7 @@ void check_paths(const ParamArguments& args) {
 
 ParamOptions options_of(const ParamArguments& args) {
   ParamOptions options;
+  options.energy = parse_param_energy(args.energy);
   options.boundary = parse_param_boundary(args.boundary);
   options.init = args.init.empty() ? default_param_init(options.boundary) : parse_param_init(args.init);
   if (options.boundary == ParamBoundary::Circle && options.init == ParamInit::Lscm)
@@ -84,7 +75,6 @@ nlohmann::json report_json(const ParamArguments& args, const MeshData& mesh, con
   j["output"] = args.out;
   j["vertices"] = mesh.V.rows();
   j["faces"] = mesh.F.rows();
-  j["energy_kind"] = args.energy;
   j["boundary"] = param_boundary_name(options.boundary);
   j["allow_flips"] = options.allow_flips;
   j["threads"] = thread_count();
@@ -150,9 +140,12 @@ const bool registered = register_command(
               "Output: .obj (the mesh with one vt per vertex, faces a/a) or .txt (one 'u v' per vertex), "
               "written atomically")
            ->required();
-       sub->add_option("--energy", args->energy,
-                       "Energy: triangle (Liu et al. 2008's per-triangle ARAP, as libigl and CGAL)")
-           ->check(energy_name)
+       sub->add_option(
+              "--energy", args->energy,
+              "Energy: triangle (Liu et al. 2008's per-triangle ARAP, as libigl and CGAL), or per vertex "
+              "with a 2x2 rotation per flattened cell: arap (cotan edges) or iarap (intrinsic Delaunay "
+              "segments)")
+           ->check(CLI::IsMember({"triangle", "arap", "iarap"}))
            ->capture_default_str();
        sub->add_option(
               "--init", args->init,

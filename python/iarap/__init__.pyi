@@ -104,6 +104,7 @@ def parameterize(
     V: npt.ArrayLike,
     F: npt.ArrayLike,
     *,
+    energy: str = "triangle",
     init: str | None = None,
     boundary: str = "free",
     allow_flips: bool = False,

@@ -101,3 +101,13 @@ def test_bad_arguments():
     V[3, 0] = np.nan
     with pytest.raises(iarap.InputError):
         iarap.parameterize(V, F)
+
+
+@pytest.mark.parametrize("energy", ["arap", "iarap"])
+def test_per_vertex_energies_are_flip_free(energy):
+    V, F = spherical_cap(8, 24, 0.9 * np.pi)
+    UV, report = iarap.parameterize(V, F, energy=energy, iterations=300)
+    assert report["energy_kind"] == energy
+    assert report["flipped"] == 0 and np.all(det_J_signs(V, F, UV) > 0)
+    with pytest.raises(iarap.InputError, match="expected triangle, arap or iarap"):
+        iarap.parameterize(V, F, energy="spokes-rims")

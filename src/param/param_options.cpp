@@ -4,6 +4,28 @@
 
 namespace iarap {
 
+double default_barrier_weight(ParamEnergy energy) {
+  return energy == ParamEnergy::Triangle ? 1e-2 : 1e-1;
+}
+
+std::string param_energy_name(ParamEnergy energy) {
+  switch (energy) {
+  case ParamEnergy::Triangle:
+    return "triangle";
+  case ParamEnergy::Arap:
+    return "arap";
+  case ParamEnergy::Iarap:
+    return "iarap";
+  }
+  return "unknown";
+}
+
+ParamEnergy parse_param_energy(const std::string& name) {
+  for (ParamEnergy energy : {ParamEnergy::Triangle, ParamEnergy::Arap, ParamEnergy::Iarap})
+    if (name == param_energy_name(energy)) return energy;
+  throw InputError("unknown energy '" + name + "'; expected triangle, arap or iarap");
+}
+
 ParamInit default_param_init(ParamBoundary boundary) {
   return boundary == ParamBoundary::Circle ? ParamInit::Harmonic : ParamInit::Lscm;
 }

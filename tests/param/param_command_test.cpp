@@ -76,8 +76,7 @@ TEST(ParamCommand, UsageErrors) {
   } cases[] = {
       {mesh + " --out " + quoted(dir / "disk.obj"), "refusing to overwrite"},
       {mesh + " --out " + quoted(dir / "uv.ply"), ".obj (mesh with vt) or .txt"},
-      {mesh + out + " --energy iarap", "not available yet"},
-      {mesh + out + " --energy fast", "unknown energy"},
+      {mesh + out + " --energy spokes-rims", "--energy"},
       {mesh + out + " --init spectral", "spectral"},
       {mesh + out + " --boundary circle --init lscm", "--init tutte or harmonic"},
       {mesh + out + " --iterations -3", "iterations"},
@@ -94,18 +93,33 @@ TEST(ParamCommand, UsageErrors) {
   fs::remove_all(dir);
 }
 
+// `iarap param` on `mesh` written as file `name` in a fresh folder, with `options` and --json; the report,
+// or an empty object after a recorded failure.
+nlohmann::json param_report(const iarap::test::TestMesh& mesh, const std::string& name,
+                            const std::string& options) {
+  const auto dir = iarap::test::temp_dir("param_cli_" + name);
+  iarap::write_mesh((dir / name).string(), mesh.V, mesh.F);
+  const CliRun run =
+      iarap_cli("param " + quoted(dir / name) + " --out " + quoted(dir / "uv.txt") + " --json " + options);
+  fs::remove_all(dir);
+  EXPECT_EQ(run.code, 0) << run.out;
+  return run.code == 0 ? parse_json(run) : nlohmann::json::object();
+}
+
+TEST(ParamCommand, PerVertexEnergy) {
+  const nlohmann::json j =
+      param_report(iarap::test::spherical_cap(6, 18, 0.6 * M_PI), "cap.obj", "--energy iarap --quiet");
+  EXPECT_EQ(j["energy_kind"], "iarap");
+  EXPECT_EQ(j["flipped"], 0);
+  EXPECT_LT(j["energies"].back().get<double>(), j["initial_energy"].get<double>());
+}
+
 TEST(ParamCommand, CircularBoundaryDefaultsToHarmonic) {
-  const auto dir = iarap::test::temp_dir("param_cli_circle");
-  const iarap::test::TestMesh cap = iarap::test::spherical_cap(5, 14, 0.4 * M_PI);
-  iarap::write_mesh((dir / "cap.ply").string(), cap.V, cap.F);
-  const CliRun run = iarap_cli("param " + quoted(dir / "cap.ply") + " --out " + quoted(dir / "uv.txt") +
-                               " --boundary circle --json");
-  ASSERT_EQ(run.code, 0) << run.out;
-  const nlohmann::json j = parse_json(run);
+  const nlohmann::json j =
+      param_report(iarap::test::spherical_cap(5, 14, 0.4 * M_PI), "cap.ply", "--boundary circle");
   EXPECT_EQ(j["requested_init"], "harmonic");
   EXPECT_EQ(j["boundary"], "circle");
   EXPECT_EQ(j["flipped"], 0);
-  fs::remove_all(dir);
 }
 
 } // namespace

@@ -5,7 +5,9 @@
 // map in the triangle's own isometric frame (triangle_frames.h), minimized by the local/global iteration:
 // R_f = closest_rotation_2d(J_f) (local), then U minimizing E with the R_f held (global), one
 // sparse system L U = sum_f area_f D_f R_f^T with L the cotan Laplacian, factorized once. It is the energy
-// libigl's igl::arap (dim 2) and CGAL's ARAP_parameterizer_3 minimize.
+// libigl's igl::arap (dim 2) and CGAL's ARAP_parameterizer_3 minimize. ParamEnergy::Arap and ::Iarap
+// minimize per-vertex energies instead (planar_cells.h: original ARAP's cotan edges or iARAP's segments,
+// one 2x2 rotation per vertex), with the same global system structure and the same flip-free steps.
 //
 // The plain iteration (allow_flips) never increases E: E(U_new) <= E(U_new; R) <= E(U; R) = E(U), the
 // rotations minimizing E for a fixed map and the global step minimizing E(.; R). It can fold triangles over
@@ -30,18 +32,21 @@
 namespace iarap {
 
 struct ParamReport {
+  ParamEnergy energy = ParamEnergy::Triangle; // the energy minimized (initial_energy, energies)
   ParamInit requested_init = ParamInit::Lscm;
   ParamInit init = ParamInit::Lscm; // the initial map the iteration started from
   int init_flipped = 0;             // flipped triangles of the requested initial map
   bool init_fallback = false;       // it flipped, so the flip-free iteration started from Tutte's map
   int iterations = 0;
   bool converged = false;       // stopped by the tolerance, not by the iteration limit
-  double initial_energy = 0;    // E of the initial map (squared mesh units)
-  std::vector<double> energies; // E after each iteration
+  double initial_energy = 0;    // the minimized energy of the initial map (squared mesh units)
+  std::vector<double> energies; // the minimized energy after each iteration
   std::vector<double> steps;    // t of each iteration (1 = the full global step)
-  MapDistortion distortion;     // of the final map
-  int pinned = 0;               // vertices held by the global step
-  double check_ms = 0, init_ms = 0, factor_ms = 0, iterate_ms = 0, total_ms = 0;
+  // Of the final map, whatever energy was minimized: distortion.energy is the per-triangle energy (the
+  // figure libigl and CGAL report), so that maps minimizing different energies compare.
+  MapDistortion distortion;
+  int pinned = 0; // vertices held by the global step
+  double check_ms = 0, init_ms = 0, cells_ms = 0, factor_ms = 0, iterate_ms = 0, total_ms = 0;
 };
 
 struct ParamResult {

@@ -1,8 +1,15 @@
 // The choices of arap_parameterize: initial map, boundary, iteration limits, and their names.
 #pragma once
+#include <optional>
 #include <string>
 
 namespace iarap {
+
+enum class ParamEnergy {
+  Triangle, // Liu et al. 2008: sum_f area_f ||J_f - R_f||^2, one rotation per triangle (libigl, CGAL)
+  Arap,     // per vertex, original ARAP's cotan edges (Sorkine and Alexa 2007) on flattened cells
+  Iarap,    // per vertex, iARAP's intrinsic Delaunay segments (paper Eq. 9, no boundary refinement)
+};
 
 enum class ParamInit {
   Lscm,     // least-squares conformal, free boundary (lscm.h)
@@ -16,7 +23,8 @@ enum class ParamBoundary {
 };
 
 struct ParamOptions {
-  ParamInit init = ParamInit::Lscm; // ParamBoundary::Circle needs Tutte or Harmonic
+  ParamEnergy energy = ParamEnergy::Triangle; // the per-vertex ones: planar_cells.h
+  ParamInit init = ParamInit::Lscm;           // ParamBoundary::Circle needs Tutte or Harmonic
   ParamBoundary boundary = ParamBoundary::Free;
   // false: flip-free. The iteration starts from an injective map (the requested one if it flips no
   // triangle, else Tutte's) and shortens each step so that no triangle's det J reaches 0. true: the plain
@@ -30,17 +38,27 @@ struct ParamOptions {
   double step_fraction = 0.8;
   // The flip-free iteration minimizes E + sum_f area_f mu psi(det J_f), psi(x) = -log(x / eps) + x / eps - 1
   // below eps and 0 above: a barrier that only triangles shrunk below eps of their area feel, and that
-  // bends the step away from degenerating them. Measured on camelhead, lion and face (docs/param.md): with
-  // mu = 1e-3 the steps stay short (0.01) and 100 iterations end at 0.85 on camelhead; mu = 1e-2, eps = 0.1
-  // converges in 13 to 71 iterations to an energy E within 0.1% of the plain iteration's (which flips
-  // hundreds of triangles). Unused with allow_flips.
-  double barrier_weight = 1e-2;    // mu > 0
-  double barrier_threshold = 1e-1; // eps > 0, dimensionless (det J is an area ratio)
+  // bends the step away from degenerating them. Unset, mu is default_barrier_weight(energy). Measured
+  // (docs/param.md): for the triangle energy mu = 1e-3 leaves the steps short (0.01) and 100 iterations end
+  // at 0.85 on camelhead, mu = 1e-2 converges in 13 to 71 iterations to within 0.04% of the plain
+  // iteration's energy (which flips hundreds of triangles); the per-vertex energies, which do not see a
+  // triangle collapse, need mu = 1e-1 (iarap on camelhead: 136 iterations to 0.8018 against 266 to 0.8017
+  // and 200 not converged with 1e-2). Unused with allow_flips.
+  std::optional<double> barrier_weight; // mu > 0
+  double barrier_threshold = 1e-1;      // eps > 0, dimensionless (det J is an area ratio)
 };
 
 // The initial map to use when none is named: lscm for a free boundary, harmonic for a circular one (the
 // start must have the boundary the iteration holds).
 ParamInit default_param_init(ParamBoundary boundary);
+
+// The barrier weight mu of the flip-free iteration when ParamOptions leaves it unset: 1e-2 for
+// ParamEnergy::Triangle, 1e-1 for the per-vertex energies.
+double default_barrier_weight(ParamEnergy energy);
+
+// "triangle", "arap", "iarap".
+std::string param_energy_name(ParamEnergy energy);
+ParamEnergy parse_param_energy(const std::string& name);
 
 // "lscm", "tutte", "harmonic".
 std::string param_init_name(ParamInit init);

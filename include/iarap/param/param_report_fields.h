@@ -10,6 +10,7 @@ namespace iarap {
 // (area_distortion, angle_distortion). Energies in squared mesh units, times in milliseconds.
 template <typename Visitor> void visit_param_report(const ParamReport& report, Visitor&& visit) {
   const MapDistortion& d = report.distortion;
+  visit("energy_kind", param_energy_name(report.energy));
   visit("requested_init", param_init_name(report.requested_init));
   visit("init", param_init_name(report.init));
   visit("init_flipped", report.init_flipped);
@@ -29,6 +30,7 @@ template <typename Visitor> void visit_param_report(const ParamReport& report, V
   visit("angle_distortion", d.angle_ratio);
   visit("check_ms", report.check_ms);
   visit("init_ms", report.init_ms);
+  visit("cells_ms", report.cells_ms);
   visit("factor_ms", report.factor_ms);
   visit("iterate_ms", report.iterate_ms);
   visit("parameterize_ms", report.total_ms);
