@@ -57,8 +57,8 @@ struct ParamResult {
 // The ARAP parameterization of (V #V x 3, F #F x 3). Runs on V divided by normalizing_scale(V) (exact),
 // so any scale works; UV and energies come back in V's units. Throws what prepare_disk throws (InputError,
 // TopologyError), InputError for options out of range (iterations < 0, tolerance < 0 or NaN,
-// step_fraction outside (0, 1), a circular boundary with the LSCM start) and SolverError when a system
-// cannot be factorized.
+// step_fraction outside (0, 1), a barrier weight or threshold <= 0, a circular boundary with the LSCM
+// start) and SolverError when a system cannot be factorized.
 ParamResult arap_parameterize(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
                               const ParamOptions& options = {});
 
