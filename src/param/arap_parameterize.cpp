@@ -95,8 +95,10 @@ struct Barrier {
     if (!(det > 0)) return std::numeric_limits<double>::infinity();
     return weight * (-std::log(det / threshold) + det / threshold - 1);
   }
-  double slope(double det) const { // d value / d det, for det > 0
-    if (weight == 0 || det >= threshold) return 0;
+  // d value / d det for det > 0; 0 for det <= 0, where the barrier is infinite: a triangle flipped already
+  // (a start whose Tutte map degenerates in floating point) is left to the energy, not pushed further.
+  double slope(double det) const {
+    if (weight == 0 || det >= threshold || !(det > 0)) return 0;
     return weight * (1 / threshold - 1 / det);
   }
 };
