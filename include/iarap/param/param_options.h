@@ -42,7 +42,7 @@ struct ParamOptions {
   // (docs/param.md): for the triangle energy mu = 1e-3 leaves the steps short (0.01) and 100 iterations end
   // at 0.85 on camelhead, mu = 1e-2 converges in 13 to 71 iterations to within 0.04% of the plain
   // iteration's energy (which flips hundreds of triangles); the per-vertex energies, which do not see a
-  // triangle collapse, need mu = 1e-1 (iarap on camelhead: 136 iterations to 0.8018 against 266 to 0.8017
+  // triangle collapse, need mu = 1e-1 (iarap on camelhead: 136-144 iterations to 0.8018 against 266 to 0.8017
   // and 200 not converged with 1e-2). Unused with allow_flips.
   std::optional<double> barrier_weight; // mu > 0
   double barrier_threshold = 1e-1;      // eps > 0, dimensionless (det J is an area ratio)
