@@ -1,7 +1,10 @@
 // `iarap deform MESH`: one ARAP deformation from a constraints or scenario file, written to a mesh file.
 #include "command_registry.h"
 #include "explain_error.h"
+#include "iteration_options.h"
 #include "json_text.h"
+#include "number_validators.h"
+#include "same_file.h"
 #include "write_text_file.h"
 
 #include "iarap/core/errors.h"
@@ -22,7 +25,6 @@
 #include <nlohmann/json.hpp>
 
 #include <cmath>
-#include <filesystem>
 #include <iostream>
 #include <optional>
 #include <sstream>
@@ -40,26 +42,6 @@ struct DeformArguments {
   int threads = 0;
   bool json = false, repair = false, pin_unconstrained = false, quiet = false;
 };
-
-// CLI::NonNegativeNumber lets nan through (then a runtime error, exit 1) and words its range with the
-// 309 digits of DBL_MAX; this one is a usage error (exit 2) in plain words.
-const CLI::Validator finite_non_negative(
-    [](const std::string& text) -> std::string {
-      double value = 0;
-      if (!CLI::detail::lexical_cast(text, value)) return "'" + text + "' is not a number";
-      if (!std::isfinite(value) || value < 0) return "'" + text + "' must be a finite number >= 0";
-      return {};
-    },
-    "NUMBER >= 0");
-
-// True when a and b name the same file (following links), or would once written.
-bool same_file(const std::string& a, const std::string& b) {
-  std::error_code error;
-  if (std::filesystem::exists(a, error) && std::filesystem::exists(b, error)) {
-    return std::filesystem::equivalent(a, b, error);
-  }
-  return std::filesystem::weakly_canonical(a, error) == std::filesystem::weakly_canonical(b, error);
-}
 
 // The mesh to deform and its constraints. With --repair the mesh is repaired first (welded, unreferenced
 // vertices and zero-area faces dropped, the defects `iarap info` warns about) and a scenario is resolved on
@@ -300,14 +282,7 @@ const bool registered = register_command(
               "(non-negative weights, stays at rest); 'paper' is the paper's exact discretization")
            ->check(CLI::IsMember({"paper", "refine"}))
            ->capture_default_str();
-       sub->add_option("--iterations", args->iterations, "Maximum number of local/global iterations (>= 0)")
-           ->check(CLI::Range(0, 1000000))
-           ->capture_default_str();
-       sub->add_option(
-              "--tolerance", args->tolerance,
-              "Stop when the energy decreases by at most this fraction of itself in one iteration (>= 0)")
-           ->check(finite_non_negative)
-           ->capture_default_str();
+       add_iteration_options(*sub, args->iterations, args->tolerance);
        sub->add_option("--accel", args->accel,
                        "Accelerator of the local/global iteration: lbfgs, newton, anderson or none")
            ->check(CLI::IsMember({"anderson", "lbfgs", "newton", "none"}))

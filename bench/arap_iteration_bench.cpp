@@ -5,6 +5,7 @@
 #include "iarap/core/threads.h"
 #include "iarap/io/read_mesh.h"
 #include "iarap/solver/arap.h"
+#include "shared_meshes.h"
 
 #include <benchmark/benchmark.h>
 #include <cstdlib>
@@ -74,21 +75,12 @@ void BM_ArapIteration(benchmark::State& state, const std::string& path, iarap::A
   iarap::set_thread_count(0);
 }
 
-std::string shared_mesh(const std::string& name) {
-  const char* env = std::getenv("IARAP_SHARED_MESHES");
-  const std::filesystem::path dir =
-      env ? std::filesystem::path(env)
-          : std::filesystem::path(IARAP_SOURCE_DIR).parent_path() / "shared" / "meshes";
-  const std::filesystem::path p = dir / name;
-  return std::filesystem::exists(p) ? p.string() : std::string();
-}
-
 } // namespace
 
 int main(int argc, char** argv) {
   std::vector<std::pair<std::string, std::string>> meshes = {
       {"bunny", std::string(IARAP_SOURCE_DIR) + "/data/bunny.off"}};
-  if (const std::string beetle = shared_mesh("beetle.off"); !beetle.empty())
+  if (const std::string beetle = iarap::bench::shared_mesh("beetle.off"); !beetle.empty())
     meshes.emplace_back("beetle", beetle);
   for (const auto& [name, path] : meshes)
     for (iarap::ArapMethod method :

@@ -100,5 +100,16 @@ def intrinsic_delaunay(
     refine_boundary: bool = False,
     max_boundary_insertions: int = -1,
 ) -> dict[str, Any]: ...
+def parameterize(
+    V: npt.ArrayLike,
+    F: npt.ArrayLike,
+    *,
+    energy: str = "triangle",
+    init: str | None = None,
+    boundary: str = "free",
+    allow_flips: bool = False,
+    iterations: int = 100,
+    tolerance: float = 1e-06,
+) -> tuple[_FloatArray, dict[str, Any]]: ...
 def set_thread_count(n: int) -> None: ...
 def thread_count() -> int: ...

@@ -16,5 +16,7 @@ void bind_arap(py::module_& m);
 void bind_laplacian(py::module_& m);
 // intrinsic_delaunay(V, F): intrinsic triangulation, traced segments and B.
 void bind_intrinsic(py::module_& m);
+// parameterize(V, F, ...): ARAP UV map of a disk and its report.
+void bind_param(py::module_& m);
 
 } // namespace iarap::python

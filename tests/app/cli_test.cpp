@@ -24,7 +24,7 @@ using nlohmann::json;
 const std::string bunny = iarap::test::data_path("bunny.off");
 
 TEST(Cli, HelpOnEachCommandExitsZero) {
-  for (const char* command : {"--help", "info --help", "deform --help", "bench --help"}) {
+  for (const char* command : {"--help", "info --help", "deform --help", "bench --help", "param --help"}) {
     const CliRun run = iarap_cli(command);
     EXPECT_EQ(run.code, 0) << command;
     EXPECT_NE(run.out.find("Usage"), std::string::npos) << command << ":\n" << run.out;

@@ -1,0 +1,65 @@
+// ARAP parameterization (Liu, Zhang, Xu, Gotsman and Gortler 2008): the UV map of a disk-like surface
+// closest to an isometry, triangle by triangle, flip-free by default.
+//
+// The energy is E(U) = sum_f area_f ||J_f(U) - R_f||_F^2 over the triangles, J_f the 2x2 Jacobian of the
+// map in the triangle's own isometric frame (triangle_frames.h), minimized by the local/global iteration:
+// R_f = closest_rotation_2d(J_f) (local), then U minimizing E with the R_f held (global), one
+// sparse system L U = sum_f area_f D_f R_f^T with L the cotan Laplacian, factorized once. It is the energy
+// libigl's igl::arap (dim 2) and CGAL's ARAP_parameterizer_3 minimize. ParamEnergy::Arap and ::Iarap
+// minimize per-vertex energies instead (planar_cells.h: original ARAP's cotan edges or iARAP's segments,
+// one 2x2 rotation per vertex), with the same global system structure and the same flip-free steps.
+//
+// The plain iteration (allow_flips) never increases E: E(U_new) <= E(U_new; R) <= E(U; R) = E(U), the
+// rotations minimizing E for a fixed map and the global step minimizing E(.; R). It can fold triangles over
+// (det J < 0), as libigl's and CGAL's do.
+//
+// Flip-free (the default) starts from an injective map and minimizes W = E + sum_f area_f mu psi(det J_f)
+// (param_options.h: a barrier only triangles shrunk below eps of their area feel) by the same
+// Laplacian-preconditioned step, without the barrier exactly the global step. Each step goes from U to
+// U + t d with t = min(1, step_fraction * t_max), t_max the first step at which some triangle degenerates
+// (injective_step.h), halved until W decreases by Armijo's rule: every iterate keeps every det J_f > 0 and W
+// decreases monotonically. A step bound alone (no barrier) is not enough: the global step keeps pointing
+// into the same nearly degenerate triangles and the steps shrink geometrically (measured on camelhead:
+// t = 6e-7 after 9 iterations, stopped at E = 1.06 against 0.80).
+#pragma once
+#include "iarap/param/map_distortion.h"
+#include "iarap/param/param_options.h"
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+namespace iarap {
+
+struct ParamReport {
+  ParamEnergy energy = ParamEnergy::Triangle; // the energy minimized (initial_energy, energies)
+  ParamInit requested_init = ParamInit::Lscm;
+  ParamInit init = ParamInit::Lscm; // the initial map the iteration started from
+  int init_flipped = 0;             // flipped triangles of the requested initial map
+  bool init_fallback = false;       // it flipped, so the flip-free iteration started from Tutte's map
+  int iterations = 0;
+  bool converged = false;       // stopped by the tolerance, not by the iteration limit
+  double initial_energy = 0;    // the minimized energy of the initial map (squared mesh units)
+  std::vector<double> energies; // the minimized energy after each iteration
+  std::vector<double> steps;    // t of each iteration (1 = the full global step)
+  // Of the final map, whatever energy was minimized: distortion.energy is the per-triangle energy (the
+  // figure libigl and CGAL report), so that maps minimizing different energies compare.
+  MapDistortion distortion;
+  int pinned = 0; // vertices held by the global step
+  double check_ms = 0, init_ms = 0, cells_ms = 0, factor_ms = 0, iterate_ms = 0, total_ms = 0;
+};
+
+struct ParamResult {
+  Eigen::MatrixXd UV; // #V x 2, in the units of V
+  ParamReport report;
+};
+
+// The ARAP parameterization of (V #V x 3, F #F x 3). Runs on V divided by normalizing_scale(V) (exact),
+// so any scale works; UV and energies come back in V's units. Throws what prepare_disk throws (InputError,
+// TopologyError), InputError for options out of range (iterations < 0, tolerance < 0 or NaN,
+// step_fraction outside (0, 1), a barrier weight or threshold <= 0, a circular boundary with the LSCM
+// start) and SolverError when a system cannot be factorized.
+ParamResult arap_parameterize(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
+                              const ParamOptions& options = {});
+
+} // namespace iarap

@@ -1,0 +1,81 @@
+// parameterize(V, F, ...): the ARAP parameterization of a disk-like mesh (UV map) and its report.
+#include "bindings.h"
+#include "numpy_arrays.h"
+
+#include "iarap/param/arap_parameterize.h"
+#include "iarap/param/param_report_fields.h"
+
+#include <type_traits>
+
+namespace iarap::python {
+namespace {
+
+py::dict report_dict(const ParamReport& report) {
+  py::dict d;
+  visit_param_report(report, [&d](const char* name, const auto& value) {
+    using Value = std::decay_t<decltype(value)>;
+    if constexpr (std::is_same_v<Value, DistortionRange>) {
+      py::dict range;
+      range["min"] = value.min;
+      range["median"] = value.median;
+      range["max"] = value.max;
+      d[name] = range;
+    } else if constexpr (std::is_same_v<Value, std::vector<double>>) {
+      d[name] = to_numpy(value);
+    } else {
+      d[name] = value;
+    }
+  });
+  return d;
+}
+
+py::tuple parameterize_py(const py::object& V, const py::object& F, const std::string& energy,
+                          const py::object& init, const std::string& boundary, bool allow_flips,
+                          int iterations, double tolerance) {
+  const Eigen::MatrixXd positions = to_points(V, "V");
+  const Eigen::MatrixXi faces = to_faces(F, "F", positions.rows());
+  ParamOptions options;
+  options.energy = parse_param_energy(energy);
+  options.boundary = parse_param_boundary(boundary);
+  options.init =
+      init.is_none() ? default_param_init(options.boundary) : parse_param_init(init.cast<std::string>());
+  options.allow_flips = allow_flips;
+  options.max_iterations = iterations;
+  options.tolerance = tolerance;
+  ParamResult result;
+  {
+    py::gil_scoped_release release;
+    result = arap_parameterize(positions, faces, options);
+  }
+  return py::make_tuple(to_numpy(result.UV), report_dict(result.report));
+}
+
+} // namespace
+
+void bind_param(py::module_& m) {
+  m.def("parameterize", &parameterize_py, py::arg("V"), py::arg("F"), py::kw_only(),
+        py::arg("energy") = "triangle", py::arg("init") = py::none(), py::arg("boundary") = "free",
+        py::arg("allow_flips") = false, py::arg("iterations") = ParamOptions{}.max_iterations,
+        py::arg("tolerance") = ParamOptions{}.tolerance,
+        R"(ARAP parameterization (Liu et al. 2008) of a disk-like mesh: (UV (#V, 2), report dict).
+
+V: (#V, 3) positions. F: (#F, 3) faces of a topological disk (one component, one boundary loop, genus 0).
+energy: "triangle" (per-triangle rotations, as libigl and CGAL), or per vertex with 2x2 rotations on
+flattened cells: "arap" (cotan edges, negative weights kept) or "iarap" (intrinsic Delaunay segments).
+init: "lscm" (free boundary), "tutte" or "harmonic" (boundary on a circle of the surface's area); None:
+lscm, or harmonic with boundary="circle". boundary: "free" (one vertex pinned) or "circle" (held on that
+circle). allow_flips: the plain local/global iteration; by default it is flip-free (an injective start,
+Tutte's map if the requested one flips, and a line search that keeps every det J > 0). iterations: at most
+this many; tolerance: stop when an iteration lowers the energy by at most this fraction of it.
+
+The report: energy = sum_f area_f ||J_f - R_f||_F^2 of the result whatever energy_kind was minimized
+(squared mesh units; initial_energy and energies are the minimized one's), scaled_energy at the best uniform
+scale best_scale, flipped (triangles with det J <= 0), min_det_J (UV area over surface area, signed),
+area_distortion and angle_distortion (min / median / max of sigma1 * sigma2 and sigma1 / sigma2),
+initial_energy, energies and steps per iteration, iterations, converged, requested_init, init, init_flipped,
+init_fallback, pinned, check_ms, init_ms, cells_ms, factor_ms, iterate_ms, parameterize_ms.
+Raises InputError for bad arrays or options, TopologyError for a mesh that is not a disk (saying what it has:
+components, boundary loops, genus) or has degenerate triangles.)");
+}
+
+} // namespace iarap::python

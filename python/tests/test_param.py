@@ -1,0 +1,113 @@
+"""iarap.parameterize: the same map as `iarap param`, flip-free by default where the plain iteration folds,
+and the errors of a mesh that is not a disk."""
+import json
+import subprocess
+
+import numpy as np
+import pytest
+
+import iarap
+
+
+def spherical_cap(rings, sectors, polar_angle):
+    """The cap of the unit sphere within polar_angle of the north pole: a centre vertex and `rings` rings of
+    `sectors` vertices (odd rings turned by half a sector), faces counter-clockwise seen from outside."""
+    V = [[0.0, 0.0, 1.0]]
+    for r in range(rings):
+        theta = polar_angle * (r + 1) / rings
+        for k in range(sectors):
+            a = 2 * np.pi * (k + 0.5 * (r % 2)) / sectors
+            V.append([np.sin(theta) * np.cos(a), np.sin(theta) * np.sin(a), np.cos(theta)])
+    F = [[0, 1 + k, 1 + (k + 1) % sectors] for k in range(sectors)]
+    for r in range(rings - 1):
+        for k in range(sectors):
+            a, b = 1 + r * sectors + k, 1 + r * sectors + (k + 1) % sectors
+            c, d = a + sectors, b + sectors
+            F += [[a, c, d], [a, d, b]]
+    return np.array(V), np.array(F)
+
+
+def det_J_signs(V, F, UV):
+    """Sign of each triangle's UV area against its surface orientation (all faces are counter-clockwise
+    seen from outside, so a kept orientation is a positive UV area)."""
+    e1, e2 = UV[F[:, 1]] - UV[F[:, 0]], UV[F[:, 2]] - UV[F[:, 0]]
+    return np.sign(e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0])
+
+
+@pytest.fixture
+def one_thread():
+    before = iarap.thread_count()
+    iarap.set_thread_count(1)
+    yield
+    iarap.set_thread_count(before)
+
+
+def test_matches_cli(cli, tmp_path, one_thread):
+    V, F = spherical_cap(6, 18, 0.6 * np.pi)
+    iarap.write_mesh(tmp_path / "cap.off", V, F)
+    run = subprocess.run([str(cli), "param", str(tmp_path / "cap.off"), "--out", str(tmp_path / "uv.txt"),
+                          "--json", "--quiet", "--threads", "1"], capture_output=True, text=True, check=True)
+    cli_report = json.loads(run.stdout)
+    UV, report = iarap.parameterize(V, F)
+    # One library, one input, one thread: the text file's 17 digits round-trip exactly.
+    np.testing.assert_array_equal(UV, np.loadtxt(tmp_path / "uv.txt"))
+    assert report["iterations"] == cli_report["iterations"]
+    assert report["energy"] == cli_report["energy"]
+    assert report["flipped"] == 0 and report["min_det_J"] > 0
+
+
+def test_flip_free_where_the_plain_iteration_folds():
+    # Most of the sphere: the plain iteration folds triangles at the rim (24 of 384, measured in C++).
+    V, F = spherical_cap(8, 24, 0.9 * np.pi)
+    UV_plain, plain = iarap.parameterize(V, F, allow_flips=True)
+    assert plain["flipped"] > 0
+    assert np.sum(det_J_signs(V, F, UV_plain) < 0) == plain["flipped"]
+    UV, report = iarap.parameterize(V, F)
+    assert report["flipped"] == 0
+    assert np.all(det_J_signs(V, F, UV) > 0)
+    assert UV.shape == (len(V), 2) and UV.dtype == np.float64
+    assert len(report["energies"]) == report["iterations"] == len(report["steps"])
+    assert report["scaled_energy"] <= report["energy"] * (1 + 1e-12)
+    assert report["area_distortion"]["min"] <= report["area_distortion"]["median"] <= report["area_distortion"]["max"]
+
+
+def test_circle_boundary_defaults_to_harmonic():
+    V, F = spherical_cap(5, 14, 0.4 * np.pi)
+    UV, report = iarap.parameterize(V, F, boundary="circle")
+    assert report["requested_init"] == "harmonic"
+    assert report["pinned"] == 14
+    radius = np.sqrt(report_area(V, F) / np.pi)
+    np.testing.assert_allclose(np.linalg.norm(UV[-14:], axis=1), radius, rtol=1e-14)
+
+
+def report_area(V, F):
+    return 0.5 * np.linalg.norm(np.cross(V[F[:, 1]] - V[F[:, 0]], V[F[:, 2]] - V[F[:, 0]]), axis=1).sum()
+
+
+def test_not_a_disk(sphere):
+    V, F = sphere
+    with pytest.raises(iarap.TopologyError, match="0 boundary loops and genus 0.*cut it into disks first"):
+        iarap.parameterize(V, F)
+
+
+def test_bad_arguments():
+    V, F = spherical_cap(3, 8, 0.5 * np.pi)
+    with pytest.raises(iarap.InputError, match="spectral"):
+        iarap.parameterize(V, F, init="spectral")
+    with pytest.raises(iarap.InputError, match="tutte or harmonic"):
+        iarap.parameterize(V, F, boundary="circle", init="lscm")
+    with pytest.raises(iarap.InputError, match="max_iterations"):
+        iarap.parameterize(V, F, iterations=-1)
+    V[3, 0] = np.nan
+    with pytest.raises(iarap.InputError):
+        iarap.parameterize(V, F)
+
+
+@pytest.mark.parametrize("energy", ["arap", "iarap"])
+def test_per_vertex_energies_are_flip_free(energy):
+    V, F = spherical_cap(8, 24, 0.9 * np.pi)
+    UV, report = iarap.parameterize(V, F, energy=energy, iterations=300)
+    assert report["energy_kind"] == energy
+    assert report["flipped"] == 0 and np.all(det_J_signs(V, F, UV) > 0)
+    with pytest.raises(iarap.InputError, match="expected triangle, arap or iarap"):
+        iarap.parameterize(V, F, energy="spokes-rims")

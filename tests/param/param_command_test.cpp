@@ -1,0 +1,125 @@
+// End-to-end tests of `iarap param`: a disk written in code goes in, an OBJ with texture coordinates and a
+// JSON report come out; the errors a user meets exit 1 (runtime) or 2 (usage) and say what is wrong.
+#include "app/cli_runner.h"
+#include "iarap/io/read_mesh.h"
+#include "iarap/io/write_mesh.h"
+#include "mesh/small_meshes.h"
+#include "param/disk_meshes.h"
+#include "test_support.h"
+
+#include <gtest/gtest.h>
+
+namespace {
+
+using namespace iarap::test::cli;
+namespace fs = std::filesystem;
+
+std::string quoted(const fs::path& path) {
+  return "'" + path.string() + "'";
+}
+
+TEST(ParamCommand, WritesTextureCoordinatesAndReport) {
+  const auto dir = iarap::test::temp_dir("param_cli");
+  const iarap::test::TestMesh cap = iarap::test::spherical_cap(8, 24, 0.9 * M_PI);
+  iarap::write_mesh((dir / "cap.off").string(), cap.V, cap.F);
+  const CliRun run = iarap_cli("param " + quoted(dir / "cap.off") + " --out " + quoted(dir / "uv.obj") +
+                               " --json --quiet --report " + quoted(dir / "report.json"));
+  ASSERT_EQ(run.code, 0) << run.out;
+  const nlohmann::json j = parse_json(run);
+  EXPECT_EQ(j["flipped"], 0);
+  EXPECT_GT(j["min_det_J"].get<double>(), 0);
+  EXPECT_EQ(j["init"], "lscm");
+  EXPECT_EQ(j["energies"].size(), j["iterations"].get<std::size_t>());
+  EXPECT_LE(j["scaled_energy"].get<double>(), j["energy"].get<double>() * (1 + 1e-12));
+  for (const char* key : {"area_distortion", "angle_distortion"})
+    EXPECT_LE(j[key]["min"].get<double>(), j[key]["max"].get<double>()) << key;
+  EXPECT_EQ(nlohmann::json::parse(read_file(dir / "report.json")), j);
+  // The OBJ: the input's vertices and faces, one vt per vertex.
+  const iarap::MeshData back = iarap::read_obj((dir / "uv.obj").string());
+  EXPECT_EQ(back.F, cap.F);
+  EXPECT_LT((back.V - cap.V).cwiseAbs().maxCoeff(), 1e-15);
+  const std::string text = read_file(dir / "uv.obj");
+  std::size_t vt = 0;
+  for (std::size_t at = text.find("\nvt "); at != std::string::npos; at = text.find("\nvt ", at + 1)) ++vt;
+  EXPECT_EQ(vt, static_cast<std::size_t>(cap.V.rows()));
+  // With --allow-flips the same mesh folds over (arap_parameterize_test has the library's side).
+  const CliRun plain = iarap_cli("param " + quoted(dir / "cap.off") + " --out " + quoted(dir / "uv.txt") +
+                                 " --allow-flips --json --quiet");
+  ASSERT_EQ(plain.code, 0) << plain.out;
+  EXPECT_GT(parse_json(plain)["flipped"].get<int>(), 0);
+  fs::remove_all(dir);
+}
+
+TEST(ParamCommand, MeshThatIsNotADiskSaysWhatItHas) {
+  const auto dir = iarap::test::temp_dir("param_cli_closed");
+  const auto octahedron = iarap::test::octahedron();
+  iarap::write_mesh((dir / "closed.off").string(), octahedron.V, octahedron.F);
+  const CliRun run =
+      iarap_cli("param " + quoted(dir / "closed.off") + " --out " + quoted(dir / "uv.obj"), true);
+  EXPECT_EQ(run.code, 1) << run.out;
+  EXPECT_NE(run.out.find("closed.off: the mesh is not a topological disk"), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("0 boundary loops"), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("cut it into disks first"), std::string::npos) << run.out;
+  EXPECT_FALSE(fs::exists(dir / "uv.obj"));
+  fs::remove_all(dir);
+}
+
+TEST(ParamCommand, UsageErrors) {
+  const auto dir = iarap::test::temp_dir("param_cli_usage");
+  const iarap::test::TestMesh disk = iarap::test::flat_disk(2, 8);
+  iarap::write_mesh((dir / "disk.obj").string(), disk.V, disk.F);
+  const std::string before = read_file(dir / "disk.obj");
+  const std::string mesh = "param " + quoted(dir / "disk.obj");
+  const std::string out = " --out " + quoted(dir / "uv.obj");
+  const struct {
+    std::string args, says;
+  } cases[] = {
+      {mesh + " --out " + quoted(dir / "disk.obj"), "refusing to overwrite"},
+      {mesh + " --out " + quoted(dir / "uv.ply"), ".obj (mesh with vt) or .txt"},
+      {mesh + out + " --energy spokes-rims", "--energy"},
+      {mesh + out + " --init spectral", "spectral"},
+      {mesh + out + " --boundary circle --init lscm", "--init tutte or harmonic"},
+      {mesh + out + " --iterations -3", "iterations"},
+      {mesh + out + " --tolerance nan", "finite"},
+      {mesh, "--out"},
+  };
+  for (const auto& c : cases) {
+    const CliRun run = iarap_cli(c.args, true);
+    EXPECT_EQ(run.code, 2) << c.args << "\n" << run.out;
+    EXPECT_NE(run.out.find(c.says), std::string::npos) << c.args << "\n" << run.out;
+  }
+  EXPECT_EQ(read_file(dir / "disk.obj"), before);
+  EXPECT_FALSE(fs::exists(dir / "uv.obj"));
+  fs::remove_all(dir);
+}
+
+// `iarap param` on `mesh` written as file `name` in a fresh folder, with `options` and --json; the report,
+// or an empty object after a recorded failure.
+nlohmann::json param_report(const iarap::test::TestMesh& mesh, const std::string& name,
+                            const std::string& options) {
+  const auto dir = iarap::test::temp_dir("param_cli_" + name);
+  iarap::write_mesh((dir / name).string(), mesh.V, mesh.F);
+  const CliRun run =
+      iarap_cli("param " + quoted(dir / name) + " --out " + quoted(dir / "uv.txt") + " --json " + options);
+  fs::remove_all(dir);
+  EXPECT_EQ(run.code, 0) << run.out;
+  return run.code == 0 ? parse_json(run) : nlohmann::json::object();
+}
+
+TEST(ParamCommand, PerVertexEnergy) {
+  const nlohmann::json j =
+      param_report(iarap::test::spherical_cap(6, 18, 0.6 * M_PI), "cap.obj", "--energy iarap --quiet");
+  EXPECT_EQ(j["energy_kind"], "iarap");
+  EXPECT_EQ(j["flipped"], 0);
+  EXPECT_LT(j["energies"].back().get<double>(), j["initial_energy"].get<double>());
+}
+
+TEST(ParamCommand, CircularBoundaryDefaultsToHarmonic) {
+  const nlohmann::json j =
+      param_report(iarap::test::spherical_cap(5, 14, 0.4 * M_PI), "cap.ply", "--boundary circle");
+  EXPECT_EQ(j["requested_init"], "harmonic");
+  EXPECT_EQ(j["boundary"], "circle");
+  EXPECT_EQ(j["flipped"], 0);
+}
+
+} // namespace
