@@ -158,6 +158,9 @@ void run_deform(const DeformArguments& args) {
   const double s = normalizing_scale(mesh.V);
   const Eigen::MatrixXd V = mesh.V / s;
   const Eigen::MatrixXd targets = constraints.targets / s;
+  // A mesh in the plane z = 0 whose targets stay in it deforms in its plane, with rotations about z (a cell
+  // squeezed through a reflection keeps a 2x2 rotation); targets off the plane make it a 3D deformation.
+  options.planar = (V.col(2).array() == 0.0).all() && (targets.col(2).array() == 0.0).all();
   const ErrorContext context{args.mesh, args.repair};
   const auto precompute_start = Clock::now();
   std::optional<ArapData> data;
@@ -211,6 +214,7 @@ void run_deform(const DeformArguments& args) {
   const ArapData& arap = *data;
 
   j["method"] = arap_method_name(options.method);
+  j["planar"] = options.planar;
   j["vertices"] = mesh.V.rows();
   j["faces"] = mesh.F.rows();
   j["constrained"] = constraints.fixed.size();
@@ -268,7 +272,8 @@ const bool registered = register_command(
            ->required()
            ->check(CLI::ExistingFile);
        auto* constraints =
-           sub->add_option("--constraints", args->constraints, "Constraints file: 'index x y z' per line")
+           sub->add_option("--constraints", args->constraints,
+                           "Constraints file: 'index x y z' per line ('index x y' in the plane z = 0)")
                ->check(CLI::ExistingFile);
        auto* scenario = sub->add_option("--scenario", args->scenario, "Scenario file (JSON; see README.md)")
                             ->check(CLI::ExistingFile);

@@ -72,10 +72,16 @@ Eigen::Index vertex_count(const ArapSolver& solver) {
   return without_gil(solver, [](const ArapData& d) { return d.V.rows(); });
 }
 
+// Made from a #V x 2 V: positions in and out have 2 columns.
+bool is_planar(const ArapSolver& solver) {
+  return without_gil(solver, [](const ArapData& d) { return d.planar; });
+}
+
 std::unique_ptr<ArapSolver> make_solver(const py::object& V, const py::object& F, const py::object& fixed,
                                         const std::string& method, bool pin_unconstrained_components,
                                         bool refine_boundary) {
-  const Eigen::MatrixXd positions = to_points(V, "V");
+  // #V x 2: a planar mesh, deformed in its plane (rotations about z); solves then take and give 2 columns.
+  const Eigen::MatrixXd positions = to_points(V, "V", true, -1, "", true);
   const Eigen::MatrixXi faces = to_faces(F, "F", positions.rows());
   const Eigen::VectorXi constrained = to_indices(fixed, "fixed", positions.rows());
   ArapOptions options;
@@ -91,10 +97,13 @@ py::array_t<double> solve_py(ArapSolver& solver, const py::object& targets, cons
                              double gradient_tolerance) {
   const auto [n, fixed_count] =
       without_gil(solver, [](const ArapData& d) { return std::make_pair(d.V.rows(), d.fixed.size()); });
-  const Eigen::MatrixXd target_rows = to_points(targets, "targets", true, fixed_count, "#fixed");
-  Eigen::MatrixXd U = U0.is_none()
-                          ? without_gil(solver, [](const ArapData& d) { return Eigen::MatrixXd(d.V); })
-                          : to_points(U0, "U0", true, n, "#V");
+  const bool planar = is_planar(solver);
+  const Eigen::MatrixXd target_rows = to_points(targets, "targets", true, fixed_count, "#fixed", planar);
+  Eigen::MatrixXd U = U0.is_none() ? without_gil(solver,
+                                                 [planar](const ArapData& d) {
+                                                   return planar ? Eigen::MatrixXd(d.V.leftCols(2)) : d.V;
+                                                 })
+                                   : to_points(U0, "U0", true, n, "#V", planar);
   ArapSolveOptions options;
   options.max_iterations = iterations;
   options.tolerance = tolerance;
@@ -170,9 +179,9 @@ py::dict intrinsic_py(const ArapSolver& solver) {
   return d;
 }
 
-// Applies f(data, U) to a checked #V x 3 U without the GIL.
+// Applies f(data, U) to a checked #V x 3 (planar: #V x 2) U without the GIL.
 template <typename Function> auto on_positions(const ArapSolver& solver, const py::object& U, Function&& f) {
-  const Eigen::MatrixXd positions = to_points(U, "U", true, vertex_count(solver), "#V");
+  const Eigen::MatrixXd positions = to_points(U, "U", true, vertex_count(solver), "#V", is_planar(solver));
   return without_gil(solver, [&](const ArapData& d) { return f(d, positions); });
 }
 
@@ -194,7 +203,8 @@ Energies are in squared mesh units. Methods release the GIL; one solver serves o
            py::kw_only(), py::arg("pin_unconstrained_components") = false, py::arg("refine_boundary") = true,
            R"(Precomputes the elements of `method`, the system matrix L and the factorization of L_ff.
 
-V: (#V, 3) rest positions. F: (#F, 3) faces of a manifold, consistently oriented triangle mesh (boundary
+V: (#V, 3) rest positions, or (#V, 2) for a planar mesh, deformed in its plane with rotations about z
+(targets, U0, results, energy and gradient arguments then have 2 columns). F: (#F, 3) faces of a manifold, consistently oriented triangle mesh (boundary
 allowed). fixed: (#fixed,) distinct constrained vertex indices. pin_unconstrained_components: pin the first
 vertex of every connected component without a constrained vertex (else such a component raises SolverError).
 refine_boundary ("iarap" only, not in the paper): split boundary edges opposite an obtuse intrinsic angle, so

@@ -105,21 +105,24 @@ template <typename Container> py::array_t<std::int64_t> index_vector_to_numpy(co
 } // namespace
 
 Eigen::MatrixXd to_points(const py::handle& object, const std::string& name, bool require_finite,
-                          Eigen::Index expected_rows, const std::string& rows_label) {
+                          Eigen::Index expected_rows, const std::string& rows_label, bool planar) {
   const py::array a = as_array(object, name);
   const char kind = a.dtype().kind();
   if (kind != 'f' && !is_integer_kind(kind))
     throw InputError(name + " must hold real coordinates, got dtype " + dtype_text(a));
-  const std::string expected =
-      expected_rows < 0 ? "#rows x 3" : rows_label + " x 3 = " + std::to_string(expected_rows) + " x 3";
-  if (a.ndim() != 2 || a.shape(1) != 3 || (expected_rows >= 0 && a.shape(0) != expected_rows))
+  const std::string columns = planar ? "3 (or 2)" : "3";
+  const std::string expected = expected_rows < 0 ? "#rows x " + columns
+                                                 : rows_label + " x " + columns + " = " +
+                                                       std::to_string(expected_rows) + " x " + columns;
+  const bool columns_ok = a.ndim() == 2 && (a.shape(1) == 3 || (planar && a.shape(1) == 2));
+  if (!columns_ok || (expected_rows >= 0 && a.shape(0) != expected_rows))
     throw InputError(name + " must be a " + expected + " array, got shape " + shape_text(a));
   auto c = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(a);
   if (!c) throw py::error_already_set();
   const auto in = c.unchecked<2>();
-  Eigen::MatrixXd M(in.shape(0), 3);
+  Eigen::MatrixXd M(in.shape(0), in.shape(1));
   for (py::ssize_t i = 0; i < in.shape(0); ++i) {
-    for (py::ssize_t j = 0; j < 3; ++j) {
+    for (py::ssize_t j = 0; j < in.shape(1); ++j) {
       const double x = in(i, j);
       if (require_finite && !std::isfinite(x)) {
         std::ostringstream message;

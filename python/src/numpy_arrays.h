@@ -15,11 +15,13 @@ namespace iarap::python {
 
 namespace py = pybind11;
 
-// An array-like of real numbers (float, int or uint dtype; any order) as a rows x 3 double matrix.
-// expected_rows < 0 accepts any row count; otherwise rows_label says what the count is ("#fixed").
-// Throws InputError for another dtype or shape, or, when require_finite, a NaN or Inf entry.
+// An array-like of real numbers (float, int or uint dtype; any order) as a rows x 3 double matrix (rows x 2
+// too when planar: points in the plane). expected_rows < 0 accepts any row count; otherwise rows_label says
+// what the count is ("#fixed"). Throws InputError for another dtype or shape, or, when require_finite, a NaN
+// or Inf entry.
 Eigen::MatrixXd to_points(const py::handle& object, const std::string& name, bool require_finite = true,
-                          Eigen::Index expected_rows = -1, const std::string& rows_label = "");
+                          Eigen::Index expected_rows = -1, const std::string& rows_label = "",
+                          bool planar = false);
 
 // An integer array-like with 2 dimensions as an int matrix; columns < 0 accepts any column count. Entries
 // must lie in 0..vertex_count-1 when vertex_count >= 0, and always in the range of int.

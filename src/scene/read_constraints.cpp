@@ -69,8 +69,10 @@ ConstraintSet parse_constraints(std::istream& in, const std::string& source, int
     const auto tokens = tokens_of(text);
     if (tokens.empty()) continue;
     const std::string at = where(source, line);
-    if (tokens.size() != 4) {
-      throw InputError(at + "expected 'index x y z', found " + std::to_string(tokens.size()) + " token(s)");
+    // 'index x y' is a target in the plane z = 0 (a planar mesh).
+    if (tokens.size() != 4 && tokens.size() != 3) {
+      throw InputError(at + "expected 'index x y z' (or 'index x y' in the plane z = 0), found " +
+                       std::to_string(tokens.size()) + " token(s)");
     }
     const long long index = parse_index(tokens[0], at);
     if (index < 0 || index >= num_vertices) {
@@ -79,7 +81,7 @@ ConstraintSet parse_constraints(std::istream& in, const std::string& source, int
                        std::to_string(num_vertices - 1) + ")");
     }
     const Eigen::Vector3d target(parse_coordinate(tokens[1], at, "x"), parse_coordinate(tokens[2], at, "y"),
-                                 parse_coordinate(tokens[3], at, "z"));
+                                 tokens.size() == 4 ? parse_coordinate(tokens[3], at, "z") : 0.0);
     const int vertex = static_cast<int>(index);
     const auto found = seen.find(vertex);
     if (found == seen.end()) {

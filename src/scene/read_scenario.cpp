@@ -63,9 +63,12 @@ struct Node {
     if (!value.is_boolean()) fail("expected true or false, found " + std::string(value.type_name()));
     return value.get<bool>();
   }
-  Eigen::Vector3d vector3() const {
-    if (!value.is_array() || value.size() != 3) fail("expected an array of 3 numbers");
-    return {item(0).number(), item(1).number(), item(2).number()};
+  // [x, y, z]; with in_plane, [x, y] too: a point or offset in the plane z = 0 (a planar scene).
+  Eigen::Vector3d vector3(bool in_plane = true) const {
+    if (!in_plane && (!value.is_array() || value.size() != 3)) fail("expected an array of 3 numbers");
+    if (!value.is_array() || (value.size() != 3 && value.size() != 2))
+      fail("expected an array of 3 numbers (or 2 in the plane z = 0)");
+    return {item(0).number(), item(1).number(), value.size() == 3 ? item(2).number() : 0.0};
   }
   int index() const {
     if (!value.is_number_integer()) fail("expected a vertex index (integer), found " + value.dump());
@@ -169,7 +172,7 @@ Handle parse_handle(const Node& node) {
     if (axis.value.is_string()) {
       handle.rotation_axis = Eigen::Vector3d::Unit(parse_axis(axis));
     } else {
-      handle.rotation_axis = axis.vector3();
+      handle.rotation_axis = axis.vector3(false); // an axis in the plane would turn it over
       if (handle.rotation_axis.norm() == 0) axis.fail("rotation axis must be non-zero");
     }
     handle.rotation_degrees = rotate.key("degrees").number();

@@ -137,6 +137,49 @@ TEST(Cli, DeformWithConstraintsFile) {
   fs::remove_all(dir);
 }
 
+// A mesh in the plane z = 0 with targets in it ('index x y' lines) deforms in its plane: the report says so
+// and the output's z is exactly 0; a target lifted off the plane makes it a 3D deformation.
+TEST(Cli, PlanarMeshDeformsInItsPlane) {
+  const auto dir = iarap::test::temp_dir("cli_planar");
+  std::ostringstream off;
+  const int n = 6; // (n + 1)^2 vertices on [0, 1]^2, two triangles per square
+  off << "OFF\n" << (n + 1) * (n + 1) << " " << 2 * n * n << " 0\n";
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) off << double(i) / n << " " << double(j) / n << " 0\n";
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const int a = j * (n + 1) + i, b = a + 1, c = a + n + 1, d = c + 1;
+      off << "3 " << a << " " << b << " " << d << "\n3 " << a << " " << d << " " << c << "\n";
+    }
+  write_file(dir / "grid.off", off.str());
+  std::ostringstream planar, lifted;
+  for (int j = 0; j <= n; ++j) {
+    planar << j * (n + 1) << " 0 " << double(j) / n << "\n";             // left column at rest
+    planar << j * (n + 1) + n << " 1.2 " << double(j) / n + 0.1 << "\n"; // right column moved in plane
+    lifted << j * (n + 1) << " 0 " << double(j) / n << " 0\n";
+    lifted << j * (n + 1) + n << " 1 " << double(j) / n << " 0.3\n";
+  }
+  write_file(dir / "planar.txt", planar.str());
+  write_file(dir / "lifted.txt", lifted.str());
+  for (const char* method : {"arap", "spokes-rims", "iarap"}) {
+    const CliRun run = iarap_cli("deform '" + (dir / "grid.off").string() + "' --constraints '" +
+                                 (dir / "planar.txt").string() + "' --method " + method +
+                                 " --json --quiet --out '" + (dir / "out.off").string() + "'");
+    ASSERT_EQ(run.code, 0) << run.out;
+    EXPECT_EQ(parse_json(run)["planar"], true) << method;
+    const auto result = iarap::read_mesh((dir / "out.off").string());
+    EXPECT_TRUE((result.V.col(2).array() == 0.0).all()) << method;
+    EXPECT_GT(result.V.col(0).maxCoeff(), 1.1) << method; // the right column moved
+  }
+  const CliRun lifted_run = iarap_cli("deform '" + (dir / "grid.off").string() + "' --constraints '" +
+                                      (dir / "lifted.txt").string() + "' --json --quiet --out '" +
+                                      (dir / "lifted.off").string() + "'");
+  ASSERT_EQ(lifted_run.code, 0) << lifted_run.out;
+  EXPECT_EQ(parse_json(lifted_run)["planar"], false);
+  EXPECT_GT(iarap::read_mesh((dir / "lifted.off").string()).V.col(2).maxCoeff(), 0.2);
+  fs::remove_all(dir);
+}
+
 TEST(Cli, DeformWithScenarioWritesReport) {
   const auto dir = iarap::test::temp_dir("cli_scenario");
   const fs::path out = dir / "bunny_iarap.off";

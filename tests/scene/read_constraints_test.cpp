@@ -61,8 +61,17 @@ TEST(ReadConstraints, BadTokens) {
   expect_error("1.5 0 0 0\n", {"c.txt:1", "bad vertex index '1.5'"});
   expect_error("abc 0 0 0\n", {"c.txt:1", "bad vertex index"});
   expect_error("1 0 0x 0\n", {"c.txt:1", "bad y coordinate '0x'"});
-  expect_error("1 0 0\n", {"c.txt:1", "found 3 token"});
+  expect_error("1 0\n", {"c.txt:1", "found 2 token"});
   expect_error("1 0 0 0 5\n", {"c.txt:1", "found 5 token"});
+}
+
+// 'index x y' is a target in the plane z = 0, for planar meshes; the two forms mix.
+TEST(ReadConstraints, TwoCoordinatesAreATargetInThePlane) {
+  const auto c = parse("3 1.5 -2\n4 1 2 3\n");
+  ASSERT_EQ(c.fixed.size(), 2);
+  EXPECT_EQ(c.targets.row(0), Eigen::RowVector3d(1.5, -2, 0));
+  EXPECT_EQ(c.targets.row(1), Eigen::RowVector3d(1, 2, 3));
+  expect_error("3 1 nan\n", {"c.txt:1", "non-finite y"});
 }
 
 TEST(ReadConstraints, EmptySet) {

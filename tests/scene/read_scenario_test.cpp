@@ -69,6 +69,19 @@ TEST(ReadScenario, SyntaxErrorGivesLineAndColumn) {
   expect_error("{\n  \"fixed\": [1, 2,\n}", {"s.json", "parse error at line 3"});
 }
 
+// A planar scene may give points and offsets as [x, y] (z = 0); a rotation axis stays three numbers.
+TEST(ReadScenario, TwoNumbersArePointsInThePlane) {
+  const auto s = iarap::parse_scenario(R"({
+    "fixed": {"sphere": {"center": [0.5, 0.25], "radius": 0.1}},
+    "handles": [ {"vertices": [4], "translate": [1, 2], "rotate": {"axis": "z", "degrees": 10,
+                  "center": [0.5, 0.5]}} ]
+  })",
+                                       "s.json");
+  EXPECT_EQ(s.fixed[0].center, Eigen::Vector3d(0.5, 0.25, 0));
+  EXPECT_EQ(s.handles[0].translation, Eigen::Vector3d(1, 2, 0));
+  EXPECT_EQ(s.handles[0].rotation_center, Eigen::Vector3d(0.5, 0.5, 0));
+}
+
 TEST(ReadScenario, ErrorsNameTheJsonPath) {
   expect_error(R"({"fixed": [1], "handels": []})", {"s.json: $: unknown key 'handels'"});
   expect_error(R"({"fixed": {"bottom": 1.5}})", {"$.fixed.bottom: fraction must be in (0, 1]"});

@@ -450,7 +450,7 @@ describe('undo revisions, scenario files, progress', () => {
       execFileSync(cliPath, ['deform', bunnyPath, '--constraints', path.join(dir, 'c.txt'), '--iterations', '1', '--out', path.join(dir, 'c.obj'), '--quiet']);
       const back = await (await fetch(`${base}/api/scenario/load?name=c.txt`, { method: 'POST', headers: { 'Content-Type': 'text/plain' }, body: lines })).json();
       assert.deepEqual([back.fixed, back.handle], [fixed, handle]);
-      await expectError(fetch(`${base}/api/scenario/load?name=bad.txt`, { method: 'POST', body: '12 0 0\n' }), 400, /bad\.txt:1/);
+      await expectError(fetch(`${base}/api/scenario/load?name=bad.txt`, { method: 'POST', body: '12 0\n' }), 400, /bad\.txt:1/);
       await expectError(fetch(`${base}/api/scenario/load?name=deep.json`, { method: 'POST', body: `{"fixed": ${'['.repeat(100000)}` }), 400, /nests deeper/);
     } finally {
       fs.rmSync(dir, { recursive: true, force: true });
