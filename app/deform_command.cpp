@@ -39,6 +39,7 @@ struct DeformArguments {
   std::string accel = arap_accelerator_name(ArapSolveOptions{}.accelerator);
   int window = ArapSolveOptions{}.window;
   double grad_tol = ArapSolveOptions{}.gradient_tolerance;
+  double time_budget = 0; // ms; 0 = none
   int threads = 0;
   bool json = false, repair = false, pin_unconstrained = false, quiet = false;
 };
@@ -180,6 +181,7 @@ void run_deform(const DeformArguments& args) {
   solve_options.accelerator = parse_arap_accelerator(args.accel);
   solve_options.window = args.window;
   solve_options.gradient_tolerance = args.grad_tol;
+  solve_options.time_budget_ms = args.time_budget;
   ArapReport report;
   try {
     report = arap_solve(*data, targets, U, solve_options);
@@ -207,7 +209,8 @@ void run_deform(const DeformArguments& args) {
                 << " (local " << report.local_ms_per_iteration[k] << " ms, global "
                 << report.global_ms_per_iteration[k] << " ms)\n";
     }
-    std::cerr << "deform: " << (report.converged ? "converged" : "stopped at the iteration limit") << "\n";
+    std::cerr << "deform: " << (report.converged ? "converged" : "stopped") << " ("
+              << arap_stop_reason_name(report.stop_reason) << ")\n";
   }
   if (options.method == ArapMethod::Arap) warn_about_original_energy(report, check);
   write_mesh(args.out, U, mesh.F);
@@ -222,6 +225,7 @@ void run_deform(const DeformArguments& args) {
   j["threads"] = thread_count();
   j["iterations"] = report.iterations;
   j["converged"] = report.converged;
+  j["stop_reason"] = arap_stop_reason_name(report.stop_reason);
   j["initial_energy"] = report.initial_energy;
   j["energies"] = report.energies;
   j["accelerator"] = arap_accelerator_name(report.accelerator);
@@ -301,6 +305,10 @@ const bool registered = register_command(
               "--grad-tol", args->grad_tol,
               "Also stop when the gradient norm at the free vertices falls to this fraction of its initial "
               "value (0 = off)")
+           ->check(finite_non_negative)
+           ->capture_default_str();
+       sub->add_option("--time-budget", args->time_budget,
+                       "Stop after the iteration that ends past this many milliseconds of solving (0 = off)")
            ->check(finite_non_negative)
            ->capture_default_str();
        sub->add_option("--threads", args->threads, "Threads for the parallel loops; 0 = all hardware threads")

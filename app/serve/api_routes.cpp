@@ -150,8 +150,9 @@ json state_json(const ServeConfig& config, const ServeState& state) {
 }
 
 SolveRequest parse_solve_request(const json& body, int max_iterations) {
-  require_known_fields(body, {"method", "iterations", "tolerance", "transform", "handle_targets",
-                              "cell_energy", "accelerator", "window", "gradient_tolerance"});
+  require_known_fields(body,
+                       {"method", "iterations", "tolerance", "transform", "handle_targets", "cell_energy",
+                        "accelerator", "window", "gradient_tolerance", "time_budget_ms"});
   SolveRequest request;
   request.method = parse_arap_method(string_field(body, "method", "iarap"));
   request.iterations = integer_field(body, "iterations", 5, 1, max_iterations);
@@ -167,6 +168,9 @@ SolveRequest parse_solve_request(const json& body, int max_iterations) {
   request.gradient_tolerance = number_field(body, "gradient_tolerance", 0.0);
   if (!(request.gradient_tolerance >= 0) || !std::isfinite(request.gradient_tolerance))
     throw HttpError(400, "gradient_tolerance must be a finite number >= 0");
+  request.time_budget_ms = number_field(body, "time_budget_ms", 0.0);
+  if (!(request.time_budget_ms >= 0) || !std::isfinite(request.time_budget_ms))
+    throw HttpError(400, "time_budget_ms must be a finite number >= 0");
   if (body.contains("transform")) {
     const std::vector<double> m = number_array_field(body, "transform");
     if (m.size() != 16)
@@ -195,6 +199,7 @@ std::string solve_frame(const SolveRequest& request, const SolveResult& result) 
                        {"accelerator", arap_accelerator_name(report.accelerator)},
                        {"iterations", report.iterations},
                        {"converged", report.converged},
+                       {"stop_reason", arap_stop_reason_name(report.stop_reason)},
                        {"initial_energy", report.initial_energy},
                        {"energies", report.energies},
                        {"gradient_norms", report.gradient_norms},

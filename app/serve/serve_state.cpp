@@ -65,6 +65,7 @@ ArapReport solve_with_progress(ArapData& data, const Eigen::MatrixXd& targets, E
   options.accelerator = request.accelerator;
   options.window = request.window;
   options.gradient_tolerance = request.gradient_tolerance;
+  options.time_budget_ms = request.time_budget_ms;
   options.on_iteration = [&progress](const ArapReport& report) {
     progress.iteration = report.iterations;
     progress.energy = report.energies.empty() ? report.initial_energy : report.energies.back();

@@ -44,6 +44,7 @@ struct SolveRequest {
   ArapAccelerator accelerator = ArapSolveOptions{}.accelerator; // as `iarap deform --accel`
   int window = ArapSolveOptions{}.window;
   double gradient_tolerance = 0; // ArapSolveOptions::gradient_tolerance (0 = off)
+  double time_budget_ms = 0;     // ArapSolveOptions::time_budget_ms (0 = none)
   // Handle targets: anchors moved by transform (4 x 4 affine, last row 0 0 0 1), or given as #handle x 3.
   std::optional<Eigen::Matrix4d> transform;
   std::optional<Eigen::MatrixXd> handle_targets;

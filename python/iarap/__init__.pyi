@@ -47,6 +47,7 @@ class ARAP:
         accelerator: str = "newton",
         window: int = 8,
         gradient_tolerance: float = 0.0,
+        time_budget_ms: float = 0.0,
     ) -> _FloatArray: ...
     @property
     def fixed(self) -> _IndexArray: ...

@@ -94,7 +94,7 @@ std::unique_ptr<ArapSolver> make_solver(const py::object& V, const py::object& F
 
 py::array_t<double> solve_py(ArapSolver& solver, const py::object& targets, const py::object& U0,
                              int iterations, double tolerance, const std::string& accelerator, int window,
-                             double gradient_tolerance) {
+                             double gradient_tolerance, double time_budget_ms) {
   const auto [n, fixed_count] =
       without_gil(solver, [](const ArapData& d) { return std::make_pair(d.V.rows(), d.fixed.size()); });
   const bool planar = is_planar(solver);
@@ -110,6 +110,7 @@ py::array_t<double> solve_py(ArapSolver& solver, const py::object& targets, cons
   options.accelerator = parse_arap_accelerator(accelerator);
   options.window = window;
   options.gradient_tolerance = gradient_tolerance;
+  options.time_budget_ms = time_budget_ms;
   {
     py::gil_scoped_release release;
     U = solver.solve(target_rows, std::move(U), options);
@@ -131,6 +132,7 @@ py::object report_py(const ArapSolver& solver) {
   py::dict d;
   d["iterations"] = report->iterations;
   d["converged"] = report->converged;
+  d["stop_reason"] = arap_stop_reason_name(report->stop_reason);
   d["initial_energy"] = report->initial_energy;
   d["energies"] = to_numpy(report->energies);
   d["local_ms"] = report->local_ms;
@@ -215,6 +217,7 @@ for an unconstrained component or a failed factorization.)")
            py::arg("tolerance") = 1e-6, py::kw_only(),
            py::arg("accelerator") = arap_accelerator_name(ArapSolveOptions{}.accelerator),
            py::arg("window") = ArapSolveOptions{}.window, py::arg("gradient_tolerance") = 0.0,
+           py::arg("time_budget_ms") = 0.0,
            R"(Deforms the mesh: returns U, float64 (#V, 3), with U[fixed] == targets.
 
 targets: (#fixed, 3) positions of the constrained vertices, in the order of `fixed`.
@@ -225,7 +228,8 @@ tolerance: stop when one iteration lowers the energy by at most tolerance * ener
 accelerator: "newton" (default), "lbfgs", "anderson" or "none" (plain local/global); window: its history length
 (newton: conjugate-gradient steps per Newton step; 0 = plain).
 gradient_tolerance: also stop when the gradient norm at the free vertices is this fraction of its value at
-U0 (0 = off). Warm start: pass the previous solution as U0.
+U0 (0 = off). time_budget_ms: stop after the iteration that ends past this many milliseconds (0 = none;
+report["stop_reason"] says which rule stopped the solve). Warm start: pass the previous solution as U0.
 The run is described by `report`; rotations of U by `rotations`.)")
       .def_property(
           "fixed",

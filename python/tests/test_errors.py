@@ -26,7 +26,10 @@ def solver():
 
 CASES = {
     # positions
-    "V two columns": (lambda: iarap.ARAP(V[:, :2], F, FIXED), r"V must be a #rows x 3 array, got shape \(4, 2\)"),
+    "V four columns": (lambda: iarap.ARAP(np.hstack([V, V[:, :1]]), F, FIXED),
+                       r"V must be a #rows x 3 \(or 2\) array, got shape \(4, 4\)"),
+    "V two columns, not planar-capable": (lambda: iarap.laplacian(V[:, :2], F),
+                                          r"V must be a #rows x 3 array, got shape \(4, 2\)"),
     "V 1-D": (lambda: iarap.ARAP(V.ravel(), F, FIXED), r"V must be .* got shape \(12,\)"),
     "V 3-D": (lambda: iarap.laplacian(V[None], F), r"V must be .* got shape \(1, 4, 3\)"),
     "V NaN": (lambda: iarap.ARAP(with_value(V, (2, 1), np.nan), F, FIXED), r"V row 2 column 1 is nan"),

@@ -262,6 +262,9 @@ ArapReport arap_solve(ArapData& data, const Eigen::MatrixXd& targets, Eigen::Mat
                      std::to_string(options.gradient_tolerance));
   if (options.window < 0)
     throw InputError("ARAP: window must be >= 0, got " + std::to_string(options.window));
+  if (!(options.time_budget_ms >= 0) || !std::isfinite(options.time_budget_ms))
+    throw InputError("ARAP: time_budget_ms must be a finite number >= 0, got " +
+                     std::to_string(options.time_budget_ms));
   check_solver_positions(data, targets, data.fixed.size(), "targets");
   check_solver_positions(data, U, data.V.rows(), "initial guess U");
   const Eigen::MatrixXd target_rows = targets.cols() == 2 ? embedded(targets) : targets;

@@ -46,4 +46,20 @@ std::string arap_accelerator_name(ArapAccelerator accelerator) {
   return "none";
 }
 
+std::string arap_stop_reason_name(ArapStopReason reason) {
+  switch (reason) {
+  case ArapStopReason::MaxIterations:
+    return "max_iterations";
+  case ArapStopReason::EnergyTolerance:
+    return "energy_tolerance";
+  case ArapStopReason::GradientTolerance:
+    return "gradient_tolerance";
+  case ArapStopReason::TimeBudget:
+    return "time_budget";
+  case ArapStopReason::Callback:
+    return "callback";
+  }
+  return "max_iterations";
+}
+
 } // namespace iarap

@@ -15,6 +15,7 @@ bool Progress::begin(double energy, double gradient_norm, double local_ms, doubl
   if (!std::isfinite(energy)) throw SolverError("ARAP: the energy of the initial guess is not finite");
   previous_ = energy;
   report_.converged = options_.gradient_tolerance > 0 && gradient_norm == 0.0;
+  if (report_.converged) report_.stop_reason = ArapStopReason::GradientTolerance;
   return report_.converged;
 }
 
@@ -41,9 +42,18 @@ bool Progress::record(double energy, double gradient_norm, bool accelerated, dou
                              gradient_norm <= options_.gradient_tolerance * report_.initial_gradient_norm;
   if (energy_rule || gradient_rule) {
     report_.converged = true;
+    report_.stop_reason = energy_rule ? ArapStopReason::EnergyTolerance : ArapStopReason::GradientTolerance;
     return true;
   }
-  return options_.on_iteration && !options_.on_iteration(report_);
+  if (options_.time_budget_ms > 0 && report_.elapsed_ms.back() >= options_.time_budget_ms) {
+    report_.stop_reason = ArapStopReason::TimeBudget;
+    return true;
+  }
+  if (options_.on_iteration && !options_.on_iteration(report_)) {
+    report_.stop_reason = ArapStopReason::Callback;
+    return true;
+  }
+  return false;
 }
 
 } // namespace iarap::detail

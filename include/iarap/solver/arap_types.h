@@ -140,8 +140,24 @@ struct ArapSolveOptions {
   // History length m of the accelerator (Anderson: past residual differences; L-BFGS: (s, y) pairs; Newton:
   // the CG steps per Newton step). 0 runs the plain iteration, bit for bit as ArapAccelerator::None.
   int window = 8;
+  // Wall-clock budget in milliseconds (0: none): the solve stops after the iteration that ends past it,
+  // counted from the start of arap_solve (report.stop_reason = TimeBudget). For interactive updates: an
+  // answer in bounded time, the shape at that iterate (every iterate is whole and lowers the energy).
+  double time_budget_ms = 0;
   ArapIterationCallback on_iteration; // optional
 };
+
+// Why arap_solve stopped.
+enum class ArapStopReason {
+  MaxIterations,     // options.max_iterations ran (also 0 iterations)
+  EnergyTolerance,   // the relative energy decrease fell to options.tolerance, or E == 0
+  GradientTolerance, // ||g|| fell to options.gradient_tolerance ||g_0||
+  TimeBudget,        // the iteration that ended past options.time_budget_ms
+  Callback,          // on_iteration returned false
+};
+
+// "max_iterations" | "energy_tolerance" | "gradient_tolerance" | "time_budget" | "callback".
+std::string arap_stop_reason_name(ArapStopReason reason);
 
 struct ArapReport {
   int iterations = 0;           // accepted iterates (each one global solve at least)
@@ -150,6 +166,7 @@ struct ArapReport {
   double local_ms = 0;          // all local steps, including the one that evaluates the last iterate
   double global_ms = 0;         // all global steps (right-hand side, solve and gradient)
   bool converged = false;       // a tolerance rule stopped the iteration (false: max_iterations or callback)
+  ArapStopReason stop_reason = ArapStopReason::MaxIterations;
   std::vector<double> local_ms_per_iteration;          // the local step(s) evaluating U_k (size iterations)
   std::vector<double> global_ms_per_iteration;         // the global step producing U_k (size iterations)
   ArapAccelerator accelerator = ArapAccelerator::None; // what ran (None also for window 0)
