@@ -115,10 +115,10 @@ def run(ctx: Context, doc) -> None:
                       "only vertex positions and, for iARAP, the intrinsic Delaunay cells, which are the same for "
                       f"all three meshes. Measured, iARAP's minimized energy is {fmt(e['iarap']['long']['energy'], 4)} "
                       f"(long), {fmt(e['iarap']['short']['energy'], 4)} (short), "
-                      f"{fmt(e['iarap']['random']['energy'], 4)} (random): the planar cells "
-                      "(`include/iarap/param/planar_cells.h`, each cell flattened into its vertex's tangent plane) "
-                      "still carry a dependence on the input triangulation, not yet traced to its source. Original "
-                      "ARAP's negative cotan weights on the long diagonals make its energy negative there."))
+                      f"{fmt(e['iarap']['random']['energy'], 4)} (random): it still depends on the input "
+                      "triangulation (docs/param.md: not through the tangent planes; likely through the segments' "
+                      "ends inside input edges, where the map is interpolated along the edge). Original ARAP's "
+                      "negative cotan weights on the long diagonals make its energy negative there."))
     ctx.claim("param triangulation", "iARAP's UV map is the same on every triangulation of one surface",
               f"max difference {fmt(iarap_worst)} of the diameter (threshold {SAME_MAP:g})",
               "triangulation independence (Sec. 1)", "yes" if iarap_worst < SAME_MAP else "no")
