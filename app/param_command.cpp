@@ -1,5 +1,5 @@
 // `iarap param MESH --out OUT.obj`: an ARAP parameterization (UV map) of a disk-like mesh, flip-free by
-// default, written as an OBJ with texture coordinates or as `u v` lines.
+// default, written as an OBJ with texture coordinates or as `u v` lines, and on request pictured in a PNG.
 #include "command_registry.h"
 #include "iteration_options.h"
 #include "json_text.h"
@@ -13,6 +13,7 @@
 #include "iarap/io/read_mesh.h"
 #include "iarap/param/arap_parameterize.h"
 #include "iarap/param/param_report_fields.h"
+#include "iarap/param/render_uv_picture.h"
 #include "iarap/param/write_uv_map.h"
 
 #include <nlohmann/json.hpp>
@@ -28,7 +29,7 @@ namespace iarap::cli {
 namespace {
 
 struct ParamArguments {
-  std::string mesh, out, report, energy = "triangle", init, boundary = "free";
+  std::string mesh, out, report, picture, energy = "triangle", init, boundary = "free";
   int iterations = ParamOptions{}.max_iterations;
   double tolerance = ParamOptions{}.tolerance;
   int threads = 0;
@@ -51,8 +52,17 @@ void check_paths(const ParamArguments& args) {
   if (extension != ".obj" && extension != ".txt")
     throw CLI::ValidationError("--out " + args.out +
                                ": a UV map is written as .obj (mesh with vt) or .txt (u v)");
+  if (!args.picture.empty()) {
+    if (same_file(args.picture, args.mesh) || same_file(args.picture, args.out) ||
+        (!args.report.empty() && same_file(args.picture, args.report)))
+      throw CLI::ValidationError("--picture " + args.picture +
+                                 " is the input mesh, the output or the report");
+    if (lower_extension(args.picture) != ".png")
+      throw CLI::ValidationError("--picture " + args.picture + ": the picture is written as .png");
+  }
   check_output_path(args.out);
   if (!args.report.empty()) check_output_path(args.report);
+  if (!args.picture.empty()) check_output_path(args.picture);
 }
 
 ParamOptions options_of(const ParamArguments& args) {
@@ -109,6 +119,12 @@ void run_param(const ParamArguments& args) {
   const ParamReport& report = result.report;
   write_uv_map(args.out, mesh.V, mesh.F, result.UV);
   nlohmann::json j = report_json(args, mesh, options, report);
+  if (!args.picture.empty()) {
+    const auto picture_start = Clock::now();
+    write_png(args.picture, render_uv_picture(mesh.V, mesh.F, result.UV));
+    j["picture"] = args.picture;
+    j["picture_ms"] = ms_since(picture_start);
+  }
   j["total_ms"] = ms_since(total_start);
   if (!args.quiet) {
     if (report.init_fallback)
@@ -118,7 +134,7 @@ void run_param(const ParamArguments& args) {
               << ", energy " << report.distortion.energy << " (at best scale "
               << report.distortion.scaled_energy << "), " << report.distortion.flipped
               << " flipped triangles, min det J " << report.distortion.min_det_J << "\n";
-    std::cerr << "param: wrote " << args.out << "\n";
+    std::cerr << "param: wrote " << args.out << (args.picture.empty() ? "" : " and " + args.picture) << "\n";
   }
   const std::string text = json_text(j);
   if (!args.report.empty()) write_text_file(args.report, text);
@@ -161,6 +177,9 @@ const bool registered = register_command(
        sub->add_option("--threads", args->threads, "Threads for the parallel loops; 0 = automatic (one)")
            ->check(CLI::Range(0, 4096))
            ->capture_default_str();
+       sub->add_option("--picture", args->picture,
+                       "Also write a PNG: the UV layout over a checkerboard (flipped triangles red) beside "
+                       "the mesh textured with it");
        sub->add_flag("--json", args->json, "Print the run's report as one JSON object on stdout");
        sub->add_option("--report", args->report, "Also write the JSON report to this file (atomically)");
        sub->add_flag("--quiet", args->quiet, "No progress lines on stderr");

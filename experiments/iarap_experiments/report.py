@@ -14,7 +14,7 @@ import time
 import traceback
 
 from . import (section_convergence, section_fig8, section_gallery, section_lion, section_operator_identity,
-               section_rest_stability,
+               section_param_triangulation, section_rest_stability,
                section_symmetry, section_table1, section_table2, section_table3)
 from .context import Context, Stopwatch
 from .report_document import Document, Heading, Paragraph, Table, to_html, to_markdown
@@ -22,7 +22,8 @@ from .report_document import Document, Heading, Paragraph, Table, to_html, to_ma
 # One module per section, in report order; report.py numbers their headings (see number_headings).
 SECTIONS = [("table1", section_table1), ("table2", section_table2), ("table3", section_table3),
             ("operator_identity", section_operator_identity), ("fig8", section_fig8), ("rest_stability", section_rest_stability), ("symmetry", section_symmetry),
-            ("lion", section_lion), ("gallery", section_gallery), ("convergence", section_convergence)]
+            ("lion", section_lion), ("gallery", section_gallery), ("convergence", section_convergence),
+            ("param_triangulation", section_param_triangulation)]
 RENDERER = os.path.join(os.path.dirname(os.path.abspath(__file__)), "render_vtk.py")
 
 

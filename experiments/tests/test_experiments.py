@@ -206,3 +206,38 @@ def test_sections_are_numbered_by_position():
     blocks = [Heading("4. Old number"), Paragraph("text"), Heading("Sub", level=3), Heading("Second")]
     number_headings(blocks, 7)
     assert [b.text for b in blocks if isinstance(b, Heading)] == ["7. Old number", "Sub", "7. Second"]
+
+
+def test_param_triangulation_section(report):
+    data = _data(report, "param_triangulation.json")
+    assert set(data["energies"]) == {"triangle", "arap", "iarap"}
+    for energy, entry in data["energies"].items():
+        assert set(entry) == {"long", "short", "random"}, energy
+        for triangulation in ("short", "random"):
+            assert 0 <= entry[triangulation]["max_vs_long"] < 1, (energy, triangulation)
+            assert entry[triangulation]["rms_vs_long"] <= entry[triangulation]["max_vs_long"]
+        # Flip-free default: no triangle of any map folds over.
+        assert all(entry[t]["flipped"] == 0 for t in entry), energy
+    # On the Delaunay (short-diagonal) mesh iARAP is original ARAP: the same map, the same energy.
+    iarap, arap = data["energies"]["iarap"]["short"], data["energies"]["arap"]["short"]
+    assert abs(iarap["energy"] - arap["energy"]) <= 1e-9 * abs(arap["energy"])
+
+
+def test_parallelogram_disk_is_one_surface_three_ways():
+    from iarap_experiments.section_param_triangulation import parallelogram_disk, rigid_distance
+    meshes = {d: parallelogram_disk(7, d) for d in ("long", "short", "random")}
+    V = meshes["long"][0]
+    areas = {}
+    for d, (W, F) in meshes.items():
+        assert np.array_equal(W, V)
+        normals = np.cross(W[F[:, 1]] - W[F[:, 0]], W[F[:, 2]] - W[F[:, 0]])
+        assert np.all(normals[:, 2] > 0), d
+        areas[d] = 0.5 * np.linalg.norm(normals, axis=1).sum()
+    # Every cell is a planar parallelogram, so the three triangulations have exactly the same area.
+    assert max(areas.values()) - min(areas.values()) <= 1e-12 * areas["long"]
+    assert {tuple(f) for f in meshes["long"][1].tolist()} != {tuple(f) for f in meshes["short"][1].tolist()}
+    rng = np.random.default_rng(2)
+    P = rng.normal(size=(30, 2))
+    R = np.array([[np.cos(0.4), -np.sin(0.4)], [np.sin(0.4), np.cos(0.4)]])
+    assert max(rigid_distance(P, P @ R.T + [3, -1])) <= 1e-12
+    assert rigid_distance(P, P * [1, -1])[0] > 0.1  # a reflection is not a rigid motion

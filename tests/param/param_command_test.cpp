@@ -3,6 +3,7 @@
 #include "app/cli_runner.h"
 #include "iarap/io/read_mesh.h"
 #include "iarap/io/write_mesh.h"
+#include "io/png_reader.h"
 #include "mesh/small_meshes.h"
 #include "param/disk_meshes.h"
 #include "test_support.h"
@@ -50,6 +51,20 @@ TEST(ParamCommand, WritesTextureCoordinatesAndReport) {
   fs::remove_all(dir);
 }
 
+TEST(ParamCommand, PictureOfTheMap) {
+  const auto dir = iarap::test::temp_dir("param_cli_picture");
+  const iarap::test::TestMesh cap = iarap::test::spherical_cap(5, 16, 0.5 * M_PI);
+  iarap::write_mesh((dir / "cap.off").string(), cap.V, cap.F);
+  const CliRun run = iarap_cli("param " + quoted(dir / "cap.off") + " --out " + quoted(dir / "uv.obj") +
+                               " --picture " + quoted(dir / "uv.png") + " --json --quiet");
+  ASSERT_EQ(run.code, 0) << run.out;
+  EXPECT_EQ(parse_json(run)["picture"], (dir / "uv.png").string());
+  const iarap::RgbImage image = iarap::test::read_png_rgb((dir / "uv.png").string());
+  EXPECT_EQ(image.width, 1600);
+  EXPECT_EQ(image.height, 800);
+  fs::remove_all(dir);
+}
+
 TEST(ParamCommand, MeshThatIsNotADiskSaysWhatItHas) {
   const auto dir = iarap::test::temp_dir("param_cli_closed");
   const auto octahedron = iarap::test::octahedron();
@@ -80,6 +95,8 @@ TEST(ParamCommand, UsageErrors) {
       {mesh + out + " --init spectral", "spectral"},
       {mesh + out + " --boundary circle --init lscm", "--init tutte or harmonic"},
       {mesh + out + " --iterations -3", "iterations"},
+      {mesh + out + " --picture " + quoted(dir / "uv.jpg"), "the picture is written as .png"},
+      {mesh + out + " --picture " + quoted(dir / "disk.obj"), "is the input mesh, the output or the report"},
       {mesh + out + " --tolerance nan", "finite"},
       {mesh, "--out"},
   };
