@@ -33,7 +33,6 @@ std::string explain_solver_error(const std::string& what, const ErrorContext& co
   if (const auto at = message.find(library_option); at != std::string::npos) {
     message.replace(at, library_option.size(),
                     "pass --pin-unconstrained (pins one vertex of each such part)");
-    message += "\n  a part of a single vertex is a vertex used by no face; --repair drops those";
   } else if (has(message, "singular")) {
     message += "\n  cause: the linear system of the free vertices has no unique solution: a part of the mesh "
                "no constraint reaches, or degenerate faces with zero or cancelling weights"

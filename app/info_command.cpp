@@ -69,8 +69,6 @@ nlohmann::json deform_needs(const MeshReport& report) {
     if (count > 0) repair += (repair.empty() ? "" : "; ") + std::to_string(count) + " " + what;
   };
   add(report.zero_area_faces, "zero-area faces (infinite cotangent weights), which it drops");
-  add(report.unreferenced_vertices,
-      "vertices used by no face (each a part no constraint reaches), which it drops");
   add(report.coincident_vertices, "coincident vertices (seams that split the surface), which it welds");
   if (!repair.empty()) needs.push_back({{"flag", "--repair"}, {"why", repair}});
   if (report.components > 1)

@@ -34,9 +34,15 @@ ConstraintLayout constraint_layout(const ArapData& data, const Eigen::VectorXi& 
     if (first_of[c] < 0) first_of[c] = v;
     if (slot[v] >= 0) ++constrained_in[c];
   }
+  // A vertex used by no face has no element: it is pinned where the initial guess puts it (the rest
+  // position unless the caller moves it), so a mesh with unreferenced vertices deforms with them kept.
+  std::vector<char> used(static_cast<size_t>(n), 0);
+  for (Eigen::Index f = 0; f < data.F.rows(); ++f)
+    for (int k = 0; k < 3; ++k) used[static_cast<size_t>(data.F(f, k))] = 1;
   for (int c = 0; c < data.component_count; ++c) {
     if (constrained_in[c] > 0) continue;
-    if (!data.pin_unconstrained_components)
+    const bool isolated = size_of[c] == 1 && !used[static_cast<size_t>(first_of[c])];
+    if (!data.pin_unconstrained_components && !isolated)
       throw SolverError(
           "ARAP: connected component " + std::to_string(c) + " (" + std::to_string(size_of[c]) +
           " vertices, e.g. vertex " + std::to_string(first_of[c]) +

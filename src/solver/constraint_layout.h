@@ -22,7 +22,9 @@ struct ConstraintLayout {
 // The layout for the constrained set `fixed` (#fixed, 0-based) of data's mesh (data.V, data.component).
 // Throws InputError for an empty set, an index out of range or a duplicate (naming the position and the
 // index), SolverError for a connected component without constrained vertex (naming the component, its size
-// and one vertex) unless data.pin_unconstrained_components, which pins its first vertex instead.
+// and one vertex) unless data.pin_unconstrained_components, which pins its first vertex instead. A vertex
+// used by no face is pinned either way (layout.pinned): it has no energy and stays where the initial guess
+// is.
 ConstraintLayout constraint_layout(const ArapData& data, const Eigen::VectorXi& fixed);
 
 // L (#V x #V, symmetric, compressed) split into L_ff (free x free) and L_fc (free x constrained) directly

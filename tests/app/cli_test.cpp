@@ -306,8 +306,11 @@ TEST(Cli, RepairMapsConstraintIndices) {
   write_file(dir / "removed.txt", "1 9 9 9\n0 0 0 0\n");
   const std::string mesh = " '" + (dir / "tet.off").string() + "'";
   const std::string out = " --out '" + (dir / "o.off").string() + "'";
-  // Without repair the stray vertex is an unconstrained component: the solver refuses.
-  EXPECT_EQ(iarap_cli("deform" + mesh + " --constraints '" + (dir / "c.txt").string() + "'" + out).code, 1);
+  // Without repair the stray vertex is kept where it is (it has no energy) and written back unchanged.
+  ASSERT_EQ(iarap_cli("deform" + mesh + " --constraints '" + (dir / "c.txt").string() + "'" + out).code, 0);
+  const auto kept = iarap::read_mesh((dir / "o.off").string());
+  ASSERT_EQ(kept.V.rows(), 5);
+  EXPECT_EQ(kept.V.row(1), Eigen::RowVector3d(9, 9, 9));
   const CliRun run =
       iarap_cli("deform" + mesh + " --repair --method spokes-rims --json --quiet --constraints '" +
                 (dir / "c.txt").string() + "'" + out);

@@ -40,6 +40,7 @@ struct ArapOptions {
   IntrinsicOptions intrinsic = boundary_robust_intrinsic_options(); // used by ArapMethod::Iarap only
   // A connected component without a constrained vertex makes L_ff singular. false: SolverError naming
   // it; true: its first (smallest-index) vertex is pinned where the initial guess of arap_solve puts it.
+  // A vertex used by no face (no energy) is pinned either way: kept, where the initial guess puts it.
   bool pin_unconstrained_components = false;
   // A planar mesh deformed in its plane: cell rotations about the z axis only (2x2 rotations,
   // planar_rotation), so that a cell squeezed through a reflection is fitted the closest rotation, never
@@ -87,10 +88,10 @@ struct ArapData {
   Eigen::SparseMatrix<double> L; // #V x #V system matrix, sum_e |cells(e)| w_e b_e b_e^T
   Eigen::VectorXi component;     // #V connected component of each vertex
   int component_count = 0;
-  Eigen::VectorXi fixed;            // #fixed user-constrained vertices, in the order of the targets rows
-  Eigen::VectorXi pinned;           // vertices pinned by pin_unconstrained_components (empty otherwise)
-  Eigen::VectorXi free;             // #free the unconstrained vertices, increasing
-  Eigen::VectorXi free_slot;        // #V position of v in free, or -1 for constrained vertices
+  Eigen::VectorXi fixed;     // #fixed user-constrained vertices, in the order of the targets rows
+  Eigen::VectorXi pinned;    // vertices pinned by pin_unconstrained_components, and vertices used by no face
+  Eigen::VectorXi free;      // #free the unconstrained vertices, increasing
+  Eigen::VectorXi free_slot; // #V position of v in free, or -1 for constrained vertices
   Eigen::SparseMatrix<double> L_fc; // #free x (#fixed + #pinned): coupling to the constrained vertices
   SparseCholesky solver;            // factorization of L_ff (#free x #free)
   std::vector<Eigen::Matrix3d> R;   // one per cell (arap_rotations) for the last iterate of arap_solve
