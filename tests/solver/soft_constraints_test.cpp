@@ -2,6 +2,7 @@
 // (arap_soft_constraints.h) through the oracle, every accelerator and the facade.
 #include "iarap/core/errors.h"
 #include "iarap/solver/arap.h"
+#include "intrinsic/mesh_generators.h"
 #include "solver_fixtures.h"
 
 #include "solver/local_global_problem.h"
@@ -366,6 +367,36 @@ TEST_F(SoftConstraints, SoftPointsAloneHoldAComponent) {
   soft.vertex_weights.conservativeResize(1);
   expect_throws_with<SolverError>([&] { arap_precompute(m.V, m.F, Eigen::VectorXi(), soft); },
                                   "has no constrained vertex or soft constraint");
+}
+
+// Planar data (#V x 2) takes #soft x 2 targets; solved in two columns or in three at z = 0 the result is
+// the same bit for bit (as for the hard constraints, planar_arap_test.cpp), z stays exactly 0, and the
+// soft vertex moves toward its target.
+TEST_F(SoftConstraints, PlanarSoftTargetsInTwoOrThreeColumns) {
+  const test::TestMesh grid = test::planar_grid(8);
+  const Eigen::MatrixXd V2 = grid.V.leftCols(2);
+  const Eigen::VectorXi bottom = test::to_vector(test::axis_band(grid.V, 1, 0.1, -1));
+  ArapSoftConstraints soft;
+  soft.faces = Eigen::VectorXi::Constant(1, static_cast<int>(grid.F.rows()) - 1);
+  soft.barycentric = Eigen::RowVector3d(0.2, 0.3, 0.5);
+  soft.face_weights = Eigen::VectorXd::Constant(1, 5.0);
+  ArapData data = arap_precompute(V2, grid.F, bottom, soft);
+  const Eigen::MatrixXd rest2 = test::rows_of(V2, bottom);
+  Eigen::MatrixXd point = Eigen::MatrixXd::Zero(1, 2);
+  for (int j = 0; j < 3; ++j) point += soft.barycentric(0, j) * V2.row(grid.F(soft.faces(0), j));
+  const Eigen::MatrixXd target2 = point + Eigen::RowVector2d(0.3, -0.1);
+  Eigen::MatrixXd U2 = V2;
+  const ArapReport report = arap_solve(data, rest2, target2, U2, converge(ArapAccelerator::Newton, 30));
+  Eigen::MatrixXd rest3 = Eigen::MatrixXd::Zero(rest2.rows(), 3), target3 = Eigen::MatrixXd::Zero(1, 3),
+                  U3 = Eigen::MatrixXd::Zero(V2.rows(), 3);
+  rest3.leftCols(2) = rest2;
+  target3.leftCols(2) = target2;
+  U3.leftCols(2) = V2;
+  arap_solve(data, rest3, target3, U3, converge(ArapAccelerator::Newton, 30));
+  EXPECT_TRUE((U3.col(2).array() == 0.0).all());
+  EXPECT_EQ(U3.leftCols(2), U2);
+  EXPECT_LT(report.penalty, 5.0 * (target2 - point).squaredNorm());
+  EXPECT_NEAR(report.penalty, arap_penalty(data, target2, U2), 1e-15);
 }
 
 TEST_F(SoftConstraints, BadSoftConstraintsAreNamed) {
