@@ -56,7 +56,8 @@ void load_mesh_and_constraints(const DeformArguments& args, MeshData& mesh, Cons
   if (!args.repair) {
     constraints = args.constraints.empty()
                       ? resolve_scenario(scenario, mesh.V)
-                      : read_constraints(args.constraints, static_cast<int>(mesh.V.rows()));
+                      : read_constraints(args.constraints, static_cast<int>(mesh.V.rows()),
+                                         static_cast<int>(mesh.F.rows()));
     return;
   }
   RepairOptions repair_options;
@@ -65,8 +66,9 @@ void load_mesh_and_constraints(const DeformArguments& args, MeshData& mesh, Cons
   if (args.constraints.empty()) {
     constraints = resolve_scenario(remap_scenario(scenario, repaired.old_to_new), repaired.V);
   } else {
-    constraints = remap_constraints(read_constraints(args.constraints, static_cast<int>(mesh.V.rows())),
-                                    repaired.old_to_new);
+    constraints = remap_constraints(
+        read_constraints(args.constraints, static_cast<int>(mesh.V.rows()), static_cast<int>(mesh.F.rows())),
+        repaired.old_to_new);
   }
   mesh.V = std::move(repaired.V);
   mesh.F = std::move(repaired.F);
@@ -111,6 +113,24 @@ std::string farthest_target(const ConstraintSet& constraints, const Eigen::Matri
   if (static_cast<Eigen::Index>(constraints.origins.size()) == constraints.fixed.size())
     text << " (" << constraints.origins[static_cast<std::size_t>(worst)] << ")";
   return text.str();
+}
+
+// The solver's soft constraints from those read from a file or scenario, and their targets (vertices first).
+ArapSoftConstraints soft_constraints_of(const SoftConstraintSet& set) {
+  ArapSoftConstraints soft;
+  soft.vertices = set.vertices;
+  soft.vertex_weights = set.vertex_weights;
+  soft.faces = set.faces;
+  soft.barycentric = set.barycentric;
+  soft.face_weights = set.face_weights;
+  return soft;
+}
+
+Eigen::MatrixXd soft_targets_of(const SoftConstraintSet& set) {
+  Eigen::MatrixXd T(set.size(), 3);
+  if (set.vertices.size() > 0) T.topRows(set.vertices.size()) = set.vertex_targets;
+  if (set.faces.size() > 0) T.bottomRows(set.faces.size()) = set.face_targets;
+  return T;
 }
 
 void run_deform(const DeformArguments& args) {
@@ -161,12 +181,16 @@ void run_deform(const DeformArguments& args) {
   const Eigen::MatrixXd targets = constraints.targets / s;
   // A mesh in the plane z = 0 whose targets stay in it deforms in its plane, with rotations about z (a cell
   // squeezed through a reflection keeps a 2x2 rotation); targets off the plane make it a 3D deformation.
-  options.planar = (V.col(2).array() == 0.0).all() && (targets.col(2).array() == 0.0).all();
+  // Soft weights need no scaling: E_ARAP and W |x - t|^2 both scale with length^2.
+  const ArapSoftConstraints soft = soft_constraints_of(constraints.soft);
+  const Eigen::MatrixXd soft_targets = soft_targets_of(constraints.soft) / s;
+  options.planar = (V.col(2).array() == 0.0).all() && (targets.col(2).array() == 0.0).all() &&
+                   (soft_targets.rows() == 0 || (soft_targets.col(2).array() == 0.0).all());
   const ErrorContext context{args.mesh, args.repair};
   const auto precompute_start = Clock::now();
   std::optional<ArapData> data;
   try {
-    data.emplace(arap_precompute(V, mesh.F, constraints.fixed, options));
+    data.emplace(arap_precompute(V, mesh.F, constraints.fixed, soft, options));
   } catch (const SolverError& e) {
     throw SolverError(explain_solver_error(e.what(), context));
   } catch (const TopologyError& e) {
@@ -184,7 +208,7 @@ void run_deform(const DeformArguments& args) {
   solve_options.time_budget_ms = args.time_budget;
   ArapReport report;
   try {
-    report = arap_solve(*data, targets, U, solve_options);
+    report = arap_solve(*data, targets, soft_targets, U, solve_options);
   } catch (const SolverError& e) {
     if (std::string(e.what()).find("initial guess is not finite") != std::string::npos)
       throw SolverError(
@@ -198,11 +222,15 @@ void run_deform(const DeformArguments& args) {
   const double energy_unit = s * s; // energies scale with length^2, gradients (L U - rhs) with length
   report.initial_energy *= energy_unit;
   for (double& e : report.energies) e *= energy_unit;
+  report.penalty *= energy_unit;
+  report.arap_energy *= energy_unit;
   report.initial_gradient_norm *= s;
   for (double& g : report.gradient_norms) g *= s;
   if (!args.quiet) {
     std::cerr << "deform: " << arap_method_name(options.method) << ", " << mesh.V.rows() << " vertices, "
-              << constraints.fixed.size() << " constrained, initial energy " << report.initial_energy << "\n";
+              << constraints.fixed.size() << " constrained"
+              << (soft.size() > 0 ? ", " + std::to_string(soft.size()) + " soft" : std::string())
+              << ", initial energy " << report.initial_energy << "\n";
     for (int k = 0; k < report.iterations; ++k) {
       std::cerr << "deform: iteration " << k + 1 << "/" << args.iterations << " energy " << report.energies[k]
                 << " gradient " << report.gradient_norms[k] << (report.accepted[k] ? " accelerated" : "")
@@ -228,6 +256,11 @@ void run_deform(const DeformArguments& args) {
   j["stop_reason"] = arap_stop_reason_name(report.stop_reason);
   j["initial_energy"] = report.initial_energy;
   j["energies"] = report.energies;
+  // The energy of the result = arap_energy + penalty, penalty = sum_k W_k |c_k^T U - t_k|^2 (file units).
+  j["energy"] = report.arap_energy + report.penalty;
+  j["arap_energy"] = report.arap_energy;
+  j["penalty"] = report.penalty;
+  j["soft"] = soft.size();
   j["accelerator"] = arap_accelerator_name(report.accelerator);
   j["window"] = args.window;
   j["initial_gradient_norm"] = report.initial_gradient_norm;

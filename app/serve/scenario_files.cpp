@@ -67,6 +67,14 @@ std::string constraints_text(const ConstraintTargets& targets, const std::string
   return out.str();
 }
 
+// The viewer drags hard handles only: a weighted handle or soft line is refused rather than dropped.
+void refuse_soft(const ConstraintSet& set) {
+  if (set.soft.size() > 0)
+    throw InputError(
+        set.soft.origins.front() +
+        ": soft constraints (weights) are not supported by the viewer yet; `iarap deform` takes them");
+}
+
 } // namespace
 
 SavedSession save_session(const ConstraintTargets& targets, const std::optional<Eigen::Matrix4d>& transform,
@@ -88,6 +96,7 @@ LoadedSession load_session(const std::string& text, const std::string& source, c
       throw InputError(source + ": malformed JSON: " + e.what());
     }
     const ConstraintSet set = resolve_scenario(scenario, V);
+    refuse_soft(set);
     // resolve_scenario lists the fixed vertices first; their count is that of the fixed part alone.
     Eigen::Index fixed_count = 0;
     if (!scenario.fixed.empty()) {
@@ -103,6 +112,7 @@ LoadedSession load_session(const std::string& text, const std::string& source, c
   }
   std::istringstream in(text);
   const ConstraintSet set = parse_constraints(in, source, static_cast<int>(V.rows()));
+  refuse_soft(set);
   std::vector<Eigen::Index> fixed_rows, handle_rows;
   for (Eigen::Index i = 0; i < set.fixed.size(); ++i)
     (set.targets.row(i) == V.row(set.fixed[i]) ? fixed_rows : handle_rows).push_back(i);

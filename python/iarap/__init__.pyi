@@ -36,6 +36,11 @@ class ARAP:
         *,
         pin_unconstrained_components: bool = False,
         refine_boundary: bool = True,
+        soft_vertices: npt.ArrayLike | None = None,
+        soft_weights: npt.ArrayLike | None = None,
+        soft_faces: npt.ArrayLike | None = None,
+        soft_barycentric: npt.ArrayLike | None = None,
+        soft_face_weights: npt.ArrayLike | None = None,
     ) -> None: ...
     def solve(
         self,
@@ -48,7 +53,12 @@ class ARAP:
         window: int = 8,
         gradient_tolerance: float = 0.0,
         time_budget_ms: float = 0.0,
+        soft_targets: npt.ArrayLike | None = None,
     ) -> _FloatArray: ...
+    def set_soft_weights(
+        self, soft_weights: npt.ArrayLike | None, soft_face_weights: npt.ArrayLike | None = None
+    ) -> None: ...
+    def penalty(self, U: npt.ArrayLike, soft_targets: npt.ArrayLike) -> float: ...
     @property
     def fixed(self) -> _IndexArray: ...
     @fixed.setter

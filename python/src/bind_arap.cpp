@@ -3,6 +3,7 @@
 #include "bindings.h"
 #include "numpy_arrays.h"
 
+#include "iarap/core/errors.h"
 #include "iarap/core/stopwatch.h"
 #include "iarap/solver/arap.h"
 
@@ -17,14 +18,15 @@ namespace {
 class ArapSolver {
 public:
   ArapSolver(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const Eigen::VectorXi& fixed,
-             const ArapOptions& options)
-      : data_(arap_precompute(V, F, fixed, options)) {}
+             const ArapSoftConstraints& soft, const ArapOptions& options)
+      : data_(arap_precompute(V, F, fixed, soft, options)) {}
 
   // Everything below locks mutex_; callers release the GIL first so that a waiting thread never holds it.
-  Eigen::MatrixXd solve(const Eigen::MatrixXd& targets, Eigen::MatrixXd U, const ArapSolveOptions& options) {
+  Eigen::MatrixXd solve(const Eigen::MatrixXd& targets, const Eigen::MatrixXd& soft_targets,
+                        Eigen::MatrixXd U, const ArapSolveOptions& options) {
     std::lock_guard<std::mutex> lock(mutex_);
     const auto start = Clock::now();
-    ArapReport report = arap_solve(data_, targets, U, options);
+    ArapReport report = arap_solve(data_, targets, soft_targets, U, options);
     solve_ms_ = ms_since(start);
     report_ = std::move(report);
     return U;
@@ -33,6 +35,12 @@ public:
   void set_fixed(const Eigen::VectorXi& fixed) {
     std::lock_guard<std::mutex> lock(mutex_);
     arap_set_fixed(data_, fixed);
+    ++factorizations_;
+  }
+
+  void set_soft_weights(const Eigen::VectorXd& vertex_weights, const Eigen::VectorXd& face_weights) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    arap_set_soft_weights(data_, vertex_weights, face_weights);
     ++factorizations_;
   }
 
@@ -77,28 +85,64 @@ bool is_planar(const ArapSolver& solver) {
   return without_gil(solver, [](const ArapData& d) { return d.planar; });
 }
 
+// A 1-D array-like of weights (None: empty) as a vector; their values are checked by the library.
+Eigen::VectorXd to_weights(const py::object& weights, const std::string& name) {
+  if (weights.is_none()) return {};
+  const auto a = py::array_t<double, py::array::forcecast>::ensure(weights);
+  if (!a || a.ndim() != 1) throw InputError(name + " must be a 1-D array of weights");
+  Eigen::VectorXd w(a.shape(0));
+  for (py::ssize_t k = 0; k < a.shape(0); ++k) w(k) = a.at(k);
+  return w;
+}
+
+// The soft constraints of the ARAP constructor (each argument None or an array; see its docstring).
+ArapSoftConstraints to_soft(const py::object& vertices, const py::object& weights, const py::object& faces,
+                            const py::object& barycentric, const py::object& face_weights, Eigen::Index n,
+                            Eigen::Index face_count) {
+  ArapSoftConstraints soft;
+  if (!vertices.is_none()) soft.vertices = to_indices(vertices, "soft_vertices", n);
+  soft.vertex_weights = to_weights(weights, "soft_weights");
+  if (!faces.is_none()) soft.faces = to_indices(faces, "soft_faces", face_count);
+  if (!barycentric.is_none()) soft.barycentric = to_points(barycentric, "soft_barycentric");
+  soft.face_weights = to_weights(face_weights, "soft_face_weights");
+  return soft;
+}
+
 std::unique_ptr<ArapSolver> make_solver(const py::object& V, const py::object& F, const py::object& fixed,
                                         const std::string& method, bool pin_unconstrained_components,
-                                        bool refine_boundary) {
+                                        bool refine_boundary, const py::object& soft_vertices,
+                                        const py::object& soft_weights, const py::object& soft_faces,
+                                        const py::object& soft_barycentric,
+                                        const py::object& soft_face_weights) {
   // #V x 2: a planar mesh, deformed in its plane (rotations about z); solves then take and give 2 columns.
   const Eigen::MatrixXd positions = to_points(V, "V", true, -1, "", true);
   const Eigen::MatrixXi faces = to_faces(F, "F", positions.rows());
   const Eigen::VectorXi constrained = to_indices(fixed, "fixed", positions.rows());
+  const ArapSoftConstraints soft = to_soft(soft_vertices, soft_weights, soft_faces, soft_barycentric,
+                                           soft_face_weights, positions.rows(), faces.rows());
   ArapOptions options;
   options.method = parse_arap_method(method);
   options.pin_unconstrained_components = pin_unconstrained_components;
   options.intrinsic.refine_boundary = refine_boundary;
   py::gil_scoped_release release;
-  return std::make_unique<ArapSolver>(positions, faces, constrained, options);
+  return std::make_unique<ArapSolver>(positions, faces, constrained, soft, options);
 }
 
 py::array_t<double> solve_py(ArapSolver& solver, const py::object& targets, const py::object& U0,
                              int iterations, double tolerance, const std::string& accelerator, int window,
-                             double gradient_tolerance, double time_budget_ms) {
+                             double gradient_tolerance, double time_budget_ms,
+                             const py::object& soft_targets) {
   const auto [n, fixed_count] =
       without_gil(solver, [](const ArapData& d) { return std::make_pair(d.V.rows(), d.fixed.size()); });
+  const Eigen::Index soft_count = without_gil(solver, [](const ArapData& d) { return d.soft.size(); });
   const bool planar = is_planar(solver);
   const Eigen::MatrixXd target_rows = to_points(targets, "targets", true, fixed_count, "#fixed", planar);
+  if (soft_count > 0 && soft_targets.is_none())
+    throw InputError("soft_targets: the solver has " + std::to_string(soft_count) +
+                     " soft constraints; give their targets, (#soft, 3)");
+  const Eigen::MatrixXd soft_rows =
+      soft_targets.is_none() ? Eigen::MatrixXd(0, planar ? 2 : 3)
+                             : to_points(soft_targets, "soft_targets", true, soft_count, "#soft", planar);
   Eigen::MatrixXd U = U0.is_none() ? without_gil(solver,
                                                  [planar](const ArapData& d) {
                                                    return planar ? Eigen::MatrixXd(d.V.leftCols(2)) : d.V;
@@ -113,7 +157,7 @@ py::array_t<double> solve_py(ArapSolver& solver, const py::object& targets, cons
   options.time_budget_ms = time_budget_ms;
   {
     py::gil_scoped_release release;
-    U = solver.solve(target_rows, std::move(U), options);
+    U = solver.solve(target_rows, soft_rows, std::move(U), options);
   }
   return to_numpy(U);
 }
@@ -134,6 +178,8 @@ py::object report_py(const ArapSolver& solver) {
   d["converged"] = report->converged;
   d["stop_reason"] = arap_stop_reason_name(report->stop_reason);
   d["initial_energy"] = report->initial_energy;
+  d["penalty"] = report->penalty;
+  d["arap_energy"] = report->arap_energy;
   d["energies"] = to_numpy(report->energies);
   d["local_ms"] = report->local_ms;
   d["global_ms"] = report->global_ms;
@@ -203,6 +249,9 @@ and Alexa 2007, Eq. 1). New targets reuse the factorization of L_ff; assigning `
 Energies are in squared mesh units. Methods release the GIL; one solver serves one thread at a time.)")
       .def(py::init(&make_solver), py::arg("V"), py::arg("F"), py::arg("fixed"), py::arg("method") = "iarap",
            py::kw_only(), py::arg("pin_unconstrained_components") = false, py::arg("refine_boundary") = true,
+           py::arg("soft_vertices") = py::none(), py::arg("soft_weights") = py::none(),
+           py::arg("soft_faces") = py::none(), py::arg("soft_barycentric") = py::none(),
+           py::arg("soft_face_weights") = py::none(),
            R"(Precomputes the elements of `method`, the system matrix L and the factorization of L_ff.
 
 V: (#V, 3) rest positions, or (#V, 2) for a planar mesh, deformed in its plane with rotations about z
@@ -211,13 +260,17 @@ allowed). fixed: (#fixed,) distinct constrained vertex indices. pin_unconstraine
 vertex of every connected component without a constrained vertex (else such a component raises SolverError).
 refine_boundary ("iarap" only, not in the paper): split boundary edges opposite an obtuse intrinsic angle, so
 that no weight is negative; the inserted points get rotation cells of their own (rows #V.. of `rotations`).
-Raises ValueError (InputError, TopologyError) for bad arrays, indices or meshes; SolverError (a RuntimeError)
-for an unconstrained component or a failed factorization.)")
+Soft constraints (issue 32): soft_vertices (#sv,) with soft_weights (#sv,) W > 0, and points on faces:
+soft_faces (#sb,), soft_barycentric (#sb, 3) rows summing to 1, soft_face_weights (#sb,). The solve then
+minimizes E_ARAP + sum_k W_k |c_k^T U - t_k|^2 (c_k: the vertex, or B0, B1, B2 at the face's corners); the
+soft vertices stay free, and `fixed` may be empty when every component has a soft point.
+Raises ValueError (InputError, TopologyError) for bad arrays, indices, weights or meshes; SolverError (a
+RuntimeError) for an unconstrained component or a failed factorization.)")
       .def("solve", &solve_py, py::arg("targets"), py::arg("U0") = py::none(), py::arg("iterations") = 50,
            py::arg("tolerance") = 1e-6, py::kw_only(),
            py::arg("accelerator") = arap_accelerator_name(ArapSolveOptions{}.accelerator),
            py::arg("window") = ArapSolveOptions{}.window, py::arg("gradient_tolerance") = 0.0,
-           py::arg("time_budget_ms") = 0.0,
+           py::arg("time_budget_ms") = 0.0, py::arg("soft_targets") = py::none(),
            R"(Deforms the mesh: returns U, float64 (#V, 3), with U[fixed] == targets.
 
 targets: (#fixed, 3) positions of the constrained vertices, in the order of `fixed`.
@@ -230,6 +283,8 @@ accelerator: "newton" (default), "lbfgs", "anderson" or "none" (plain local/glob
 gradient_tolerance: also stop when the gradient norm at the free vertices is this fraction of its value at
 U0 (0 = off). time_budget_ms: stop after the iteration that ends past this many milliseconds (0 = none;
 report["stop_reason"] says which rule stopped the solve). Warm start: pass the previous solution as U0.
+soft_targets: (#soft, 3) targets of the soft constraints (vertices first, then face points), required when
+there are any; new soft targets reuse the factorization.
 The run is described by `report`; rotations of U by `rotations`.)")
       .def_property(
           "fixed",
@@ -242,9 +297,33 @@ The run is described by `report`; rotations of U by `rotations`.)")
             s.set_fixed(constrained);
           },
           "(#fixed,) int64 constrained vertices. Assigning a new set refactorizes L_ff (only).")
+      .def(
+          "set_soft_weights",
+          [](ArapSolver& s, const py::object& weights, const py::object& face_weights) {
+            const Eigen::VectorXd w = to_weights(weights, "soft_weights"),
+                                  wf = to_weights(face_weights, "soft_face_weights");
+            py::gil_scoped_release release;
+            s.set_soft_weights(w, wf);
+          },
+          py::arg("soft_weights"), py::arg("soft_face_weights") = py::none(),
+          "New weights for the soft vertices and face points: a numeric refactorization only (the symbolic "
+          "analysis is kept).")
+      .def(
+          "penalty",
+          [](const ArapSolver& s, const py::object& U, const py::object& soft_targets) {
+            const Eigen::Index soft_count = without_gil(s, [](const ArapData& d) { return d.soft.size(); });
+            const Eigen::MatrixXd T = to_points(soft_targets, "soft_targets", true, soft_count, "#soft");
+            return on_positions(
+                s, U, [&](const ArapData& d, const Eigen::MatrixXd& P) { return arap_penalty(d, T, P); });
+          },
+          py::arg("U"), py::arg("soft_targets"),
+          "sum_k W_k |c_k^T U - t_k|^2: the soft constraints' penalty at U (#V, 3); energy(U) + penalty is "
+          "the "
+          "total the solve minimizes.")
       .def_property_readonly("report", &report_py,
                              R"(The last solve as a dict (None before the first solve): iterations, converged,
-initial_energy, energies (float64 (iterations,), energy after each iteration), local_ms, global_ms,
+initial_energy, penalty and arap_energy (the two parts of the last energy; penalty 0 without soft
+constraints), energies (float64 (iterations,), energy after each iteration), local_ms, global_ms,
 local_ms_per_iteration, global_ms_per_iteration, accelerator, initial_gradient_norm, gradient_norms (per
 iteration), accepted (bool per iteration: the accelerated iterate was kept), rejected, solves, accelerator_ms,
 elapsed_ms (per iteration, since the start), solve_ms (the whole C++ solve), and the precomputation's

@@ -149,12 +149,16 @@ std::vector<Region> parse_regions(const Node& node) {
 }
 
 Handle parse_handle(const Node& node) {
-  node.require_object({"name", "vertices", "translate", "translate_relative", "rotate"});
+  node.require_object({"name", "vertices", "translate", "translate_relative", "rotate", "weight"});
   Handle handle;
   handle.path = node.path;
   if (node.has("name")) handle.name = node.key("name").string();
   if (!node.has("vertices")) node.fail("a handle needs \"vertices\"");
   handle.vertices = parse_regions(node.key("vertices"));
+  if (node.has("weight")) { // a soft handle
+    handle.weight = node.key("weight").number();
+    if (!(handle.weight > 0)) node.key("weight").fail("a soft handle's weight must be > 0");
+  }
   if (node.has("translate") && node.has("translate_relative")) {
     node.fail("give either \"translate\" or \"translate_relative\", not both");
   }

@@ -7,6 +7,10 @@
 namespace iarap {
 
 ConstraintSet remap_constraints(const ConstraintSet& constraints, const Eigen::VectorXi& old_to_new) {
+  if (constraints.soft.size() > 0)
+    throw InputError("soft constraints (" + constraints.soft.origins.front() +
+                     ") cannot be carried over a mesh repair yet; repair the mesh first (iarap repair) and "
+                     "give constraints on the repaired mesh");
   ConstraintSet result;
   result.warnings = constraints.warnings;
   std::vector<int> fixed;

@@ -32,6 +32,10 @@ ConstraintSet resolve_scenario(const Scenario& scenario, const Eigen::MatrixXd& 
   std::vector<int> fixed;
   std::vector<Eigen::Vector3d> targets;
   std::vector<std::string> origins;
+  std::vector<int> soft;
+  std::vector<double> soft_weights;
+  std::vector<Eigen::Vector3d> soft_targets;
+  std::vector<std::string> soft_origins;
   const auto claim = [&](int vertex, int who, const std::string& path) {
     int& current = owner[static_cast<std::size_t>(vertex)];
     if (current != -1) {
@@ -78,12 +82,15 @@ ConstraintSet resolve_scenario(const Scenario& scenario, const Eigen::MatrixXd& 
                                   : handle.translation;
     for (const int i : vertices) {
       claim(i, static_cast<int>(h) + 1, handle.path);
-      fixed.push_back(i);
-      targets.emplace_back(R * (V.row(i).transpose() - center) + center + t);
-      origins.push_back(handle.path);
+      const bool hard = handle.weight == 0;
+      (hard ? fixed : soft).push_back(i);
+      (hard ? targets : soft_targets).emplace_back(R * (V.row(i).transpose() - center) + center + t);
+      (hard ? origins : soft_origins).push_back(handle.path);
+      if (!hard) soft_weights.push_back(handle.weight);
     }
   }
-  if (fixed.empty()) throw InputError(scenario.source + ": the scenario constrains no vertex");
+  if (fixed.empty() && soft.empty())
+    throw InputError(scenario.source + ": the scenario constrains no vertex");
 
   ConstraintSet result;
   result.origins = std::move(origins);
@@ -97,6 +104,24 @@ ConstraintSet resolve_scenario(const Scenario& scenario, const Eigen::MatrixXd& 
     }
     result.targets.row(static_cast<Eigen::Index>(k)) = target.transpose();
   }
+  SoftConstraintSet& s = result.soft;
+  const auto ns = static_cast<Eigen::Index>(soft.size());
+  s.vertices = Eigen::Map<const Eigen::VectorXi>(soft.data(), ns);
+  s.vertex_weights = Eigen::Map<const Eigen::VectorXd>(soft_weights.data(), ns);
+  s.vertex_targets.resize(ns, 3);
+  for (Eigen::Index k = 0; k < ns; ++k) {
+    const Eigen::Vector3d& target = soft_targets[static_cast<size_t>(k)];
+    if (!target.allFinite())
+      throw InputError(scenario.source + ": target of vertex " +
+                       std::to_string(soft[static_cast<size_t>(k)]) +
+                       " is not finite (non-finite rest position or motion)");
+    s.vertex_targets.row(k) = target.transpose();
+  }
+  s.origins = std::move(soft_origins);
+  s.faces.resize(0);
+  s.barycentric.resize(0, 3);
+  s.face_weights.resize(0);
+  s.face_targets.resize(0, 3);
   return result;
 }
 

@@ -14,6 +14,7 @@
 #include "constraint_layout.h"
 #include "local_global_loops.h"
 #include "local_global_problem.h"
+#include "soft_terms.h"
 #include "traced_elements.h"
 
 #include <algorithm>
@@ -69,6 +70,7 @@ Eigen::MatrixXd embedded(const Eigen::MatrixXd& X) {
 // intrinsic flips); with one thread, first. The values and the numeric factorization follow once L is known.
 struct SystemBuild {
   SystemPattern pattern;
+  Eigen::SparseMatrix<double> Q; // the soft constraints' part (0 x 0 without): L_ff and L_fc are of L + Q
   Eigen::SparseMatrix<double> L_ff, L_fc;
   SparseCholesky solver;
   double analyze_ms = 0;
@@ -84,7 +86,7 @@ void analyze(const detail::ConstraintLayout& layout, SystemBuild& system) {
 // L_ff and L_fc from L, and the numeric factorization of L_ff (throws SolverError).
 void factorize(const Eigen::SparseMatrix<double>& L, const detail::ConstraintLayout& layout,
                SystemBuild& system) {
-  detail::split_system(L, layout, system.L_ff, &system.L_fc);
+  detail::split_system(detail::with_soft(L, system.Q), layout, system.L_ff, &system.L_fc);
   system.solver.factorize(system.L_ff);
   system.factorized = true;
 }
@@ -211,13 +213,20 @@ void factorize_element_system(const Eigen::MatrixXi& F, const detail::Constraint
 
 ArapData arap_precompute(const Eigen::MatrixXd& V_in, const Eigen::MatrixXi& F, const Eigen::VectorXi& fixed,
                          const ArapOptions& options) {
+  return arap_precompute(V_in, F, fixed, ArapSoftConstraints{}, options);
+}
+
+ArapData arap_precompute(const Eigen::MatrixXd& V_in, const Eigen::MatrixXi& F, const Eigen::VectorXi& fixed,
+                         const ArapSoftConstraints& soft, const ArapOptions& options) {
   const Eigen::MatrixXd V = rest_positions(V_in, options.planar);
   check_arap_mesh(V, F);
   ArapData data = rest_data(V, F, options);
   data.planar = options.planar || V_in.cols() == 2;
   // Bad constraints fail before any heavy work.
-  detail::ConstraintLayout layout = detail::constraint_layout(data, fixed);
+  detail::check_soft_constraints(soft, static_cast<int>(V.rows()), F, fixed);
+  detail::ConstraintLayout layout = detail::constraint_layout(data, fixed, soft);
   SystemBuild system;
+  system.Q = detail::soft_system_matrix(detail::soft_points(soft, F), static_cast<int>(V.rows()));
   if (options.method == ArapMethod::Iarap)
     build_intrinsic_elements(V, F, options.intrinsic, layout, data, system);
   else
@@ -227,32 +236,78 @@ ArapData arap_precompute(const Eigen::MatrixXd& V_in, const Eigen::MatrixXi& F, 
   data.timings.analyze_ms = system.analyze_ms;
   data.R.assign(static_cast<size_t>(data.elements.num_cells), Eigen::Matrix3d::Identity());
   detail::commit_layout(data, fixed, layout, system.solver, system.L_fc);
+  data.soft = soft;
+  data.Q = std::move(system.Q);
   return data;
 }
 
 void arap_set_fixed(ArapData& data, const Eigen::VectorXi& fixed) {
   const auto start = Clock::now();
-  detail::ConstraintLayout layout = detail::constraint_layout(data, fixed);
+  detail::check_soft_constraints(data.soft, static_cast<int>(data.V.rows()), data.F, fixed);
+  detail::ConstraintLayout layout = detail::constraint_layout(data, fixed, data.soft);
   Eigen::SparseMatrix<double> L_ff, L_fc;
-  detail::split_system(data.L, layout, L_ff, &L_fc);
+  detail::split_system(detail::with_soft(data.L, data.Q), layout, L_ff, &L_fc);
   SparseCholesky solver(L_ff); // throws SolverError; data is untouched until here
   detail::commit_layout(data, fixed, layout, solver, L_fc);
   data.timings.analyze_ms = 0.0; // inside factor_ms here
   data.timings.factor_ms = ms_since(start);
 }
 
+void arap_set_soft_weights(ArapData& data, const Eigen::VectorXd& vertex_weights,
+                           const Eigen::VectorXd& face_weights) {
+  const auto start = Clock::now();
+  ArapSoftConstraints soft = data.soft;
+  soft.vertex_weights = vertex_weights;
+  soft.face_weights = face_weights;
+  detail::check_soft_constraints(soft, static_cast<int>(data.V.rows()), data.F, data.fixed);
+  detail::ConstraintLayout layout = detail::constraint_layout(data, data.fixed, soft);
+  Eigen::SparseMatrix<double> Q =
+      detail::soft_system_matrix(detail::soft_points(soft, data.F), static_cast<int>(data.V.rows()));
+  Eigen::SparseMatrix<double> L_ff, L_fc;
+  detail::split_system(detail::with_soft(data.L, Q), layout, L_ff, &L_fc);
+  // Q lies in L's pattern, so L_ff keeps the factorized pattern: factorize reuses the symbolic analysis.
+  data.solver.factorize(L_ff); // throws SolverError (data.solver is then empty)
+  data.L_fc = std::move(L_fc);
+  data.soft = std::move(soft);
+  data.Q = std::move(Q);
+  data.timings.analyze_ms = 0.0;
+  data.timings.factor_ms = ms_since(start);
+}
+
 namespace {
 
-ArapReport solve_checked(ArapData& data, const Eigen::MatrixXd& targets, Eigen::MatrixXd& U,
-                         const ArapSolveOptions& options, Clock::time_point start) {
-  detail::LocalGlobalProblem problem(data, targets, U);
-  return detail::run_local_global(problem, options, data.solver.kind(), start);
+// P(U) of data's soft points for U #V x 3.
+double penalty_of(const ArapData& data, const Eigen::MatrixXd& soft_targets, const Eigen::MatrixXd& U) {
+  if (data.soft.size() == 0) return 0.0;
+  const ArapElements::ValueRows U_rows = U; // row-major, as soft_penalty reads it
+  return detail::soft_penalty(detail::soft_points(data.soft, data.F), soft_targets, U_rows.data());
+}
+
+ArapReport solve_checked(ArapData& data, const Eigen::MatrixXd& targets, const Eigen::MatrixXd& soft_targets,
+                         Eigen::MatrixXd& U, const ArapSolveOptions& options, Clock::time_point start) {
+  ArapReport report;
+  {
+    detail::LocalGlobalProblem problem(data, targets, U, soft_targets);
+    report = detail::run_local_global(problem, options, data.solver.kind(), start);
+  } // U holds the result in the file's order from here
+  report.penalty = penalty_of(data, soft_targets, U);
+  report.arap_energy =
+      (report.energies.empty() ? report.initial_energy : report.energies.back()) - report.penalty;
+  return report;
 }
 
 } // namespace
 
 ArapReport arap_solve(ArapData& data, const Eigen::MatrixXd& targets, Eigen::MatrixXd& U,
                       const ArapSolveOptions& options) {
+  if (data.soft.size() != 0)
+    throw InputError("ARAP: the data has " + std::to_string(data.soft.size()) +
+                     " soft constraints; give their targets (arap_solve with soft_targets)");
+  return arap_solve(data, targets, Eigen::MatrixXd(0, 3), U, options);
+}
+
+ArapReport arap_solve(ArapData& data, const Eigen::MatrixXd& targets, const Eigen::MatrixXd& soft_targets,
+                      Eigen::MatrixXd& U, const ArapSolveOptions& options) {
   const auto start = Clock::now();
   if (options.max_iterations < 0)
     throw InputError("ARAP: max_iterations must be >= 0, got " + std::to_string(options.max_iterations));
@@ -266,15 +321,41 @@ ArapReport arap_solve(ArapData& data, const Eigen::MatrixXd& targets, Eigen::Mat
     throw InputError("ARAP: time_budget_ms must be a finite number >= 0, got " +
                      std::to_string(options.time_budget_ms));
   check_solver_positions(data, targets, data.fixed.size(), "targets");
+  check_solver_positions(data, soft_targets, data.soft.size(), "soft targets");
   check_solver_positions(data, U, data.V.rows(), "initial guess U");
   const Eigen::MatrixXd target_rows = targets.cols() == 2 ? embedded(targets) : targets;
+  const Eigen::MatrixXd soft_rows = soft_targets.cols() == 2 ? embedded(soft_targets) : soft_targets;
   if (U.cols() == 2) { // planar: solved embedded at z = 0, handed back in the caller's two columns
     Eigen::MatrixXd U3 = embedded(U);
-    ArapReport report = solve_checked(data, target_rows, U3, options, start);
+    ArapReport report = solve_checked(data, target_rows, soft_rows, U3, options, start);
     U = U3.leftCols(2);
     return report;
   }
-  return solve_checked(data, target_rows, U, options, start);
+  return solve_checked(data, target_rows, soft_rows, U, options, start);
+}
+
+double arap_penalty(const ArapData& data, const Eigen::MatrixXd& soft_targets, const Eigen::MatrixXd& U) {
+  check_solver_positions(data, soft_targets, data.soft.size(), "soft targets");
+  check_solver_positions(data, U, data.V.rows(), "positions U");
+  return penalty_of(data, soft_targets.cols() == 2 ? embedded(soft_targets) : soft_targets,
+                    U.cols() == 2 ? embedded(U) : U);
+}
+
+Eigen::MatrixXd arap_penalty_gradient(const ArapData& data, const Eigen::MatrixXd& soft_targets,
+                                      const Eigen::MatrixXd& U) {
+  check_solver_positions(data, soft_targets, data.soft.size(), "soft targets");
+  check_solver_positions(data, U, data.V.rows(), "positions U");
+  const Eigen::MatrixXd T = soft_targets.cols() == 2 ? embedded(soft_targets) : soft_targets;
+  const Eigen::MatrixXd X = U.cols() == 2 ? embedded(U) : U;
+  Eigen::MatrixXd G = Eigen::MatrixXd::Zero(X.rows(), 3);
+  const std::vector<detail::SoftPoint> points = detail::soft_points(data.soft, data.F);
+  for (size_t k = 0; k < points.size(); ++k) { // 2 W c (c^T U - t)
+    const detail::SoftPoint& p = points[k];
+    Eigen::RowVector3d d = -T.row(static_cast<Eigen::Index>(k));
+    for (int j = 0; j < 3; ++j) d += p.c[j] * X.row(p.v[j]);
+    for (int j = 0; j < 3; ++j) G.row(p.v[j]) += 2.0 * p.W * p.c[j] * d;
+  }
+  return U.cols() == 2 ? Eigen::MatrixXd(G.leftCols(2)) : G;
 }
 
 double arap_energy(const ArapData& data, const Eigen::MatrixXd& U) {

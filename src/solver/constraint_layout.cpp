@@ -6,9 +6,11 @@
 
 namespace iarap::detail {
 
-ConstraintLayout constraint_layout(const ArapData& data, const Eigen::VectorXi& fixed) {
+ConstraintLayout constraint_layout(const ArapData& data, const Eigen::VectorXi& fixed,
+                                   const ArapSoftConstraints& soft) {
   const int n = static_cast<int>(data.V.rows());
-  if (fixed.size() == 0) throw InputError("ARAP: the constrained (fixed) vertex set is empty");
+  if (fixed.size() == 0 && soft.size() == 0)
+    throw InputError("ARAP: the constrained (fixed) vertex set is empty and there is no soft constraint");
   ConstraintLayout layout;
   layout.constrained_slot.assign(static_cast<size_t>(n), -1);
   std::vector<int>& slot = layout.constrained_slot;
@@ -34,6 +36,9 @@ ConstraintLayout constraint_layout(const ArapData& data, const Eigen::VectorXi& 
     if (first_of[c] < 0) first_of[c] = v;
     if (slot[v] >= 0) ++constrained_in[c];
   }
+  for (Eigen::Index k = 0; k < soft.vertices.size(); ++k) ++constrained_in[data.component(soft.vertices(k))];
+  for (Eigen::Index k = 0; k < soft.faces.size(); ++k)
+    ++constrained_in[data.component(data.F(soft.faces(k), 0))];
   // A vertex used by no face has no element: it is pinned where the initial guess puts it (the rest
   // position unless the caller moves it), so a mesh with unreferenced vertices deforms with them kept.
   std::vector<char> used(static_cast<size_t>(n), 0);
@@ -43,11 +48,11 @@ ConstraintLayout constraint_layout(const ArapData& data, const Eigen::VectorXi& 
     if (constrained_in[c] > 0) continue;
     const bool isolated = size_of[c] == 1 && !used[static_cast<size_t>(first_of[c])];
     if (!data.pin_unconstrained_components && !isolated)
-      throw SolverError(
-          "ARAP: connected component " + std::to_string(c) + " (" + std::to_string(size_of[c]) +
-          " vertices, e.g. vertex " + std::to_string(first_of[c]) +
-          ") has no constrained vertex, so the system is singular; constrain one of its vertices "
-          "or enable pin_unconstrained_components");
+      throw SolverError("ARAP: connected component " + std::to_string(c) + " (" + std::to_string(size_of[c]) +
+                        " vertices, e.g. vertex " + std::to_string(first_of[c]) +
+                        ") has no constrained vertex or soft constraint, so the system is singular; "
+                        "constrain one of its vertices "
+                        "or enable pin_unconstrained_components");
     slot[first_of[c]] = static_cast<int>(layout.constrained.size());
     layout.constrained.push_back(first_of[c]);
     layout.pinned.push_back(first_of[c]);

@@ -19,13 +19,16 @@ struct ConstraintLayout {
   Eigen::VectorXi free_slot; // #V position in free, or -1
 };
 
-// The layout for the constrained set `fixed` (#fixed, 0-based) of data's mesh (data.V, data.component).
-// Throws InputError for an empty set, an index out of range or a duplicate (naming the position and the
-// index), SolverError for a connected component without constrained vertex (naming the component, its size
-// and one vertex) unless data.pin_unconstrained_components, which pins its first vertex instead. A vertex
-// used by no face is pinned either way (layout.pinned): it has no energy and stays where the initial guess
-// is.
-ConstraintLayout constraint_layout(const ArapData& data, const Eigen::VectorXi& fixed);
+// The layout for the constrained set `fixed` (#fixed, 0-based) of data's mesh (data.V, data.F,
+// data.component). A component with a soft point (soft: checked, weights > 0) needs no constrained vertex:
+// Q makes the system positive definite on its translations (1^T Q 1 = 2 W (sum_j c_j)^2 = 2 W per point).
+// Throws InputError for an empty set without soft points, an index out of range or a duplicate (naming the
+// position and the index), SolverError for a connected component without constrained vertex or soft point
+// (naming the component, its size and one vertex) unless data.pin_unconstrained_components, which pins its
+// first vertex instead. A vertex used by no face is pinned either way (layout.pinned): it has no energy and
+// stays where the initial guess is.
+ConstraintLayout constraint_layout(const ArapData& data, const Eigen::VectorXi& fixed,
+                                   const ArapSoftConstraints& soft = {});
 
 // L (#V x #V, symmetric, compressed) split into L_ff (free x free) and L_fc (free x constrained) directly
 // in compressed form. Matrices with one pattern give L_ff with one pattern, which is what lets the

@@ -2,11 +2,15 @@
 // (plain, Anderson, L-BFGS) see it: the energy E(x) = min_R energy with its rotations (local step), the
 // right-hand side B(x) = rhs_f(R*(x)) - L_fc U_c (Eq. 16), the plain iterate G(x) = L_ff^{-1} B(x) (global
 // step) and the gradient g(x) = L_ff x - B(x) = L_ff (x - G(x)) (Eq. 14 at the free rows, by the envelope
-// theorem). Internal to the solver; the public contract is arap_solve's.
+// theorem). With soft constraints (arap_soft_constraints.h) every piece is of the total E + P: L stands for
+// L + Q (in L_ff, L_fc and the Hessian), B gains the free rows of sum_k 2 W_k c_k t_k^T and local_step()
+// returns E + P, so that every optimizer minimizes the total. Internal to the solver; the public contract
+// is arap_solve's.
 #pragma once
 #include "iarap/solver/arap_types.h"
 
 #include "inner.h"
+#include "soft_terms.h"
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
@@ -21,8 +25,10 @@ public:
   // L_fc U_c and the free rows of L. data and U must outlive the problem. While it lives the positions and
   // data.R are kept in the elements' visit order (ArapElements::visit_order), and so are the rows of x, B,
   // g and every #free x 3 matrix of this interface (the free vertices in visit order: the passes over them
-  // stream); the destructor writes U and data.R back in the file's order.
-  LocalGlobalProblem(ArapData& data, const Eigen::MatrixXd& targets, Eigen::MatrixXd& U);
+  // stream); the destructor writes U and data.R back in the file's order. soft_targets: #soft x 3 targets
+  // of data.soft's points (ArapSoftConstraints::size rows; data.Q must be of data.soft).
+  LocalGlobalProblem(ArapData& data, const Eigen::MatrixXd& targets, Eigen::MatrixXd& U,
+                     const Eigen::MatrixXd& soft_targets = Eigen::MatrixXd(0, 3));
   ~LocalGlobalProblem();
   LocalGlobalProblem(const LocalGlobalProblem&) = delete;
   LocalGlobalProblem& operator=(const LocalGlobalProblem&) = delete;
@@ -32,8 +38,10 @@ public:
   Eigen::MatrixXd positions() const;
   void set_positions(const Eigen::MatrixXd& x);
 
-  // Local step at U: fits data.R and returns E(U).
+  // Local step at U: fits data.R and returns E(U) + P(U) (P = 0 without soft constraints).
   double local_step();
+  // P(U) at the last local step.
+  double penalty() const { return penalty_; }
   // B(U) from data.R (the rotations of the last local step), kept for plain_step, and the gradient there
   // (gradient()), in one pass over the free vertices.
   void assemble_rhs();
@@ -78,6 +86,11 @@ private:
   bool keep_covariances_ = false;
   ArapElements::ValueRows v_rows_; // a direction v on all vertices, 0 at constrained ones
   mutable int solves_ = 0;
+  std::vector<SoftPoint> soft_points_; // data.soft's points, their targets, and the visit position of each
+  Eigen::MatrixXd soft_targets_;       // vertex (for the penalty on U_rows_)
+  std::vector<int> position_;
+  Eigen::MatrixXd soft_f_; // #free x 3 s_f = sum_k 2 W_k c_k t_k^T at the free rows (visit order)
+  double penalty_ = 0.0;
 };
 
 } // namespace iarap::detail

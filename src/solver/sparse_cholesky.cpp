@@ -172,9 +172,11 @@ void SparseCholesky::analyze(const Eigen::SparseMatrix<double>& pattern) {
 
 void SparseCholesky::factorize(const Eigen::SparseMatrix<double>& A) {
   if (!impl_) impl_ = std::make_unique<Impl>();
-  // Reuse the symbolic analysis only for exactly the analyzed pattern.
+  // Reuse the symbolic analysis only for exactly the analyzed pattern: analyze()'s, or that of the matrix
+  // the last LLT factorized (a numeric refactorization, e.g. new soft weights).
   std::unique_ptr<CholmodLlt> analyzed;
-  if (impl_->llt && same_pattern(impl_->analyzed, A)) analyzed = std::move(impl_->llt);
+  if (impl_->llt && same_pattern(impl_->analyzed.nonZeros() > 0 ? impl_->analyzed : impl_->A, A))
+    analyzed = std::move(impl_->llt);
   *impl_ = Impl{};
   if (A.rows() != A.cols())
     throw SolverError("sparse Cholesky: matrix is " + std::to_string(A.rows()) + " x " +

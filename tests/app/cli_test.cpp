@@ -180,6 +180,44 @@ TEST(Cli, PlanarMeshDeformsInItsPlane) {
   fs::remove_all(dir);
 }
 
+// Issue 32: soft vertices ('i x y z w') and a soft face point ('b f b0 b1 b2 x y z w') in a constraints file;
+// the report splits the energy of the result into arap_energy + penalty, and a bad line exits 1 naming it.
+TEST(Cli, DeformWithSoftConstraints) {
+  const auto dir = iarap::test::temp_dir("cli_soft");
+  const auto rest = iarap::read_mesh(bunny);
+  const double lo = rest.V.col(1).minCoeff(), hi = rest.V.col(1).maxCoeff();
+  const fs::path constraints = dir / "soft.txt", bad = dir / "bad.txt", out = dir / "out.obj";
+  {
+    std::ofstream file(constraints);
+    file.precision(17);
+    for (Eigen::Index v = 0; v < rest.V.rows(); ++v) {
+      const double t = (rest.V(v, 1) - lo) / (hi - lo);
+      if (t <= 0.1) file << v << " " << rest.V(v, 0) << " " << rest.V(v, 1) << " " << rest.V(v, 2) << "\n";
+      if (t >= 0.9)
+        file << v << " " << rest.V(v, 0) + 0.01 << " " << rest.V(v, 1) << " " << rest.V(v, 2) << " 2\n";
+    }
+    file << "b 100 0.2 0.3 0.5 0 0 0 0.001\n";
+    std::ofstream(bad) << "0 0 0 0\nb 100 0.2 0.3 0.6 0 0 0 1\n";
+  }
+  const CliRun run = iarap_cli("deform '" + bunny + "' --constraints '" + constraints.string() +
+                               "' --iterations 30 --threads 1 --json --quiet --out '" + out.string() + "'");
+  ASSERT_EQ(run.code, 0) << run.out;
+  const json j = parse_json(run);
+  EXPECT_GT(j["soft"].get<int>(), 10);
+  const double penalty = j["penalty"].get<double>(), arap = j["arap_energy"].get<double>();
+  EXPECT_GT(penalty, 0.0);
+  EXPECT_GT(arap, 0.0);
+  EXPECT_EQ(j["energy"].get<double>(), arap + penalty);
+  EXPECT_NEAR(j["energies"].back().get<double>(), arap + penalty, 1e-15 * (arap + penalty));
+  const CliRun failed = iarap_cli("deform '" + bunny + "' --constraints '" + bad.string() +
+                                      "' --quiet --out '" + out.string() + "'",
+                                  true);
+  EXPECT_EQ(failed.code, 1) << failed.out;
+  EXPECT_NE(failed.out.find(bad.string() + ":2: barycentric coordinates sum to 1.1"), std::string::npos)
+      << failed.out;
+  fs::remove_all(dir);
+}
+
 TEST(Cli, DeformWithScenarioWritesReport) {
   const auto dir = iarap::test::temp_dir("cli_scenario");
   const fs::path out = dir / "bunny_iarap.off";

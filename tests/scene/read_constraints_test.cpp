@@ -10,7 +10,7 @@ namespace {
 
 iarap::ConstraintSet parse(const std::string& text, int num_vertices = 10) {
   std::istringstream in(text);
-  return iarap::parse_constraints(in, "c.txt", num_vertices);
+  return iarap::parse_constraints(in, "c.txt", num_vertices, 4); // 4 faces for the 'b' lines
 }
 
 // Expects an InputError whose message contains every fragment.
@@ -62,7 +62,7 @@ TEST(ReadConstraints, BadTokens) {
   expect_error("abc 0 0 0\n", {"c.txt:1", "bad vertex index"});
   expect_error("1 0 0x 0\n", {"c.txt:1", "bad y coordinate '0x'"});
   expect_error("1 0\n", {"c.txt:1", "found 2 token"});
-  expect_error("1 0 0 0 5\n", {"c.txt:1", "found 5 token"});
+  expect_error("1 0 0 0 5 6\n", {"c.txt:1", "found 6 token"}); // 5 tokens: a soft vertex
 }
 
 // 'index x y' is a target in the plane z = 0, for planar meshes; the two forms mix.
@@ -77,6 +77,51 @@ TEST(ReadConstraints, TwoCoordinatesAreATargetInThePlane) {
 TEST(ReadConstraints, EmptySet) {
   expect_error("", {"c.txt", "no constraints"});
   expect_error("# only a comment\n\n", {"c.txt", "no constraints"});
+}
+
+// Issue 32: 'INDEX X Y Z W' soft vertices and 'b FACE B0 B1 B2 X Y Z W' soft face points, apart from the
+// hard ones and in file order.
+TEST(ReadConstraints, SoftVerticesAndFacePoints) {
+  const auto c = parse("3 1 2 3\n5 0 1 0 2.5\nb 2 0.25 0.25 0.5 1 1 1 1e8\n4 0 0 1\n6 1 1 1 1e-3\n");
+  ASSERT_EQ(c.fixed.size(), 2);
+  EXPECT_EQ(c.fixed(0), 3);
+  EXPECT_EQ(c.fixed(1), 4);
+  ASSERT_EQ(c.soft.vertices.size(), 2);
+  EXPECT_EQ(c.soft.vertices(0), 5);
+  EXPECT_EQ(c.soft.vertices(1), 6);
+  EXPECT_EQ(c.soft.vertex_weights(0), 2.5);
+  EXPECT_EQ(c.soft.vertex_weights(1), 1e-3);
+  EXPECT_EQ(c.soft.vertex_targets.row(0), Eigen::RowVector3d(0, 1, 0));
+  ASSERT_EQ(c.soft.faces.size(), 1);
+  EXPECT_EQ(c.soft.faces(0), 2);
+  EXPECT_EQ(c.soft.barycentric.row(0), Eigen::RowVector3d(0.25, 0.25, 0.5));
+  EXPECT_EQ(c.soft.face_weights(0), 1e8);
+  EXPECT_EQ(c.soft.face_targets.row(0), Eigen::RowVector3d(1, 1, 1));
+  ASSERT_EQ(c.soft.origins.size(), 3u);
+  EXPECT_EQ(c.soft.origins[0], "c.txt:2");
+  EXPECT_EQ(c.soft.origins[2], "c.txt:3");
+  // Soft constraints alone are a constraint set.
+  EXPECT_EQ(parse("5 0 1 0 2.5\n").soft.size(), 1);
+}
+
+TEST(ReadConstraints, BadSoftConstraintsNameTheLine) {
+  expect_error("1 0 0 0 0\n", {"c.txt:1", "weight 0 must be > 0"});
+  expect_error("1 0 0 0\n2 0 0 0 -1\n", {"c.txt:2", "weight -1 must be > 0"});
+  expect_error("1 0 0 0 nan\n", {"c.txt:1", "non-finite weight"});
+  expect_error("1 0 0 0 w\n", {"c.txt:1", "bad weight"});
+  expect_error("1 0 0 0\n1 0 0 0 2\n", {"c.txt:2", "vertex 1", "line 1", "one constraint, hard or soft"});
+  expect_error("1 0 0 0 2\n1 0 0 0 2\n", {"c.txt:2", "line 1 (soft)"});
+  expect_error("b 4 1 0 0 0 0 0 1\n", {"c.txt:1", "face index 4 out of range", "4 faces"});
+  expect_error("b -1 1 0 0 0 0 0 1\n", {"c.txt:1", "face index -1 out of range"});
+  expect_error("b x 1 0 0 0 0 0 1\n", {"c.txt:1", "bad face index 'x'"});
+  expect_error("\nb 0 0.5 0.5 0.1 0 0 0 1\n", {"c.txt:2", "sum to 1.1", "within 1e-9"});
+  expect_error("b 0 0.5 0.5 nan 0 0 0 1\n", {"c.txt:1", "non-finite b2 barycentric"});
+  expect_error("b 0 1 0 0 0 0 0 0\n", {"c.txt:1", "weight 0 must be > 0"});
+  expect_error("b 0 1 0 0 0 0 0\n",
+               {"c.txt:1", "hard point-on-face constraints", "not supported yet", "give a weight"});
+  expect_error("b 0 1 0 0 0 0\n", {"c.txt:1", "expected 'b face b0 b1 b2 x y z w', found 7 token"});
+  // Within 1e-9 passes.
+  EXPECT_EQ(parse("b 0 0.3333333333 0.3333333333 0.3333333334 0 0 0 1\n").soft.faces.size(), 1);
 }
 
 TEST(ReadConstraints, MissingFile) {

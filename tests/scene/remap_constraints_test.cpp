@@ -46,3 +46,24 @@ TEST(RemapConstraints, MergedVerticesMustAgree) {
 }
 
 } // namespace
+
+namespace {
+
+// Soft constraints are not carried over a repair (face points would need their faces remapped): refused,
+// naming where the first one came from, rather than dropped.
+TEST(RemapConstraints, SoftConstraintsAreRefusedNotDropped) {
+  iarap::ConstraintSet c = three();
+  c.soft.vertices = Eigen::VectorXi::Constant(1, 1);
+  c.soft.vertex_weights = Eigen::VectorXd::Constant(1, 2.0);
+  c.soft.vertex_targets = Eigen::RowVector3d(1, 1, 1);
+  c.soft.origins = {"c.txt:4"};
+  try {
+    iarap::remap_constraints(c, Eigen::VectorXi::LinSpaced(5, 0, 4));
+    ADD_FAILURE() << "no error";
+  } catch (const iarap::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("c.txt:4"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("mesh repair"), std::string::npos) << e.what();
+  }
+}
+
+} // namespace

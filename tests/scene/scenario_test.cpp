@@ -84,6 +84,39 @@ TEST(Scenario, EmptyRegionAndOutOfRangeIndexNameThePath) {
                        "s.json: $.fixed: vertex index 25 out of range; the mesh has 25");
 }
 
+// Issue 32: a handle with "weight" is soft: its vertices and targets go to ConstraintSet::soft.
+TEST(Scenario, WeightedHandleIsSoft) {
+  const auto V = grid();
+  const auto s = iarap::parse_scenario(R"({
+    "fixed": {"bottom": 0.1, "axis": "y"},
+    "handles": [{"vertices": {"top": 0.1, "axis": "y"}, "translate": [0, 0, 1], "weight": 0.5}]})",
+                                       "s.json");
+  const auto c = iarap::resolve_scenario(s, V);
+  const auto hard = iarap::resolve_scenario(iarap::parse_scenario(R"({
+    "fixed": {"bottom": 0.1, "axis": "y"},
+    "handles": [{"vertices": {"top": 0.1, "axis": "y"}, "translate": [0, 0, 1]}]})",
+                                                                  "s.json"),
+                                            V);
+  const Eigen::Index n = c.fixed.size();
+  ASSERT_EQ(c.soft.vertices.size(), hard.fixed.size() - n);
+  ASSERT_GT(c.soft.vertices.size(), 0);
+  for (Eigen::Index k = 0; k < c.soft.vertices.size(); ++k) {
+    EXPECT_EQ(c.soft.vertices(k), hard.fixed(n + k));
+    EXPECT_EQ(c.soft.vertex_targets.row(k), hard.targets.row(n + k));
+    EXPECT_EQ(c.soft.vertex_weights(k), 0.5);
+  }
+  for (const char* bad : {"0", "-1", "\"a\""}) {
+    try {
+      iarap::parse_scenario(std::string(R"({"handles": [{"vertices": [1], "weight": )") + bad + "}]}",
+                            "s.json");
+      ADD_FAILURE() << bad;
+    } catch (const iarap::InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("s.json"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("weight"), std::string::npos) << e.what();
+    }
+  }
+}
+
 TEST(Scenario, NothingConstrained) {
   iarap::Scenario s;
   s.source = "s.json";

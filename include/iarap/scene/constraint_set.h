@@ -1,10 +1,26 @@
-// A resolved set of hard constraints: which vertices are fixed and where they must go.
+// A resolved set of constraints: which vertices are fixed and where they must go, and the soft ones.
 #pragma once
 #include <Eigen/Core>
 #include <string>
 #include <vector>
 
 namespace iarap {
+
+// Soft constraints as read from a file or scenario (the fields of the solver's ArapSoftConstraints, which
+// this layer does not include): weighted vertices and points on faces with their targets. The penalty of
+// point k is W_k ||c_k^T U - t_k||^2 (arap_soft_constraints.h).
+struct SoftConstraintSet {
+  Eigen::VectorXi vertices;       // #sv soft vertices, distinct, none of them also hard
+  Eigen::VectorXd vertex_weights; // #sv W > 0
+  Eigen::MatrixXd vertex_targets; // #sv x 3
+  Eigen::VectorXi faces;          // #sb faces of the points
+  Eigen::MatrixXd barycentric;    // #sb x 3, each row summing to 1 within 1e-9
+  Eigen::VectorXd face_weights;   // #sb W > 0
+  Eigen::MatrixXd face_targets;   // #sb x 3
+  // #sv + #sb: where each came from (vertices first), as ConstraintSet::origins.
+  std::vector<std::string> origins;
+  Eigen::Index size() const { return vertices.size() + faces.size(); }
+};
 
 // The input of arap_precompute / arap_solve: fixed(k) is a vertex index, targets.row(k) its position.
 struct ConstraintSet {
@@ -14,6 +30,7 @@ struct ConstraintSet {
   // Empty, or #C entries: where constraint k came from ("file.txt:12", "scene.json: $.handles[0]"), so
   // that an error about a target can name the line or handle to fix.
   std::vector<std::string> origins;
+  SoftConstraintSet soft; // empty for files and scenarios without weights
 };
 
 } // namespace iarap

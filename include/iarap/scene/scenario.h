@@ -23,6 +23,9 @@ struct Handle {
   // rotation_center_relative, it is in bounding-box coordinates (see Region::relative).
   std::optional<Eigen::Vector3d> rotation_center;
   bool rotation_center_relative = false;
+  // 0: hard targets. > 0: soft, penalty weight * |x_i - target_i|^2 per vertex (arap_soft_constraints.h):
+  // "weight": W in a scenario's handle.
+  double weight = 0;
   std::string path = "handle"; // named in error messages
 };
 
@@ -34,7 +37,8 @@ struct Scenario {
 };
 
 // Resolves the scenario on the rest mesh V (#V x 3): fixed vertices first (targets = rest
-// positions), then each handle's vertices in index order. Throws InputError naming the source and
+// positions), then each hard handle's vertices in index order; soft handles' vertices (weight > 0) go to
+// ConstraintSet::soft in the same order. Throws InputError naming the source and
 // the region path when a region is invalid or empty, when a vertex is both fixed and in a handle or
 // in two handles, when a rotation axis is zero, and when nothing is constrained.
 ConstraintSet resolve_scenario(const Scenario& scenario, const Eigen::MatrixXd& V);

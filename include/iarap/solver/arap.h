@@ -6,6 +6,10 @@
 //   Eigen::MatrixXd U = V;                                  // initial guess
 //   ArapReport report = arap_solve(data, targets, U);       // U now holds the deformation
 // New targets for the same fixed set reuse the factorization; arap_set_fixed refactorizes.
+// Soft constraints (arap_soft_constraints.h: weighted vertices and points on faces, E_total = E_ARAP + P):
+//   ArapData data = arap_precompute(V, F, fixed, soft);             // factorizes (L + Q)_ff
+//   ArapReport report = arap_solve(data, targets, soft_targets, U);  // new soft targets: no refactorization
+//   arap_set_soft_weights(data, vertex_weights, face_weights);      // numeric refactorization only
 // The types (ArapMethod, ArapOptions, ArapData, ArapSolveOptions, ArapReport, ...) are in arap_types.h.
 #pragma once
 #include "iarap/solver/arap_types.h"
@@ -27,6 +31,21 @@ namespace iarap {
 ArapData arap_precompute(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const Eigen::VectorXi& fixed,
                          const ArapOptions& options = {});
 
+// The same with soft constraints: L_ff becomes (L + Q)_ff (arap_soft_constraints.h). fixed may then be
+// empty, and a connected component needs a fixed vertex or a soft point, not both. Throws InputError as
+// above and for bad soft constraints (naming the entry: a vertex out of range or also fixed, a face out of
+// range, a weight that is not finite and > 0, barycentric coordinates not finite or not summing to 1 within
+// 1e-9, lengths that differ).
+ArapData arap_precompute(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const Eigen::VectorXi& fixed,
+                         const ArapSoftConstraints& soft, const ArapOptions& options = {});
+
+// New weights for data.soft's points (vertex_weights #sv, face_weights #sb): Q and the numeric
+// factorization of (L + Q)_ff change, the symbolic analysis is kept (Q lies in L's pattern). Throws
+// InputError for a bad weight or length (data unchanged), SolverError when the factorization fails (data's
+// factorization is then empty).
+void arap_set_soft_weights(ArapData& data, const Eigen::VectorXd& vertex_weights,
+                           const Eigen::VectorXd& face_weights);
+
 // Replaces the constrained set and refactorizes L_ff only. Throws InputError for an empty set, an index
 // out of range or a duplicate (naming the position and the index), SolverError for a connected component
 // without constrained vertex (naming the component id, its vertex count and one vertex) unless
@@ -44,8 +63,23 @@ void arap_set_fixed(ArapData& data, const Eigen::VectorXi& fixed);
 // ArapElements::visit_order: an on_iteration callback should not read them). Throws InputError for a wrong
 // targets / U shape or a non-finite entry (naming the row), negative max_iterations or window, a NaN
 // tolerance or a negative or NaN gradient_tolerance; SolverError when the energy becomes non-finite.
+// (Throws InputError when data has soft constraints: their targets are the next function's.)
 ArapReport arap_solve(ArapData& data, const Eigen::MatrixXd& targets, Eigen::MatrixXd& U,
                       const ArapSolveOptions& options = {});
+
+// The same minimizing E_ARAP + P with soft_targets (data.soft.size() x 3, planar x 2: vertex points first,
+// then face points) the targets of data.soft's points; report.energies are of the total, report.penalty and
+// report.arap_energy its two parts at the returned U. New soft targets reuse the factorization. Throws as
+// above, and InputError for a wrong soft_targets shape or a non-finite row.
+ArapReport arap_solve(ArapData& data, const Eigen::MatrixXd& targets, const Eigen::MatrixXd& soft_targets,
+                      Eigen::MatrixXd& U, const ArapSolveOptions& options = {});
+
+// P(U) = sum_k W_k ||c_k^T U - t_k||^2 for data.soft (0 without soft constraints); U #V x 3.
+double arap_penalty(const ArapData& data, const Eigen::MatrixXd& soft_targets, const Eigen::MatrixXd& U);
+
+// dP/dU (shaped as U) = sum_k 2 W_k c_k (c_k^T U - t_k): add arap_gradient for that of the total.
+Eigen::MatrixXd arap_penalty_gradient(const ArapData& data, const Eigen::MatrixXd& soft_targets,
+                                      const Eigen::MatrixXd& U);
 
 // E(U) = min_R sum_e sum_{c in cells(e)} (w_e / 2) ||U^T b_e - R_c s_hat_e||^2 for U #V x 3 (planar data:
 // #V x 2 or x 3 in the plane, R_c rotations about z).

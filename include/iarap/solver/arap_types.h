@@ -3,6 +3,7 @@
 #pragma once
 #include "iarap/intrinsic/intrinsic_delaunay.h"
 #include "iarap/solver/arap_elements.h"
+#include "iarap/solver/arap_soft_constraints.h"
 #include "iarap/solver/sparse_cholesky.h"
 
 #include <Eigen/Core>
@@ -92,9 +93,12 @@ struct ArapData {
   Eigen::VectorXi pinned;    // vertices pinned by pin_unconstrained_components, and vertices used by no face
   Eigen::VectorXi free;      // #free the unconstrained vertices, increasing
   Eigen::VectorXi free_slot; // #V position of v in free, or -1 for constrained vertices
-  Eigen::SparseMatrix<double> L_fc; // #free x (#fixed + #pinned): coupling to the constrained vertices
-  SparseCholesky solver;            // factorization of L_ff (#free x #free)
-  std::vector<Eigen::Matrix3d> R;   // one per cell (arap_rotations) for the last iterate of arap_solve
+  Eigen::SparseMatrix<double>
+      L_fc;                 // #free x (#fixed + #pinned): coupling to the constrained vertices (of L + Q)
+  SparseCholesky solver;    // factorization of L_ff (#free x #free), of (L + Q)_ff with soft constraints
+  ArapSoftConstraints soft; // the soft constraints (arap_soft_constraints.h; empty: none)
+  Eigen::SparseMatrix<double> Q;  // #V x #V soft system part sum_k 2 W_k c_k c_k^T (0 x 0 without soft)
+  std::vector<Eigen::Matrix3d> R; // one per cell (arap_rotations) for the last iterate of arap_solve
   ArapPrecomputeTimings timings;
   ArapIntrinsicSummary intrinsic;
 };
@@ -163,7 +167,10 @@ std::string arap_stop_reason_name(ArapStopReason reason);
 struct ArapReport {
   int iterations = 0;           // accepted iterates (each one global solve at least)
   double initial_energy = 0;    // E of the initial guess once the constrained rows are set to the targets
-  std::vector<double> energies; // E(U_k) = min_R energy after each iteration k (size iterations)
+  std::vector<double> energies; // E(U_k) = min_R energy after each iteration k (size iterations); with soft
+                                // constraints the total E_ARAP + P (arap_soft_constraints.h)
+  double penalty = 0;           // P(U) of the returned U (0 without soft constraints)
+  double arap_energy = 0;       // E_ARAP(U) of the returned U: the last energy (or initial_energy) - penalty
   double local_ms = 0;          // all local steps, including the one that evaluates the last iterate
   double global_ms = 0;         // all global steps (right-hand side, solve and gradient)
   bool converged = false;       // a tolerance rule stopped the iteration (false: max_iterations or callback)
