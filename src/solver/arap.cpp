@@ -27,29 +27,19 @@ namespace iarap {
 
 namespace {
 
-void check_positions(const Eigen::MatrixXd& U, Eigen::Index rows, const std::string& what) {
-  if (U.rows() != rows || U.cols() != 3)
-    throw InputError("ARAP: " + what + " must be " + std::to_string(rows) + " x 3, got " +
-                     std::to_string(U.rows()) + " x " + std::to_string(U.cols()));
-  for (Eigen::Index r = 0; r < rows; ++r)
-    if (!U.row(r).allFinite())
-      throw InputError("ARAP: " + what + " row " + std::to_string(r) + " is not finite");
-}
-
-// Checks X: rows x 3, or for planar data rows x 2 or rows x 3 in the plane z = 0.
+// Checks X: rows x 3, or for planar data rows x 2 or rows x 3 in the plane z = 0; finite.
 void check_solver_positions(const ArapData& data, const Eigen::MatrixXd& X, Eigen::Index rows,
                             const std::string& what) {
-  if (data.planar && X.cols() == 2) {
-    if (X.rows() != rows)
-      throw InputError("ARAP: " + what + " must be " + std::to_string(rows) + " x 2 (planar), got " +
-                       std::to_string(X.rows()) + " x 2");
-    for (Eigen::Index r = 0; r < rows; ++r)
-      if (!X.row(r).allFinite())
-        throw InputError("ARAP: " + what + " row " + std::to_string(r) + " is not finite");
-    return;
-  }
-  check_positions(X, rows, what);
-  if (!data.planar) return;
+  const bool two_columns = data.planar && X.cols() == 2;
+  const Eigen::Index cols = two_columns ? 2 : 3;
+  if (X.rows() != rows || X.cols() != cols)
+    throw InputError("ARAP: " + what + " must be " + std::to_string(rows) + " x " + std::to_string(cols) +
+                     (two_columns ? " (planar)" : "") + ", got " + std::to_string(X.rows()) + " x " +
+                     std::to_string(X.cols()));
+  for (Eigen::Index r = 0; r < rows; ++r)
+    if (!X.row(r).allFinite())
+      throw InputError("ARAP: " + what + " row " + std::to_string(r) + " is not finite");
+  if (!data.planar || two_columns) return;
   for (Eigen::Index r = 0; r < rows; ++r)
     if (X(r, 2) != 0.0)
       throw InputError("ARAP: " + what + " row " + std::to_string(r) + " has z = " + std::to_string(X(r, 2)) +
