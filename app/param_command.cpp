@@ -15,6 +15,7 @@
 #include "iarap/param/param_report_fields.h"
 #include "iarap/param/render_uv_picture.h"
 #include "iarap/param/write_uv_map.h"
+#include "iarap/scene/read_constraints.h"
 
 #include <nlohmann/json.hpp>
 
@@ -29,7 +30,7 @@ namespace iarap::cli {
 namespace {
 
 struct ParamArguments {
-  std::string mesh, out, report, picture, energy = "triangle", init, boundary = "free";
+  std::string mesh, out, report, picture, pins, energy = "triangle", init, boundary = "free";
   int iterations = ParamOptions{}.max_iterations;
   double tolerance = ParamOptions{}.tolerance;
   int threads = 0;
@@ -46,7 +47,10 @@ std::string lower_extension(const std::string& path) {
 void check_paths(const ParamArguments& args) {
   if (same_file(args.out, args.mesh))
     throw CLI::ValidationError("--out " + args.out + " is the input mesh; refusing to overwrite it");
-  if (!args.report.empty() && (same_file(args.report, args.mesh) || same_file(args.report, args.out)))
+  if (!args.pins.empty() && same_file(args.out, args.pins))
+    throw CLI::ValidationError("--out " + args.out + " is the pins file; refusing to overwrite it");
+  if (!args.report.empty() && (same_file(args.report, args.mesh) || same_file(args.report, args.out) ||
+                               (!args.pins.empty() && same_file(args.report, args.pins))))
     throw CLI::ValidationError("--report " + args.report + " is the input mesh or the output");
   const std::string extension = lower_extension(args.out);
   if (extension != ".obj" && extension != ".txt")
@@ -78,6 +82,24 @@ ParamOptions options_of(const ParamArguments& args) {
   return options;
 }
 
+// The pins file: constraints-file lines 'index u v' (hard vertex targets in the plane; 'index u v 0' too).
+// Soft lines and a third coordinate other than 0 are refused, naming the line.
+UvPins read_pins(const std::string& path, const MeshData& mesh) {
+  const ConstraintSet set =
+      read_constraints(path, static_cast<int>(mesh.V.rows()), static_cast<int>(mesh.F.rows()));
+  if (set.soft.size() > 0)
+    throw InputError(set.soft.origins.front() +
+                     ": UV pins are hard: 'index u v' (weights and points on faces are not pins)");
+  for (Eigen::Index k = 0; k < set.fixed.size(); ++k)
+    if (set.targets(k, 2) != 0)
+      throw InputError(set.origins[static_cast<std::size_t>(k)] +
+                       ": a UV pin has two coordinates, 'index u v'");
+  UvPins pins;
+  pins.vertices = set.fixed;
+  pins.uv = set.targets.leftCols(2);
+  return pins;
+}
+
 nlohmann::json report_json(const ParamArguments& args, const MeshData& mesh, const ParamOptions& options,
                            const ParamReport& report) {
   nlohmann::json j;
@@ -86,6 +108,8 @@ nlohmann::json report_json(const ParamArguments& args, const MeshData& mesh, con
   j["vertices"] = mesh.V.rows();
   j["faces"] = mesh.F.rows();
   j["boundary"] = param_boundary_name(options.boundary);
+  j["pins"] = options.pins.size();
+  if (!args.pins.empty()) j["pins_file"] = args.pins;
   j["allow_flips"] = options.allow_flips;
   j["threads"] = thread_count();
   // angle_distortion's max is null (JSON has no infinity) where a triangle's sigma2 = 0.
@@ -100,9 +124,10 @@ nlohmann::json report_json(const ParamArguments& args, const MeshData& mesh, con
 
 void run_param(const ParamArguments& args) {
   check_paths(args);
-  const ParamOptions options = options_of(args);
+  ParamOptions options = options_of(args);
   const auto total_start = Clock::now();
   const MeshData mesh = read_mesh(args.mesh);
+  if (!args.pins.empty()) options.pins = read_pins(args.pins, mesh);
   // Automatic: one thread. The per-triangle loops are serial and the solves have two columns; camelhead
   // (11.4K vertices) on the 2-core machine, 5 paired runs: 0.43-0.65 s on one thread, 0.84-0.95 s on two.
   set_thread_count(args.threads == 0 ? 1 : args.threads);
@@ -171,6 +196,11 @@ const bool registered = register_command(
                        "free: the boundary moves; circle: held on a circle of the surface's area")
            ->check(CLI::IsMember({"free", "circle"}))
            ->capture_default_str();
+       sub->add_option("--pins", args->pins,
+                       "Vertices held at UV positions: lines 'index u v' (0-based; '#' comments). Free "
+                       "boundary: they replace the default pin (two or more: LSCM start with them held); "
+                       "circle: inner vertices, circle centred at 0 with radius sqrt(area / pi)")
+           ->check(CLI::ExistingFile);
        sub->add_flag("--allow-flips", args->allow_flips,
                      "The plain local/global iteration (no injectivity-preserving line search)");
        add_iteration_options(*sub, args->iterations, args->tolerance);

@@ -2,9 +2,11 @@
 #include "bindings.h"
 #include "numpy_arrays.h"
 
+#include "iarap/core/errors.h"
 #include "iarap/param/arap_parameterize.h"
 #include "iarap/param/param_report_fields.h"
 
+#include <string>
 #include <type_traits>
 
 namespace iarap::python {
@@ -31,10 +33,20 @@ py::dict report_dict(const ParamReport& report) {
 
 py::tuple parameterize_py(const py::object& V, const py::object& F, const std::string& energy,
                           const py::object& init, const std::string& boundary, bool allow_flips,
-                          int iterations, double tolerance) {
+                          int iterations, double tolerance, const py::object& pins,
+                          const py::object& pin_uv) {
   const Eigen::MatrixXd positions = to_points(V, "V");
   const Eigen::MatrixXi faces = to_faces(F, "F", positions.rows());
   ParamOptions options;
+  if (pins.is_none() != pin_uv.is_none())
+    throw InputError("pins and pin_uv go together: give both or neither");
+  if (!pins.is_none()) {
+    options.pins.vertices = to_indices(pins, "pins", positions.rows());
+    options.pins.uv = to_points(pin_uv, "pin_uv", true, options.pins.size(), "#pins", true);
+    if (options.pins.uv.cols() != 2)
+      throw InputError("pin_uv must be (#pins, 2) UV positions; got " +
+                       std::to_string(options.pins.uv.cols()) + " columns");
+  }
   options.energy = parse_param_energy(energy);
   options.boundary = parse_param_boundary(boundary);
   options.init =
@@ -56,7 +68,8 @@ void bind_param(py::module_& m) {
   m.def("parameterize", &parameterize_py, py::arg("V"), py::arg("F"), py::kw_only(),
         py::arg("energy") = "triangle", py::arg("init") = py::none(), py::arg("boundary") = "free",
         py::arg("allow_flips") = false, py::arg("iterations") = ParamOptions{}.max_iterations,
-        py::arg("tolerance") = ParamOptions{}.tolerance,
+        py::arg("tolerance") = ParamOptions{}.tolerance, py::arg("pins") = py::none(),
+        py::arg("pin_uv") = py::none(),
         R"(ARAP parameterization (Liu et al. 2008) of a disk-like mesh: (UV (#V, 2), report dict).
 
 V: (#V, 3) positions. F: (#F, 3) faces of a topological disk (one component, one boundary loop, genus 0).
@@ -67,6 +80,10 @@ lscm, or harmonic with boundary="circle". boundary: "free" (one vertex pinned) o
 circle). allow_flips: the plain local/global iteration; by default it is flip-free (an injective start,
 Tutte's map if the requested one flips, and a line search that keeps every det J > 0). iterations: at most
 this many; tolerance: stop when an iteration lowers the energy by at most this fraction of it.
+pins (#p,) vertex indices with pin_uv (#p, 2): held exactly at those UV positions (mesh units). With the
+free boundary they replace the default pin (two or more: the start is LSCM with them held); with
+boundary="circle" they must be inner vertices, in the circle's coordinates (centre 0, radius
+sqrt(area / pi)). Flip-free, pins that fold the start raise InputError (move them or allow_flips=True).
 
 The report: energy = sum_f area_f ||J_f - R_f||_F^2 of the result whatever energy_kind was minimized
 (squared mesh units; initial_energy and energies are the minimized one's), scaled_energy at the best uniform

@@ -111,3 +111,32 @@ def test_per_vertex_energies_are_flip_free(energy):
     assert report["flipped"] == 0 and np.all(det_J_signs(V, F, UV) > 0)
     with pytest.raises(iarap.InputError, match="expected triangle, arap or iarap"):
         iarap.parameterize(V, F, energy="spokes-rims")
+
+
+def test_pins_are_held_exactly():
+    """Two pins: the map holds them to the bit and stays flip-free. Pinned where a rigid motion of the free
+    minimizer puts them, that moved minimizer is feasible, so both runs converge to the same energy (run
+    to a 1e-12 decrease so that the stopping rule, not the pins, sets the last digits: 1e-6 relative)."""
+    V, F = spherical_cap(6, 18, 0.5 * np.pi)
+    converge = dict(tolerance=1e-12, iterations=3000)
+    free, free_report = iarap.parameterize(V, F, **converge)
+    pins = np.array([3, 40])
+    c, s = np.cos(0.3), np.sin(0.3)
+    rotation = np.array([[c, -s], [s, c]])
+    pin_uv = free[pins] @ rotation.T + np.array([2.0, -1.0])
+    UV, report = iarap.parameterize(V, F, pins=pins, pin_uv=pin_uv, **converge)
+    assert np.array_equal(UV[pins], pin_uv)
+    assert report["pinned"] == 2 and report["flipped"] == 0
+    assert report["energy"] == pytest.approx(free_report["energy"], rel=1e-6)
+
+
+def test_bad_pins():
+    V, F = spherical_cap(3, 8, 0.5 * np.pi)
+    with pytest.raises(iarap.InputError, match="give both"):
+        iarap.parameterize(V, F, pins=[0])
+    with pytest.raises(iarap.InputError, match="pin_uv"):
+        iarap.parameterize(V, F, pins=[0, 1], pin_uv=np.zeros((2, 3)))
+    with pytest.raises(iarap.InputError, match="one UV position"):
+        iarap.parameterize(V, F, pins=[0, 1], pin_uv=np.zeros((2, 2)))
+    with pytest.raises(iarap.InputError):
+        iarap.parameterize(V, F, pins=[0, 1000], pin_uv=np.eye(2))

@@ -19,6 +19,7 @@
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
+#include <complex>
 #include <limits>
 #include <string>
 #include <utility>
@@ -52,30 +53,97 @@ int flipped_triangles(const DiskMesh& disk, const Eigen::MatrixXd& UV) {
   return flipped;
 }
 
-Eigen::MatrixXd initial_map(const DiskMesh& disk, ParamInit init, const Eigen::MatrixXd& circle) {
+// The pins of the iteration in the disk's scaled units (arap_parameterize divides V by s).
+UvPins scaled_pins(const UvPins& pins, double s) {
+  UvPins scaled = pins;
+  scaled.uv /= s;
+  return scaled;
+}
+
+// With a free boundary, one or two pins are met by moving any start map: the orientation-preserving
+// similarity z -> a z + b (complex numbers) that puts the pinned vertices on their positions (a = 1 for
+// one pin). It keeps injectivity, and LSCM's map with the two pins held is exactly its default map moved
+// so (the conformal energy is invariant to similarities). Throws InputError for two pins at one position.
+void move_onto_pins(const UvPins& pins, Eigen::MatrixXd& UV) {
+  using Complex = std::complex<double>;
+  auto at = [&UV](int v) { return Complex(UV(v, 0), UV(v, 1)); };
+  auto target = [&pins](Eigen::Index p) { return Complex(pins.uv(p, 0), pins.uv(p, 1)); };
+  Complex a = 1;
+  if (pins.size() == 2) {
+    if (target(0) == target(1))
+      throw InputError("pins 0 and 1 (vertices " + std::to_string(pins.vertices(0)) + " and " +
+                       std::to_string(pins.vertices(1)) +
+                       ") are at one UV position, which folds every triangle; give them distinct positions");
+    a = (target(1) - target(0)) / (at(pins.vertices(1)) - at(pins.vertices(0)));
+  }
+  const Complex b = target(0) - a * at(pins.vertices(0));
+  for (Eigen::Index v = 0; v < UV.rows(); ++v) {
+    const Complex z = a * at(static_cast<int>(v)) + b;
+    UV.row(v) << z.real(), z.imag();
+  }
+  // The similarity meets the pins up to rounding; the iteration holds them exactly.
+  for (Eigen::Index p = 0; p < pins.size(); ++p) UV.row(pins.vertices(p)) = pins.uv.row(p);
+}
+
+// Whether the pins are held by the maps' linear systems (three or more with a free boundary, any with the
+// circle) rather than met by moving the map (move_onto_pins).
+bool pins_in_system(ParamBoundary boundary, const UvPins& pins) {
+  return boundary == ParamBoundary::Circle || pins.size() >= 3;
+}
+
+// The initial map holding the pins: LSCM with them or the circle maps with them as inner vertices (see
+// pins_in_system), else the unpinned map moved onto them.
+Eigen::MatrixXd initial_map(const DiskMesh& disk, ParamInit init, ParamBoundary boundary,
+                            const UvPins& pins) {
+  const bool held = pins_in_system(boundary, pins);
+  Eigen::MatrixXd UV;
   switch (init) {
   case ParamInit::Lscm:
-    return lscm(disk);
+    UV = held ? lscm(disk, pins) : lscm(disk);
+    break;
   case ParamInit::Tutte:
-    return fixed_boundary_map(disk, BoundaryMapWeights::Uniform, circle);
   case ParamInit::Harmonic:
-    return fixed_boundary_map(disk, BoundaryMapWeights::Cotan, circle);
+    UV = fixed_boundary_map(
+        disk, init == ParamInit::Tutte ? BoundaryMapWeights::Uniform : BoundaryMapWeights::Cotan,
+        circle_boundary(disk), held ? pins : UvPins{});
+    break;
   }
-  return {};
+  if (!held && pins.size() > 0) move_onto_pins(pins, UV);
+  return UV;
+}
+
+bool on_boundary(const DiskMesh& disk, int v) {
+  return std::find(disk.boundary.begin(), disk.boundary.end(), v) != disk.boundary.end();
 }
 
 // The requested initial map, or Tutte's when the iteration is to stay flip-free and the requested one is
-// not injective. Records which one in the report.
-Eigen::MatrixXd starting_map(const DiskMesh& disk, const ParamOptions& options, ParamReport& report) {
-  const Eigen::MatrixXd circle = circle_boundary(disk);
-  Eigen::MatrixXd UV = initial_map(disk, options.init, circle);
+// not injective and Tutte's can hold the pins (not with three or more pins one of which is on the boundary,
+// which Tutte's map puts on the circle). Records which one in the report. Throws InputError when the
+// flip-free iteration is left with a start the pins fold.
+Eigen::MatrixXd starting_map(const DiskMesh& disk, const ParamOptions& options, const UvPins& pins,
+                             ParamReport& report) {
+  Eigen::MatrixXd UV = initial_map(disk, options.init, options.boundary, pins);
   report.requested_init = report.init = options.init;
   report.init_flipped = flipped_triangles(disk, UV);
-  if (!options.allow_flips && report.init_flipped > 0 && options.init != ParamInit::Tutte) {
-    UV = initial_map(disk, ParamInit::Tutte, circle);
+  if (options.allow_flips || report.init_flipped == 0) return UV;
+  const bool tutte_holds_pins = !pins_in_system(options.boundary, pins) ||
+                                std::none_of(pins.vertices.begin(), pins.vertices.end(),
+                                             [&disk](int v) { return on_boundary(disk, v); });
+  int flipped = report.init_flipped;
+  if (options.init != ParamInit::Tutte && tutte_holds_pins) {
+    UV = initial_map(disk, ParamInit::Tutte, options.boundary, pins);
     report.init = ParamInit::Tutte;
     report.init_fallback = true;
+    flipped = flipped_triangles(disk, UV);
   }
+  // Tutte's map of a disk is injective, and so is any similarity of it (a fold left is floating point,
+  // handled by the barrier's slope); with pins in its system it need not be, and no step of the iteration
+  // can unfold what the pins hold folded.
+  if (flipped > 0 && pins_in_system(options.boundary, pins) && pins.size() > 0)
+    throw InputError("the " + param_init_name(report.init) + " map holding the " +
+                     std::to_string(pins.size()) + " pins folds " + std::to_string(flipped) +
+                     " triangles (det J <= 0); the flip-free iteration needs an injective start that holds "
+                     "the pins: move or drop pins, or allow flips");
   return UV;
 }
 
@@ -98,9 +166,14 @@ struct Barrier {
   }
 };
 
-std::vector<int> pinned_vertices(const DiskMesh& disk, ParamBoundary boundary) {
-  if (boundary == ParamBoundary::Free) return {disk.boundary.front()};
-  std::vector<int> pinned = disk.boundary;
+// The vertices the global step holds: the user's pins, or with a free boundary and none of them the first
+// boundary vertex (the energy is translation invariant), plus the whole boundary when it is a circle.
+std::vector<int> pinned_vertices(const DiskMesh& disk, ParamBoundary boundary, const UvPins& pins) {
+  std::vector<int> pinned(pins.vertices.begin(), pins.vertices.end());
+  if (boundary == ParamBoundary::Circle)
+    pinned.insert(pinned.end(), disk.boundary.begin(), disk.boundary.end());
+  else if (pinned.empty())
+    pinned.push_back(disk.boundary.front());
   std::sort(pinned.begin(), pinned.end());
   return pinned;
 }
@@ -299,9 +372,9 @@ PlanarCells cells_of(const DiskMesh& disk, ParamEnergy energy) {
 // units: the caller multiplies). Returns the final map.
 template <typename Energy>
 Eigen::MatrixXd iterate(const DiskMesh& disk, Energy energy, const Eigen::MatrixXd& start,
-                        const ParamOptions& options, ParamReport& report) {
+                        const ParamOptions& options, const UvPins& pins, ParamReport& report) {
   auto phase_start = Clock::now();
-  const std::vector<int> pinned = pinned_vertices(disk, options.boundary);
+  const std::vector<int> pinned = pinned_vertices(disk, options.boundary, pins);
   report.pinned = static_cast<int>(pinned.size());
   Barrier barrier;
   if (!options.allow_flips) {
@@ -344,20 +417,22 @@ ParamResult arap_parameterize(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F
   // 1e200 would overflow); UV scales back by s, energies by s^2.
   const double s = V.cols() == 3 ? normalizing_scale(V) : 1.0;
   const DiskMesh disk = prepare_disk(V / s, F);
+  check_uv_pins(options.pins, disk.V.rows());
+  const UvPins pins = scaled_pins(options.pins, s);
   report.check_ms = ms_since(total_start);
 
   auto phase_start = Clock::now();
-  Eigen::MatrixXd UV = starting_map(disk, options, report);
+  Eigen::MatrixXd UV = starting_map(disk, options, pins, report);
   report.init_ms = ms_since(phase_start);
 
   report.energy = options.energy;
   if (options.energy == ParamEnergy::Triangle) {
-    UV = iterate(disk, TriangleEnergy(disk), UV, options, report);
+    UV = iterate(disk, TriangleEnergy(disk), UV, options, pins, report);
   } else {
     phase_start = Clock::now();
     PlanarCells cells = cells_of(disk, options.energy);
     report.cells_ms = ms_since(phase_start);
-    UV = iterate(disk, CellEnergy(std::move(cells)), UV, options, report);
+    UV = iterate(disk, CellEnergy(std::move(cells)), UV, options, pins, report);
   }
   report.initial_energy *= s * s;
   for (double& e : report.energies) e *= s * s;

@@ -50,21 +50,32 @@ Eigen::MatrixXd circle_boundary(const DiskMesh& disk) {
 }
 
 Eigen::MatrixXd fixed_boundary_map(const DiskMesh& disk, BoundaryMapWeights weights,
-                                   const Eigen::MatrixXd& boundary_uv) {
+                                   const Eigen::MatrixXd& boundary_uv, const UvPins& inner_pins) {
   const auto m = static_cast<Eigen::Index>(disk.boundary.size());
   if (boundary_uv.rows() != m || boundary_uv.cols() != 2)
     throw InputError("boundary_uv must be #boundary x 2 = " + std::to_string(m) + " x 2; got " +
                      std::to_string(boundary_uv.rows()) + " x " + std::to_string(boundary_uv.cols()));
   if (!boundary_uv.allFinite()) throw InputError("boundary_uv must be finite");
-  const Eigen::SparseMatrix<double> L =
-      weights == BoundaryMapWeights::Uniform ? uniform_laplacian(disk) : cotan_laplacian(disk.V, disk.F);
+  check_uv_pins(inner_pins, disk.V.rows());
   std::vector<int> fixed = disk.boundary;
   std::sort(fixed.begin(), fixed.end());
+  for (Eigen::Index p = 0; p < inner_pins.size(); ++p) {
+    const int v = inner_pins.vertices(p);
+    if (std::binary_search(fixed.begin(), fixed.end(), v))
+      throw InputError(
+          "pin " + std::to_string(p) + " (vertex " + std::to_string(v) +
+          ") is on the boundary, which this map puts on the circle: pin inner vertices only, or start "
+          "from LSCM with a free boundary");
+  }
+  for (Eigen::Index p = 0; p < inner_pins.size(); ++p) fixed.push_back(inner_pins.vertices(p));
+  const Eigen::SparseMatrix<double> L =
+      weights == BoundaryMapWeights::Uniform ? uniform_laplacian(disk) : cotan_laplacian(disk.V, disk.F);
   param_detail::ConstrainedSystem system(
       L, fixed, weights == BoundaryMapWeights::Uniform ? "the Tutte system" : "the harmonic system");
   Eigen::MatrixXd UV = Eigen::MatrixXd::Zero(disk.V.rows(), 2);
   for (Eigen::Index p = 0; p < m; ++p)
     UV.row(disk.boundary[static_cast<std::size_t>(p)]) = boundary_uv.row(p);
+  for (Eigen::Index p = 0; p < inner_pins.size(); ++p) UV.row(inner_pins.vertices(p)) = inner_pins.uv.row(p);
   system.solve(Eigen::MatrixXd::Zero(disk.V.rows(), 2), UV);
   return UV;
 }

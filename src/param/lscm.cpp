@@ -89,28 +89,30 @@ Eigen::SparseMatrix<double> conformal_energy_matrix(const DiskMesh& disk) {
 UvPins lscm_pins(const DiskMesh& disk) {
   const auto [a, b] = farthest_boundary_pair(disk);
   UvPins pins;
+  pins.vertices.resize(2);
   pins.vertices << a, b;
+  pins.uv.resize(2, 2);
   pins.uv << 0, 0, std::sqrt(squared_distance(disk, a, b)), 0;
   return pins;
 }
 
 Eigen::MatrixXd lscm(const DiskMesh& disk, const UvPins& pins) {
   const auto n = static_cast<int>(disk.V.rows());
-  for (int p = 0; p < 2; ++p)
-    if (pins.vertices(p) < 0 || pins.vertices(p) >= n)
-      throw InputError("LSCM pin " + std::to_string(pins.vertices(p)) + " is not a vertex; the mesh has " +
-                       std::to_string(n));
-  if (pins.vertices(0) == pins.vertices(1))
-    throw InputError("LSCM needs two distinct pinned vertices; got vertex " +
-                     std::to_string(pins.vertices(0)) + " twice");
-  if (!pins.uv.allFinite()) throw InputError("LSCM pin positions must be finite");
-  std::vector<int> fixed{pins.vertices(0), pins.vertices(1), n + pins.vertices(0), n + pins.vertices(1)};
-  param_detail::ConstrainedSystem system(conformal_energy_matrix(disk), fixed, "the LSCM system");
+  check_uv_pins(pins, n);
+  if (pins.size() < 2)
+    throw InputError(
+        "LSCM needs at least two pinned vertices (its energy is invariant to similarities); got " +
+        std::to_string(pins.size()));
+  std::vector<int> fixed;
   Eigen::MatrixXd x = Eigen::MatrixXd::Zero(2 * n, 1);
-  for (int p = 0; p < 2; ++p) {
-    x(pins.vertices(p), 0) = pins.uv(p, 0);
-    x(n + pins.vertices(p), 0) = pins.uv(p, 1);
+  for (Eigen::Index p = 0; p < pins.size(); ++p) {
+    const int v = pins.vertices(p);
+    fixed.push_back(v);
+    fixed.push_back(n + v);
+    x(v, 0) = pins.uv(p, 0);
+    x(n + v, 0) = pins.uv(p, 1);
   }
+  param_detail::ConstrainedSystem system(conformal_energy_matrix(disk), fixed, "the LSCM system");
   system.solve(Eigen::MatrixXd::Zero(2 * n, 1), x);
   Eigen::MatrixXd UV(n, 2);
   UV.col(0) = x.col(0).head(n);

@@ -2,7 +2,27 @@
 
 #include "iarap/core/errors.h"
 
+#include <string>
+#include <unordered_map>
+
 namespace iarap {
+
+void check_uv_pins(const UvPins& pins, Eigen::Index num_vertices) {
+  if (pins.uv.rows() != pins.vertices.size() || (pins.uv.size() > 0 && pins.uv.cols() != 2))
+    throw InputError(
+        "UV pins need one row of 2 positions per vertex: " + std::to_string(pins.vertices.size()) +
+        " vertices, positions " + std::to_string(pins.uv.rows()) + " x " + std::to_string(pins.uv.cols()));
+  std::unordered_map<int, Eigen::Index> seen;
+  for (Eigen::Index p = 0; p < pins.size(); ++p) {
+    const int v = pins.vertices(p);
+    const std::string pin = "pin " + std::to_string(p) + " (vertex " + std::to_string(v) + ")";
+    if (v < 0 || v >= num_vertices)
+      throw InputError(pin + " is not a vertex; the mesh has " + std::to_string(num_vertices));
+    if (!pins.uv.row(p).allFinite()) throw InputError(pin + " has a non-finite UV position");
+    const auto [it, inserted] = seen.emplace(v, p);
+    if (!inserted) throw InputError(pin + " pins the vertex of pin " + std::to_string(it->second) + " again");
+  }
+}
 
 double default_barrier_weight(ParamEnergy energy) {
   return energy == ParamEnergy::Triangle ? 1e-2 : 1e-1;

@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <complex>
 #include <random>
 
@@ -52,9 +53,13 @@ Eigen::MatrixXd dense_lscm(const test::TestMesh& mesh, const UvPins& pins) {
       A(2 * f + 1, v) += W.real();
     }
   }
-  std::vector<Eigen::Index> pinned{pins.vertices(0), pins.vertices(1), n + pins.vertices(0),
-                                   n + pins.vertices(1)};
-  const double pinned_values[4] = {pins.uv(0, 0), pins.uv(1, 0), pins.uv(0, 1), pins.uv(1, 1)};
+  std::vector<Eigen::Index> pinned;
+  std::vector<double> pinned_values;
+  for (int column = 0; column < 2; ++column)
+    for (Eigen::Index p = 0; p < pins.size(); ++p) {
+      pinned.push_back(column * n + pins.vertices(p));
+      pinned_values.push_back(pins.uv(p, column));
+    }
   Eigen::VectorXd b = Eigen::VectorXd::Zero(2 * nf);
   std::vector<Eigen::Index> free;
   for (Eigen::Index c = 0; c < 2 * n; ++c) {
@@ -69,7 +74,7 @@ Eigen::MatrixXd dense_lscm(const test::TestMesh& mesh, const UvPins& pins) {
   const Eigen::VectorXd x_free = A_free.colPivHouseholderQr().solve(b);
   Eigen::VectorXd x(2 * n);
   for (std::size_t k = 0; k < free.size(); ++k) x(free[k]) = x_free(static_cast<Eigen::Index>(k));
-  for (int p = 0; p < 4; ++p) x(pinned[static_cast<std::size_t>(p)]) = pinned_values[p];
+  for (std::size_t p = 0; p < pinned.size(); ++p) x(pinned[p]) = pinned_values[p];
   Eigen::MatrixXd UV(n, 2);
   UV << x.head(n), x.tail(n);
   return UV;
@@ -103,6 +108,21 @@ TEST(Lscm, MatchesDenseLeastSquaresOfTheConformalityEquations) {
     for (int b : disk.boundary) EXPECT_LE((mesh.V.row(a) - mesh.V.row(b)).norm(), size * (1 + 1e-15));
 }
 
+TEST(Lscm, MorePinsMatchDenseLeastSquaresToo) {
+  // Three pins, one inside, at positions no similarity of the surface meets: the least-squares solution
+  // bends to hold them, and both solves agree on it.
+  const test::TestMesh mesh = bumpy_cap();
+  const DiskMesh disk = prepare_disk(mesh.V, mesh.F);
+  UvPins pins;
+  pins.vertices.resize(3);
+  pins.vertices << disk.boundary[0], disk.boundary[disk.boundary.size() / 2], 0;
+  pins.uv.resize(3, 2);
+  pins.uv << -1, 0, 1, 0, 0.1, 0.3;
+  const Eigen::MatrixXd UV = lscm(disk, pins);
+  EXPECT_LT((UV - dense_lscm(mesh, pins)).cwiseAbs().maxCoeff(), 1e-10);
+  for (Eigen::Index p = 0; p < 3; ++p) EXPECT_EQ(UV.row(pins.vertices(p)), pins.uv.row(p));
+}
+
 TEST(Lscm, FlatMeshMapsBySimilarity) {
   // A planar mesh has a conformal map with zero energy: the identity up to the similarity the pins fix.
   const test::TestMesh mesh = test::flat_disk(3, 9);
@@ -124,6 +144,13 @@ TEST(Lscm, RefusesBadPins) {
   EXPECT_THROW(lscm(disk, pins), InputError);
   pins.vertices(1) = 1000;
   EXPECT_THROW(lscm(disk, pins), InputError);
+  pins.vertices(1) = 1;
+  pins.uv(1, 1) = NAN;
+  EXPECT_THROW(lscm(disk, pins), InputError);
+  UvPins one;
+  one.vertices = Eigen::VectorXi::Constant(1, 0);
+  one.uv = Eigen::MatrixXd::Zero(1, 2);
+  EXPECT_THROW(lscm(disk, one), InputError); // the similarity is left free
 }
 
 } // namespace

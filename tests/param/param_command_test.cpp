@@ -110,6 +110,42 @@ TEST(ParamCommand, UsageErrors) {
   fs::remove_all(dir);
 }
 
+TEST(ParamCommand, PinsFromAFile) {
+  // Two pins: the map holds them exactly (written with 17 digits, read back to the bit); the errors of a
+  // pins file name its line.
+  const auto dir = iarap::test::temp_dir("param_cli_pins");
+  const iarap::test::TestMesh cap = iarap::test::spherical_cap(5, 16, 0.5 * M_PI);
+  iarap::write_mesh((dir / "cap.off").string(), cap.V, cap.F);
+  write_file(dir / "pins.txt", "# vertex u v\n0 1.5 -2\n7 3.25 -2\n");
+  const std::string base = "param " + quoted(dir / "cap.off") + " --out " + quoted(dir / "uv.txt");
+  const CliRun run = iarap_cli(base + " --pins " + quoted(dir / "pins.txt") + " --json --quiet");
+  ASSERT_EQ(run.code, 0) << run.out;
+  const nlohmann::json j = parse_json(run);
+  EXPECT_EQ(j["pins"], 2);
+  EXPECT_EQ(j["pinned"], 2);
+  EXPECT_EQ(j["flipped"], 0);
+  std::istringstream uv(read_file(dir / "uv.txt"));
+  std::vector<std::pair<double, double>> rows;
+  for (double u, v; uv >> u >> v;) rows.emplace_back(u, v);
+  ASSERT_EQ(rows.size(), static_cast<std::size_t>(cap.V.rows()));
+  EXPECT_EQ(rows[0], std::make_pair(1.5, -2.0));
+  EXPECT_EQ(rows[7], std::make_pair(3.25, -2.0));
+  const struct {
+    std::string text, says;
+  } bad[] = {
+      {"0 1 2\n9999 0 0\n", "pins.txt:2"},   {"0 1 2 3\n", "two coordinates"},
+      {"0 1 2 0 5\n", "UV pins are hard"},   {"0 1 nan\n", "pins.txt:1"},
+      {"0 1 2\n3 1 2\n", "one UV position"},
+  };
+  for (const auto& c : bad) {
+    write_file(dir / "pins.txt", c.text);
+    const CliRun failed = iarap_cli(base + " --pins " + quoted(dir / "pins.txt") + " --quiet", true);
+    EXPECT_EQ(failed.code, 1) << c.text << failed.out;
+    EXPECT_NE(failed.out.find(c.says), std::string::npos) << c.text << failed.out;
+  }
+  fs::remove_all(dir);
+}
+
 // `iarap param` on `mesh` written as file `name` in a fresh folder, with `options` and --json; the report,
 // or an empty object after a recorded failure.
 nlohmann::json param_report(const iarap::test::TestMesh& mesh, const std::string& name,

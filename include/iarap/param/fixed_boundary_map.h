@@ -2,6 +2,7 @@
 // Tutte's embedding (uniform weights) and the harmonic map (cotan weights).
 #pragma once
 #include "iarap/param/disk_mesh.h"
+#include "iarap/param/param_options.h"
 
 #include <Eigen/Core>
 
@@ -18,9 +19,11 @@ enum class BoundaryMapWeights {
 Eigen::MatrixXd circle_boundary(const DiskMesh& disk);
 
 // The #V x 2 map with boundary vertex disk.boundary[p] at boundary_uv.row(p) (#boundary x 2) and the
-// inner vertices solving L_II U_I = -L_IB U_B for the chosen weights. Throws InputError when boundary_uv
-// has the wrong shape, SolverError when the system cannot be factorized.
+// inner vertices solving L_II U_I = -L_IB U_B for the chosen weights; inner_pins, inner vertices held at
+// their UV positions too (Tutte's injectivity guarantee does not extend to them). Throws InputError when
+// boundary_uv has the wrong shape, for what check_uv_pins refuses and for a pin on the boundary, and
+// SolverError when the system cannot be factorized.
 Eigen::MatrixXd fixed_boundary_map(const DiskMesh& disk, BoundaryMapWeights weights,
-                                   const Eigen::MatrixXd& boundary_uv);
+                                   const Eigen::MatrixXd& boundary_uv, const UvPins& inner_pins = {});
 
 } // namespace iarap

@@ -1,5 +1,6 @@
 // The choices of arap_parameterize: initial map, boundary, iteration limits, and their names.
 #pragma once
+#include <Eigen/Core>
 #include <optional>
 #include <string>
 
@@ -21,6 +22,17 @@ enum class ParamBoundary {
   Free,   // the boundary moves with the iteration; one vertex is pinned (the energy is translation invariant)
   Circle, // every boundary vertex stays where circle_boundary puts it
 };
+
+// Vertices held at given UV positions (in the units of V): LSCM's two default pins, or a user's.
+struct UvPins {
+  Eigen::VectorXi vertices; // #p distinct vertex indices
+  Eigen::MatrixXd uv;       // #p x 2: row p, the UV position of vertices(p)
+  Eigen::Index size() const { return vertices.size(); }
+};
+
+// Throws InputError unless pins has matching shapes (#p indices, #p x 2 positions), indices in
+// 0..num_vertices-1 and distinct, and finite positions; messages name the pin ("pin 3 (vertex 17)").
+void check_uv_pins(const UvPins& pins, Eigen::Index num_vertices);
 
 struct ParamOptions {
   ParamEnergy energy = ParamEnergy::Triangle; // the per-vertex ones: planar_cells.h
@@ -46,6 +58,15 @@ struct ParamOptions {
   // and 200 not converged with 1e-2). Unused with allow_flips.
   std::optional<double> barrier_weight; // mu > 0
   double barrier_threshold = 1e-1;      // eps > 0, dimensionless (det J is an area ratio)
+  // Vertices the map must put at given UV positions, held exactly by every iterate. With the free
+  // boundary they replace the one vertex pinned by default: one pin fixes the translation, two also the
+  // rotation and scale (the start is the unpinned one moved by the similarity that meets them: injective
+  // when it is), three or more also shape the start (LSCM with them held, or with the tutte / harmonic
+  // start, the circle map with them as inner vertices). With ParamBoundary::Circle they must be inner
+  // vertices, in the circle's coordinates (centre at the origin, radius sqrt(area / pi)), held by the
+  // Tutte or harmonic start too. Flip-free, a start that the pins fold is refused (InputError naming the
+  // count): pins can demand a fold no iteration undoes, and the flip-free iteration needs an injective start.
+  UvPins pins;
 };
 
 // The initial map to use when none is named: lscm for a free boundary, harmonic for a circular one (the
