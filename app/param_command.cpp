@@ -3,6 +3,7 @@
 #include "command_registry.h"
 #include "iteration_options.h"
 #include "json_text.h"
+#include "param_report_json.h"
 #include "same_file.h"
 #include "write_text_file.h"
 
@@ -12,7 +13,6 @@
 #include "iarap/io/check_output_path.h"
 #include "iarap/io/read_mesh.h"
 #include "iarap/param/arap_parameterize.h"
-#include "iarap/param/param_report_fields.h"
 #include "iarap/param/render_uv_picture.h"
 #include "iarap/param/write_uv_map.h"
 #include "iarap/scene/read_constraints.h"
@@ -24,7 +24,6 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
-#include <type_traits>
 
 namespace iarap::cli {
 namespace {
@@ -112,13 +111,7 @@ nlohmann::json report_json(const ParamArguments& args, const MeshData& mesh, con
   if (!args.pins.empty()) j["pins_file"] = args.pins;
   j["allow_flips"] = options.allow_flips;
   j["threads"] = thread_count();
-  // angle_distortion's max is null (JSON has no infinity) where a triangle's sigma2 = 0.
-  visit_param_report(report, [&j](const char* name, const auto& value) {
-    if constexpr (std::is_same_v<std::decay_t<decltype(value)>, DistortionRange>)
-      j[name] = {{"min", value.min}, {"median", value.median}, {"max", value.max}};
-    else
-      j[name] = value;
-  });
+  j.update(param_report_json(report));
   return j;
 }
 

@@ -3,6 +3,7 @@
 #include "binary_frame.h"
 #include "http_error.h"
 #include "json_input.h"
+#include "param_route.h"
 #include "route_table.h"
 #include "scenario_files.h"
 #include "static_files.h"
@@ -464,6 +465,12 @@ void register_routes(httplib::Server& server, const ServeConfig& config, ServeSt
     frame.add("t", overlay->t);
     frame.add("original", overlay->original);
     send_binary(res, frame.encode({{"edges", overlay->original.size()}, {"points", overlay->a.size()}}));
+  });
+
+  // The UV tab: the rest mesh flattened (param_route.h); runs outside the session lock on a snapshot.
+  routes.post("/api/param", [&](const httplib::Request& req, httplib::Response& res) {
+    const json body = json_body(req, config);
+    send_binary(res, param_frame(state.snapshot(std::nullopt), body, config.max_iterations));
   });
 
   routes.get("/api/download", [&](const httplib::Request& req, httplib::Response& res) {

@@ -17,6 +17,8 @@
 //   POST /api/scenario/load?name=N   body: such a file; constraints and anchors from it, shapes at rest
 //   GET  /api/intrinsic_edges  binary frame: traced intrinsic Delaunay edges (start, a, c, t, original)
 //   GET  /api/download?method=M&format=obj|off|ply   the deformed mesh as a file
+//   POST /api/param            {"energy", "boundary", "init", "allow_flips", "iterations"} -> binary frame:
+//                              the report + "uv" (#V x 2) of the rest mesh's UV map (param_route.h)
 // JSON bodies need Content-Type application/json; file bodies any type but a form's. Errors answer
 // {"error": message} with 400 (bad request), 403 (foreign Origin / Host), 404, 405 (with Allow), 409 (no
 // mesh or no constraints yet, a revision no longer kept), 413 (body over the route's limit), 415 (content

@@ -3,7 +3,8 @@
 // scenario, undoes and redoes the drag, loads the scenario back and compares the page's solve with the
 // CLI's replay of the file, then side by side selects and drags on the right copy and checks the shared
 // colour scale, takes a screenshot (a test artefact, not blank), uploads an STL (nothing of the bunny's
-// session left) and finally stops the server (the banner says so). Exit 77 (CTest: skipped) without
+// session left), flattens an uploaded disk in the UV tab (layout, report, checkerboard on the mesh) and
+// finally stops the server (the banner says so). Exit 77 (CTest: skipped) without
 // chromium or playwright-core.
 // Usage: node tests/web/browser_test.mjs [--screenshot PATH]
 import assert from 'node:assert/strict';
@@ -232,8 +233,53 @@ try {
     plotInk: Array.from(document.getElementById('energy-plot').getContext('2d').getImageData(0, 0, 260, 120).data).some((v) => v !== 0),
   }));
   assert.deepEqual(after, { choice: 'tet.stl (uploaded)', info: '', labels: [0, 0, 0, 0], undo: true, colorbar: true, plotInk: false });
+  // 6b. The UV tab on an uploaded disk (a spherical cap): Flatten shows the layout and the report's
+  // figures, and puts the checkerboard on the mesh; unchecking takes it off.
+  const rings = 6;
+  const sectors = 20;
+  const cap = [[0, 0, 1]];
+  for (let r = 1; r <= rings; ++r) {
+    for (let k = 0; k < sectors; ++k) {
+      const t = (0.45 * Math.PI * r) / rings;
+      const a = (2 * Math.PI * (k + 0.5 * (r % 2))) / sectors;
+      cap.push([Math.sin(t) * Math.cos(a), Math.sin(t) * Math.sin(a), Math.cos(t)]);
+    }
+  }
+  const capFaces = Array.from({ length: sectors }, (_, k) => [0, 1 + k, 1 + ((k + 1) % sectors)]);
+  for (let r = 0; r + 1 < rings; ++r) {
+    for (let k = 0; k < sectors; ++k) {
+      const a = 1 + r * sectors + k;
+      const b = 1 + r * sectors + ((k + 1) % sectors);
+      capFaces.push([a, a + sectors, b + sectors], [a, b + sectors, b]);
+    }
+  }
+  const off = ['OFF', `${cap.length} ${capFaces.length} 0`, ...cap.map((v) => v.join(' ')), ...capFaces.map((f) => `3 ${f.join(' ')}`)].join('\n');
+  await page.setInputFiles('#upload', { name: 'cap.off', mimeType: 'application/octet-stream', buffer: Buffer.from(off) });
+  await page.waitForFunction(() => document.getElementById('status').textContent === 'loaded cap.off', null, { timeout: 30000 });
+  await page.click('#uv-flatten');
+  await page.waitForFunction(() => window.iarapViewer.uvReport() !== null, null, { timeout: 30000 });
+  const uv = await page.evaluate(() => ({
+    report: window.iarapViewer.uvReport(),
+    layoutShown: !document.getElementById('uv-layout').hidden,
+    textured: window.iarapViewer.hasTexture(),
+    info: document.getElementById('uv-info').textContent,
+    layoutInk: Array.from(document.getElementById('uv-layout-canvas').getContext('2d').getImageData(0, 0, 320, 320).data).filter((v, i) => i % 4 === 3 && v > 0).length,
+  }));
+  assert.equal(uv.report.flipped, 0);
+  assert.equal(uv.report.vertices, cap.length);
+  assert.ok(uv.layoutShown && uv.textured, JSON.stringify(uv));
+  assert.match(uv.info, /0 flipped triangles/);
+  // A cap of 0.45 pi flattens to roughly a disk: well over a third of the square canvas is inked.
+  assert.ok(uv.layoutInk > 0.35 * 320 * 320, `layout pixels: ${uv.layoutInk}`);
+  await settle();
+  await page.screenshot({ path: path.join(artefactDir, 'viewer_uv.png') });
+  await page.uncheck('#uv-texture');
+  assert.equal(await page.evaluate(() => window.iarapViewer.hasTexture()), false);
+  console.log(`UV tab: cap flattened, energy ${uv.report.energy.toPrecision(4)}, ${uv.layoutInk} layout pixels`);
+
   await page.selectOption('#mesh-select', 'bunny.off');
   await page.waitForFunction(() => window.iarapViewer.labels().length === 3485, null, { timeout: 30000 });
+  assert.equal(await page.evaluate(() => document.getElementById('uv-layout').hidden), true);
   assert.deepEqual(problems, []);
 
   // 7. A server that went away is named as such, in the banner.

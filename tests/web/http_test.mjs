@@ -381,6 +381,43 @@ describe('uploads', () => {
   });
 });
 
+describe('UV maps', () => {
+  test('a disk is flattened like `iarap param`; a closed mesh and bad options are refused', async () => {
+    await expectError(postJson('/api/param', {}), 422, /not a topological disk.*0 boundary loops/);
+    // A 5 x 5 vertex grid of the unit square: a flat disk, whose best map is an isometry (energy ~0).
+    const n = 5;
+    const V = [];
+    const F = [];
+    for (let j = 0; j < n; ++j) for (let i = 0; i < n; ++i) V.push([i / (n - 1), j / (n - 1), 0.1 * i * j / 16]);
+    for (let j = 0; j + 1 < n; ++j) {
+      for (let i = 0; i + 1 < n; ++i) {
+        const a = j * n + i;
+        F.push([a, a + 1, a + n + 1], [a, a + n + 1, a + n]);
+      }
+    }
+    const off = ['OFF', `${V.length} ${F.length} 0`, ...V.map((v) => v.join(' ')), ...F.map((f) => `3 ${f.join(' ')}`)].join('\n');
+    const upload = await fetch(`${base}/api/upload?name=sheet.off`, { method: 'POST', headers: { 'Content-Type': 'application/octet-stream' }, body: off });
+    assert.equal(upload.status, 200, await upload.clone().text());
+    for (const energy of ['triangle', 'arap', 'iarap']) {
+      const response = await postJson('/api/param', { energy, boundary: 'free', iterations: 50 });
+      assert.equal(response.status, 200, await response.clone().text());
+      const { header, arrays } = decodeFrame(await response.arrayBuffer());
+      assert.equal(arrays.uv.length, 2 * V.length);
+      assert.equal(header.energy_kind, energy);
+      assert.equal(header.flipped, 0);
+      assert.equal(header.mesh, 'sheet.off');
+      // A gently curved sheet (z up to 0.1): nearly developable, energy well under 1e-2 of its area 1.
+      assert.ok(header.energy < 1e-2, `${energy}: energy ${header.energy}`);
+      assert.ok(arrays.uv.every(Number.isFinite));
+    }
+    await expectError(postJson('/api/param', { energy: 'spokes-rims' }), 400, /unknown energy/);
+    await expectError(postJson('/api/param', { boundary: 'circle', init: 'lscm' }), 400, /circular boundary needs/);
+    await expectError(postJson('/api/param', { iterations: 100000 }), 400, /iterations/);
+    await expectError(postJson('/api/param', { pins: [0] }), 400, /pins/);
+    assert.equal((await postJson('/api/load', { mesh: 'bunny.off' })).status, 200);
+  });
+});
+
 // The rows of an OBJ the CLI wrote (full precision).
 function objVertices(file) {
   return fs.readFileSync(file, 'utf8').split('\n').filter((l) => l.startsWith('v ')).map((l) => l.split(/\s+/).slice(1, 4).map(Number));
@@ -502,7 +539,8 @@ describe('malformed-body campaign', () => {
       () => `{"method": "${'\u00e9\u4e2d'.repeat(Math.floor(random() * 2000))}"}`,
     ];
     const routes = ['/api/constraints', '/api/solve', '/api/load', '/api/reset', '/api/scenario', '/api/cancel',
-      '/api/upload?name=f.off', '/api/upload?name=f.stl', '/api/upload?name=f.ply', '/api/scenario/load?name=s.json'];
+      '/api/upload?name=f.off', '/api/upload?name=f.stl', '/api/upload?name=f.ply', '/api/scenario/load?name=s.json',
+      '/api/param'];
     const allowed = new Set([200, 400, 404, 405, 409, 413, 415, 422]);
     const counts = {};
     const started = performance.now();

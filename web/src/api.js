@@ -64,6 +64,8 @@ export const api = {
   progress: () => getJson('/api/progress'),
   cancel: async () => (await postJson('/api/cancel', {})).json(),
   reset: async () => (await postJson('/api/reset', {})).json(),
+  // The rest mesh's UV map (the UV tab): {header: report, arrays: {uv: Float32Array #V x 2}}.
+  param: async (body) => decodeFrame(await (await postJson('/api/param', body)).arrayBuffer()),
   intrinsicEdges: async () => decodeFrame(await getBuffer('/api/intrinsic_edges')),
   downloadUrl: (method, format) => `/api/download?method=${method}&format=${format}`,
   // {name, blob}: the scenario (or constraints) file of the method's session.

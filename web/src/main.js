@@ -6,6 +6,7 @@ import { drawEnergyPlot, methodColors } from './energy_plot.js';
 import { UndoHistory } from './history.js';
 import { LatestOnly } from './latest_only.js';
 import { FIXED, HANDLE, box, brush, indicesWith, paintLabel } from './selection.js';
+import { UvPanel } from './uv_panel.js';
 import { Viewer } from './viewer.js';
 
 const allMethods = ['arap', 'spokes-rims', 'iarap'];
@@ -218,6 +219,7 @@ async function loadMesh(state) {
   if (!state.mesh) return;
   const [faces, rest] = await Promise.all([api.faces(), api.positions('rest')]);
   viewer.setMesh(faces, rest, shownMethods());
+  uvPanel.setMesh(faces);
   await showPositions(shownMethods());
   setLabels(state);
   viewer.placeGizmo(state.handle);
@@ -322,7 +324,10 @@ function setupSelectionTools() {
   applyTool();
 }
 
+let uvPanel = null;
+
 function setupPanel(state) {
+  uvPanel = new UvPanel(api, viewer, guarded);
   app.limits = state.limits;
   $('iterations').max = String(state.limits.max_iterations);
   $('iterations-limit').textContent = `(1 to ${state.limits.max_iterations})`;
@@ -443,6 +448,8 @@ window.iarapViewer = {
   handleTransform: () => viewer.handleTransform(),
   colorScale: () => app.scale,
   cellEnergy: (method) => Array.from(app.cellEnergy[method] ?? []),
+  uvReport: () => uvPanel.map?.report ?? null,
+  hasTexture: () => viewer.hasTexture(),
   // A point on copy `index`'s gizmo x arrow (TransformControls scales its handles by this factor; the x
   // picker spans 0..0.6 of it along +x).
   gizmoXArrowScreenPoint: (index = 0) => {

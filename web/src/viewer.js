@@ -10,6 +10,7 @@
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { TransformControls } from 'three/addons/controls/TransformControls.js';
+import { checkerTexture } from './uv_layout.js';
 
 const baseColor = [0.72, 0.74, 0.78];
 const fixedColor = [0.9, 0.16, 0.16];
@@ -50,6 +51,15 @@ class MethodView {
     this.mesh.geometry.computeVertexNormals();
     this.mesh.geometry.computeBoundingSphere();
     this.mesh.geometry.computeBoundingBox();
+  }
+
+  // The checkerboard on this copy (checker: Float32Array #V x 2 in checker units), or none (null).
+  setTexture(checker, texture) {
+    const { geometry, material } = this.mesh;
+    if (checker) geometry.setAttribute('uv', new THREE.BufferAttribute(checker, 2));
+    else geometry.deleteAttribute('uv');
+    material.map = checker ? texture : null;
+    material.needsUpdate = true;
   }
 
   dispose(scene) {
@@ -128,6 +138,7 @@ export class Viewer {
     this.faces = faces;
     this.rest = rest;
     this.overlay = null;
+    this.checker = null;
     this.handleIndices = [];
     this.handleMatrix.identity();
     const box = new THREE.Box3().setFromArray(rest);
@@ -152,7 +163,21 @@ export class Viewer {
     this.#buildGizmos();
     this.#buildLabels();
     if (this.overlay) this.setIntrinsicOverlay(this.overlay);
+    if (this.checker) this.setTexture(this.checker);
     this.requestRender();
+  }
+
+  // The UV tab's checkerboard on every copy (checker: Float32Array #V x 2 in checker units, see
+  // uv_layout.js), kept across layouts until a new mesh or null.
+  setTexture(checker) {
+    this.checker = checker;
+    this.checkerTexture ??= checkerTexture();
+    for (const view of this.views) view.setTexture(checker, this.checkerTexture);
+    this.requestRender();
+  }
+
+  hasTexture() {
+    return this.views.length > 0 && this.views.every((view) => view.mesh.material.map !== null);
   }
 
   // A gizmo per copy, then the orbit controls (pointer listeners run in the order they were added).

@@ -1,0 +1,36 @@
+#include "param_route.h"
+
+#include "binary_frame.h"
+#include "json_input.h"
+#include "../param_report_json.h"
+
+#include "iarap/param/arap_parameterize.h"
+
+#include <vector>
+
+namespace iarap::serve {
+
+std::string param_frame(const MeshSnapshot& rest, const nlohmann::json& body, int max_iterations) {
+  require_known_fields(body, {"energy", "boundary", "init", "allow_flips", "iterations"});
+  ParamOptions options;
+  options.energy = parse_param_energy(string_field(body, "energy", "triangle"));
+  options.boundary = parse_param_boundary(string_field(body, "boundary", "free"));
+  const std::string init = string_field(body, "init", "");
+  options.init = init.empty() ? default_param_init(options.boundary) : parse_param_init(init);
+  options.allow_flips = bool_field(body, "allow_flips", false);
+  options.max_iterations = integer_field(body, "iterations", options.max_iterations, 0, max_iterations);
+  const ParamResult result = arap_parameterize(rest.V, rest.F, options);
+  std::vector<float> uv(static_cast<std::size_t>(result.UV.size()));
+  for (Eigen::Index v = 0; v < result.UV.rows(); ++v)
+    for (int k = 0; k < 2; ++k) uv[static_cast<std::size_t>(2 * v + k)] = static_cast<float>(result.UV(v, k));
+  BinaryFrame frame;
+  frame.add("uv", uv);
+  nlohmann::json header = cli::param_report_json(result.report);
+  header["mesh"] = rest.name;
+  header["vertices"] = result.UV.rows();
+  header["boundary"] = param_boundary_name(options.boundary);
+  header["allow_flips"] = options.allow_flips;
+  return frame.encode(header);
+}
+
+} // namespace iarap::serve
