@@ -29,7 +29,7 @@ namespace iarap::cli {
 namespace {
 
 struct ParamArguments {
-  std::string mesh, out, report, picture, pins, energy = "triangle", init, boundary = "free";
+  std::string mesh, out, report, picture, pins, energy = "triangle", init, boundary = "free", accel = "none";
   int iterations = ParamOptions{}.max_iterations;
   double tolerance = ParamOptions{}.tolerance;
   int threads = 0;
@@ -76,6 +76,10 @@ ParamOptions options_of(const ParamArguments& args) {
   if (options.boundary == ParamBoundary::Circle && options.init == ParamInit::Lscm)
     throw CLI::ValidationError("--boundary circle needs --init tutte or harmonic (lscm has a free boundary)");
   options.allow_flips = args.allow_flips;
+  options.accelerator = parse_param_accelerator(args.accel);
+  if (options.accelerator == ParamAccelerator::Anderson && !options.allow_flips)
+    throw CLI::ValidationError("--accel anderson mixes the plain iteration: add --allow-flips (the flip-free "
+                               "steps stop short of degenerate triangles, where the mixing does not help)");
   options.max_iterations = args.iterations;
   options.tolerance = args.tolerance;
   return options;
@@ -196,6 +200,12 @@ const bool registered = register_command(
            ->check(CLI::ExistingFile);
        sub->add_flag("--allow-flips", args->allow_flips,
                      "The plain local/global iteration (no injectivity-preserving line search)");
+       sub->add_option(
+              "--accel", args->accel,
+              "none, or anderson: safeguarded Anderson mixing of the steps (a mixed map is kept only "
+              "when it lowers the energy, flip-free too)")
+           ->check(CLI::IsMember({"none", "anderson"}))
+           ->capture_default_str();
        add_iteration_options(*sub, args->iterations, args->tolerance);
        sub->add_option("--threads", args->threads, "Threads for the parallel loops; 0 = automatic (one)")
            ->check(CLI::Range(0, 4096))

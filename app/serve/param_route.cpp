@@ -1,8 +1,8 @@
 #include "param_route.h"
 
+#include "../param_report_json.h"
 #include "binary_frame.h"
 #include "json_input.h"
-#include "../param_report_json.h"
 
 #include "iarap/param/arap_parameterize.h"
 

@@ -33,8 +33,8 @@ py::dict report_dict(const ParamReport& report) {
 
 py::tuple parameterize_py(const py::object& V, const py::object& F, const std::string& energy,
                           const py::object& init, const std::string& boundary, bool allow_flips,
-                          int iterations, double tolerance, const py::object& pins,
-                          const py::object& pin_uv) {
+                          int iterations, double tolerance, const py::object& pins, const py::object& pin_uv,
+                          const std::string& accel) {
   const Eigen::MatrixXd positions = to_points(V, "V");
   const Eigen::MatrixXi faces = to_faces(F, "F", positions.rows());
   ParamOptions options;
@@ -52,6 +52,7 @@ py::tuple parameterize_py(const py::object& V, const py::object& F, const std::s
   options.init =
       init.is_none() ? default_param_init(options.boundary) : parse_param_init(init.cast<std::string>());
   options.allow_flips = allow_flips;
+  options.accelerator = parse_param_accelerator(accel);
   options.max_iterations = iterations;
   options.tolerance = tolerance;
   ParamResult result;
@@ -69,7 +70,7 @@ void bind_param(py::module_& m) {
         py::arg("energy") = "triangle", py::arg("init") = py::none(), py::arg("boundary") = "free",
         py::arg("allow_flips") = false, py::arg("iterations") = ParamOptions{}.max_iterations,
         py::arg("tolerance") = ParamOptions{}.tolerance, py::arg("pins") = py::none(),
-        py::arg("pin_uv") = py::none(),
+        py::arg("pin_uv") = py::none(), py::arg("accel") = "none",
         R"(ARAP parameterization (Liu et al. 2008) of a disk-like mesh: (UV (#V, 2), report dict).
 
 V: (#V, 3) positions. F: (#F, 3) faces of a topological disk (one component, one boundary loop, genus 0).
@@ -84,12 +85,13 @@ pins (#p,) vertex indices with pin_uv (#p, 2): held exactly at those UV position
 free boundary they replace the default pin (two or more: the start is LSCM with them held); with
 boundary="circle" they must be inner vertices, in the circle's coordinates (centre 0, radius
 sqrt(area / pi)). Flip-free, pins that fold the start raise InputError (move them or allow_flips=True).
+accel: "none" or "anderson" (safeguarded Anderson mixing of the plain iteration; needs allow_flips=True).
 
 The report: energy = sum_f area_f ||J_f - R_f||_F^2 of the result whatever energy_kind was minimized
 (squared mesh units; initial_energy and energies are the minimized one's), scaled_energy at the best uniform
 scale best_scale, flipped (triangles with det J <= 0), min_det_J (UV area over surface area, signed),
 area_distortion and angle_distortion (min / median / max of sigma1 * sigma2 and sigma1 / sigma2),
-initial_energy, energies and steps per iteration, iterations, converged, requested_init, init, init_flipped,
+initial_energy, energies and steps per iteration, accelerator, accepted_mixings, iterations, converged, requested_init, init, init_flipped,
 init_fallback, pinned, check_ms, init_ms, cells_ms, factor_ms, iterate_ms, parameterize_ms.
 Raises InputError for bad arrays or options, TopologyError for a mesh that is not a disk (saying what it has:
 components, boundary loops, genus) or has degenerate triangles.)");

@@ -140,3 +140,18 @@ def test_bad_pins():
         iarap.parameterize(V, F, pins=[0, 1], pin_uv=np.zeros((2, 2)))
     with pytest.raises(iarap.InputError):
         iarap.parameterize(V, F, pins=[0, 1000], pin_uv=np.eye(2))
+
+
+def test_anderson_mixing_of_the_plain_iteration():
+    """Fewer iterations to the same energy (1e-4 relative: both stop at a 1e-9 decrease); refused flip-free."""
+    V, F = spherical_cap(8, 24, 0.9 * np.pi)
+    run = dict(allow_flips=True, tolerance=1e-9, iterations=2000)
+    _, plain = iarap.parameterize(V, F, **run)
+    _, mixed = iarap.parameterize(V, F, accel="anderson", **run)
+    assert mixed["accelerator"] == "anderson" and mixed["accepted_mixings"] > 0
+    assert mixed["iterations"] < plain["iterations"]
+    assert mixed["energy"] == pytest.approx(plain["energy"], rel=1e-4)
+    with pytest.raises(iarap.InputError, match="plain iteration"):
+        iarap.parameterize(V, F, accel="anderson")
+    with pytest.raises(iarap.InputError, match="unknown accelerator"):
+        iarap.parameterize(V, F, accel="newton", allow_flips=True)

@@ -2,10 +2,24 @@
 
 #include "iarap/core/errors.h"
 
+#include <initializer_list>
 #include <string>
 #include <unordered_map>
 
 namespace iarap {
+
+namespace {
+
+// The option whose name is `name`; else InputError "unknown <what> '<name>'; expected <expected>".
+template <typename Option>
+Option parse_named(const std::string& name, std::initializer_list<Option> options,
+                   std::string (*name_of)(Option), const char* what, const char* expected) {
+  for (Option option : options)
+    if (name == name_of(option)) return option;
+  throw InputError(std::string("unknown ") + what + " '" + name + "'; expected " + expected);
+}
+
+} // namespace
 
 void check_uv_pins(const UvPins& pins, Eigen::Index num_vertices) {
   if (pins.uv.rows() != pins.vertices.size() || (pins.uv.size() > 0 && pins.uv.cols() != 2))
@@ -41,9 +55,17 @@ std::string param_energy_name(ParamEnergy energy) {
 }
 
 ParamEnergy parse_param_energy(const std::string& name) {
-  for (ParamEnergy energy : {ParamEnergy::Triangle, ParamEnergy::Arap, ParamEnergy::Iarap})
-    if (name == param_energy_name(energy)) return energy;
-  throw InputError("unknown energy '" + name + "'; expected triangle, arap or iarap");
+  return parse_named(name, {ParamEnergy::Triangle, ParamEnergy::Arap, ParamEnergy::Iarap}, param_energy_name,
+                     "energy", "triangle, arap or iarap");
+}
+
+std::string param_accelerator_name(ParamAccelerator accelerator) {
+  return accelerator == ParamAccelerator::Anderson ? "anderson" : "none";
+}
+
+ParamAccelerator parse_param_accelerator(const std::string& name) {
+  return parse_named(name, {ParamAccelerator::None, ParamAccelerator::Anderson}, param_accelerator_name,
+                     "accelerator", "none or anderson");
 }
 
 ParamInit default_param_init(ParamBoundary boundary) {
@@ -63,9 +85,8 @@ std::string param_init_name(ParamInit init) {
 }
 
 ParamInit parse_param_init(const std::string& name) {
-  for (ParamInit init : {ParamInit::Lscm, ParamInit::Tutte, ParamInit::Harmonic})
-    if (name == param_init_name(init)) return init;
-  throw InputError("unknown initial map '" + name + "'; expected lscm, tutte or harmonic");
+  return parse_named(name, {ParamInit::Lscm, ParamInit::Tutte, ParamInit::Harmonic}, param_init_name,
+                     "initial map", "lscm, tutte or harmonic");
 }
 
 std::string param_boundary_name(ParamBoundary boundary) {
@@ -73,9 +94,8 @@ std::string param_boundary_name(ParamBoundary boundary) {
 }
 
 ParamBoundary parse_param_boundary(const std::string& name) {
-  for (ParamBoundary boundary : {ParamBoundary::Free, ParamBoundary::Circle})
-    if (name == param_boundary_name(boundary)) return boundary;
-  throw InputError("unknown boundary '" + name + "'; expected free or circle");
+  return parse_named(name, {ParamBoundary::Free, ParamBoundary::Circle}, param_boundary_name, "boundary",
+                     "free or circle");
 }
 
 } // namespace iarap

@@ -98,6 +98,8 @@ TEST(ParamCommand, UsageErrors) {
       {mesh + out + " --picture " + quoted(dir / "uv.jpg"), "the picture is written as .png"},
       {mesh + out + " --picture " + quoted(dir / "disk.obj"), "is the input mesh, the output or the report"},
       {mesh + out + " --tolerance nan", "finite"},
+      {mesh + out + " --accel anderson", "add --allow-flips"},
+      {mesh + out + " --accel newton", "--accel"},
       {mesh, "--out"},
   };
   for (const auto& c : cases) {

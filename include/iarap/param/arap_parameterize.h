@@ -37,6 +37,8 @@ struct ParamReport {
   ParamInit init = ParamInit::Lscm; // the initial map the iteration started from
   int init_flipped = 0;             // flipped triangles of the requested initial map
   bool init_fallback = false;       // it flipped, so the flip-free iteration started from Tutte's map
+  ParamAccelerator accelerator = ParamAccelerator::None;
+  int accepted_mixings = 0; // Anderson: iterations whose mixed map was kept
   int iterations = 0;
   bool converged = false;       // stopped by the tolerance, not by the iteration limit
   double initial_energy = 0;    // the minimized energy of the initial map (squared mesh units)

@@ -23,6 +23,11 @@ enum class ParamBoundary {
   Circle, // every boundary vertex stays where circle_boundary puts it
 };
 
+enum class ParamAccelerator {
+  None,     // the iteration as it is
+  Anderson, // safeguarded Anderson mixing of the plain iteration's steps (allow_flips only)
+};
+
 // Vertices held at given UV positions (in the units of V): LSCM's two default pins, or a user's.
 struct UvPins {
   Eigen::VectorXi vertices; // #p distinct vertex indices
@@ -43,6 +48,8 @@ struct ParamOptions {
   // local/global iteration from the requested initial map, as in libigl and CGAL.
   bool allow_flips = false;
   int max_iterations = 100;
+  ParamAccelerator accelerator = ParamAccelerator::None;
+  int anderson_window = 5; // differences the Anderson mixing keeps, >= 1
   // Stop when an iteration lowers the energy by at most this fraction of it (CGAL's relative rule).
   double tolerance = 1e-6;
   // The flip-free step is this fraction of the largest step that keeps every det J > 0 (Smith and
@@ -85,6 +92,9 @@ ParamEnergy parse_param_energy(const std::string& name);
 std::string param_init_name(ParamInit init);
 // The inverse; throws InputError naming the name and the valid ones.
 ParamInit parse_param_init(const std::string& name);
+// "none", "anderson".
+std::string param_accelerator_name(ParamAccelerator accelerator);
+ParamAccelerator parse_param_accelerator(const std::string& name);
 // "free", "circle".
 std::string param_boundary_name(ParamBoundary boundary);
 ParamBoundary parse_param_boundary(const std::string& name);

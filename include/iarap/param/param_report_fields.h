@@ -16,6 +16,8 @@ template <typename Visitor> void visit_param_report(const ParamReport& report, V
   visit("init_flipped", report.init_flipped);
   visit("init_fallback", report.init_fallback);
   visit("pinned", report.pinned);
+  visit("accelerator", param_accelerator_name(report.accelerator));
+  visit("accepted_mixings", report.accepted_mixings);
   visit("iterations", report.iterations);
   visit("converged", report.converged);
   visit("initial_energy", report.initial_energy);
