@@ -9,3 +9,4 @@ list(APPEND IARAP_APP_SOURCES serve_command.cpp serve/api_routes.cpp serve/serve
   serve/binary_frame.cpp serve/static_files.cpp serve/private_temp_dir.cpp serve/scenario_files.cpp
   serve/route_table.cpp)
 list(APPEND IARAP_APP_SOURCES param_command.cpp param_report_json.cpp serve/param_route.cpp)
+list(APPEND IARAP_APP_SOURCES batch_command.cpp)

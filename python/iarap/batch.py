@@ -1,0 +1,281 @@
+"""Batches of iarap jobs (deform, param) on local worker processes or a Dask distributed cluster.
+
+    python3 -m iarap.batch MANIFEST [--scheduler tcp://HOST:8786] [--workers N] [--cli PATH]
+    iarap.batch.run_batch("jobs.json", scheduler=None, workers=2)
+
+A manifest is a JSON list of jobs (or {"jobs": [...]}) or a CSV file with a header row. A job:
+
+    {"mesh": "bunny.off", "output": "out/bunny_iarap.obj",        # required
+     "command": "deform",                                         # or "param"; default "deform"
+     "scenario": "bunny_scenario.json" | "constraints": "c.txt",  # deform: one of them
+     "method": "iarap",                                           # deform --method (param: --energy)
+     "args": ["--iterations", "100"]}                             # further options of the command
+
+Relative paths are relative to the manifest's folder. Each job runs the `iarap` command line tool in a
+worker process with one thread (`--threads 1`), so its output is bitwise the output of the same
+`iarap deform` run by hand; the tool writes it atomically. Dask does the scheduling (no job system of our
+own): a job whose worker dies is resubmitted by the scheduler, a job that fails is retried once
+(`retries`), and the others go on. A finished job leaves `OUTPUT.batch.json` (its command line and
+report) beside its output; a rerun skips jobs whose record matches the job, so an interrupted batch
+resumes where it stopped.
+"""
+from __future__ import annotations
+
+import argparse
+import csv
+import hashlib
+import json
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+import uuid
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, Iterable
+
+_FIELDS = {"mesh", "output", "command", "scenario", "constraints", "method", "args", "name"}
+_COMMANDS = ("deform", "param")
+
+
+class ManifestError(ValueError):
+    """A manifest that cannot be read: names the file and the job."""
+
+
+@dataclass(frozen=True)
+class Job:
+    name: str
+    command: str
+    mesh: str
+    output: str
+    options: tuple[str, ...] = field(default_factory=tuple)
+
+    def argv(self, cli: str) -> list[str]:
+        return [cli, self.command, self.mesh, *self.options, "--out", self.output, "--threads", "1", "--quiet"]
+
+    def key(self) -> str:
+        """What identifies the job's result: its command line and the inputs' sizes and times."""
+        inputs = [self.mesh] + [o for o in self.options if os.path.isfile(o)]
+        stamp = [(p, os.stat(p).st_size, os.stat(p).st_mtime_ns) for p in inputs]
+        text = json.dumps([self.command, self.mesh, self.options, self.output, stamp])
+        return hashlib.sha256(text.encode()).hexdigest()
+
+
+def _record_path(output: str) -> str:
+    return output + ".batch.json"
+
+
+def _job_from_entry(entry: dict[str, Any], where: str, base: Path) -> Job:
+    if not isinstance(entry, dict):
+        raise ManifestError(f"{where}: a job is an object with 'mesh' and 'output'")
+    unknown = set(entry) - _FIELDS
+    if unknown:
+        raise ManifestError(f"{where}: unknown field(s) {sorted(unknown)}; known: {sorted(_FIELDS)}")
+    for required in ("mesh", "output"):
+        if not entry.get(required):
+            raise ManifestError(f"{where}: '{required}' is missing")
+    command = entry.get("command") or "deform"
+    if command not in _COMMANDS:
+        raise ManifestError(f"{where}: command '{command}' is not one of {', '.join(_COMMANDS)}")
+    resolve = lambda p: str(p if Path(p).is_absolute() else base / p)  # noqa: E731
+    options: list[str] = []
+    if command == "deform":
+        if bool(entry.get("scenario")) == bool(entry.get("constraints")):
+            raise ManifestError(f"{where}: a deform job needs exactly one of 'scenario' and 'constraints'")
+        kind = "scenario" if entry.get("scenario") else "constraints"
+        options += [f"--{kind}", resolve(entry[kind])]
+    elif entry.get("scenario") or entry.get("constraints"):
+        raise ManifestError(f"{where}: a param job takes no scenario or constraints")
+    if entry.get("method"):
+        options += ["--method" if command == "deform" else "--energy", str(entry["method"])]
+    extra = entry.get("args") or []
+    if isinstance(extra, str):
+        extra = extra.split()
+    if not isinstance(extra, list) or not all(isinstance(a, str) for a in extra):
+        raise ManifestError(f"{where}: 'args' is a list of strings (or one string of blank-separated options)")
+    if any(a in ("--out", "--threads") for a in extra):
+        raise ManifestError(f"{where}: 'args' may not set --out or --threads (the batch sets them)")
+    mesh, output = resolve(entry["mesh"]), resolve(entry["output"])
+    if os.path.abspath(mesh) == os.path.abspath(output):
+        raise ManifestError(f"{where}: the output is the input mesh")
+    name = str(entry.get("name") or Path(output).name)
+    return Job(name, command, mesh, output, tuple(options + extra))
+
+
+def read_manifest(path: str | os.PathLike[str]) -> list[Job]:
+    """The jobs of a JSON or CSV manifest; ManifestError names the file and the job at fault."""
+    path = Path(path)
+    base = path.resolve().parent
+    try:
+        text = path.read_text()
+    except OSError as error:
+        raise ManifestError(f"{path}: cannot read the manifest: {error.strerror}") from None
+    if path.suffix.lower() == ".csv":
+        rows = list(csv.DictReader(text.splitlines()))
+        entries = [{k: v for k, v in row.items() if k and v} for row in rows]
+        where = [f"{path}:{i + 2}" for i in range(len(rows))]
+    else:
+        try:
+            data = json.loads(text)
+        except json.JSONDecodeError as error:
+            raise ManifestError(f"{path}:{error.lineno}: malformed JSON: {error.msg}") from None
+        entries = data.get("jobs") if isinstance(data, dict) else data
+        if not isinstance(entries, list):
+            raise ManifestError(f"{path}: expected a list of jobs or {{\"jobs\": [...]}}")
+        where = [f"{path}: job {i}" for i in range(len(entries))]
+    if not entries:
+        raise ManifestError(f"{path}: no jobs")
+    jobs = [_job_from_entry(e, w, base) for e, w in zip(entries, where)]
+    outputs: dict[str, str] = {}
+    for job, w in zip(jobs, where):
+        other = outputs.setdefault(os.path.abspath(job.output), w)
+        if other != w:
+            raise ManifestError(f"{w}: the same output as {other}: {job.output}")
+    return jobs
+
+
+def _write_atomically(path: str, text: str) -> None:
+    folder = os.path.dirname(os.path.abspath(path))
+    fd, temp = tempfile.mkstemp(dir=folder, prefix=".batch-")
+    try:
+        with os.fdopen(fd, "w") as out:
+            out.write(text)
+        os.replace(temp, path)
+    except BaseException:
+        os.unlink(temp)
+        raise
+
+
+def _finished(job: Job) -> bool:
+    try:
+        record = json.loads(Path(_record_path(job.output)).read_text())
+    except (OSError, ValueError):
+        return False
+    return record.get("key") == job.key() and os.path.isfile(job.output)
+
+
+def run_job(job: Job, cli: str) -> dict[str, Any]:
+    """Runs one job in this process (a Dask task); raises RuntimeError with the tool's message on failure."""
+    if _finished(job):
+        return {"name": job.name, "status": "skipped", "output": job.output}
+    os.makedirs(os.path.dirname(os.path.abspath(job.output)), exist_ok=True)
+    started = time.perf_counter()
+    run = subprocess.run(job.argv(cli) + ["--json"], capture_output=True, text=True)
+    seconds = time.perf_counter() - started
+    if run.returncode != 0:
+        lines = run.stderr.strip().splitlines()
+        errors = [line for line in lines if "error" in line]
+        message = (errors or lines or [f"exit code {run.returncode}"])[0]
+        raise RuntimeError(f"{job.name}: {message}")
+    try:
+        report = json.loads(run.stdout)
+    except ValueError:
+        report = None
+    _write_atomically(_record_path(job.output), json.dumps(
+        {"key": job.key(), "argv": job.argv(cli), "seconds": seconds, "report": report}, indent=1) + "\n")
+    return {"name": job.name, "status": "done", "output": job.output, "seconds": seconds}
+
+
+def _find_cli(cli: str | None) -> str:
+    for candidate in (cli, os.environ.get("IARAP_CLI"), shutil.which("iarap")):
+        if candidate and os.path.isfile(candidate) and os.access(candidate, os.X_OK):
+            return os.path.abspath(candidate)
+    raise FileNotFoundError("the iarap command line tool was not found: pass cli=PATH (--cli) or set IARAP_CLI")
+
+
+class _Progress:
+    def __init__(self, total: int, stream) -> None:
+        self.total, self.stream, self.started, self.count = total, stream, time.perf_counter(), 0
+
+    def step(self, result: dict[str, Any]) -> None:
+        self.count += 1
+        if self.stream is None:
+            return
+        elapsed = time.perf_counter() - self.started
+        rate = self.count / elapsed if elapsed > 0 else 0.0
+        eta = (self.total - self.count) / rate if rate > 0 else float("inf")
+        filled = int(30 * self.count / self.total)
+        self.stream.write(f"\r[{'#' * filled}{'.' * (30 - filled)}] {self.count}/{self.total}  "
+                          f"{rate:.2f} jobs/s  ETA {eta:.0f} s  {result['name']}: {result['status']}\033[K")
+        if self.count == self.total:
+            self.stream.write("\n")
+        self.stream.flush()
+
+
+def run_batch(manifest: str | os.PathLike[str] | Iterable[Job], *, scheduler: str | None = None,
+              workers: int = 2, cli: str | None = None, retries: int = 1, progress=sys.stderr,
+              client=None) -> list[dict[str, Any]]:
+    """Runs the jobs; returns one result per job in manifest order: {"name", "status" ("done", "skipped"
+    or "failed"), "output", and "seconds" or "error"}. scheduler: a Dask scheduler address; None starts a
+    local cluster of `workers` single-threaded worker processes; client: an existing distributed.Client."""
+    try:
+        from distributed import Client, LocalCluster, as_completed
+    except ImportError:
+        raise ImportError("iarap batch runs on Dask: apt-get install python3-distributed") from None
+
+    jobs = read_manifest(manifest) if isinstance(manifest, (str, os.PathLike)) else list(manifest)
+    cli = _find_cli(cli)
+    own_cluster = None
+    if client is None:
+        if scheduler:
+            client = Client(scheduler)
+        else:
+            own_cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
+                                       dashboard_address=":0")
+            client = Client(own_cluster)
+    try:
+        run = uuid.uuid4().hex[:8]  # keys unique per run: a rerun must not get an earlier run's results
+        futures = {client.submit(run_job, job, cli, retries=retries, pure=False, key=f"iarap-{run}-{i}-{job.name}"): i
+                   for i, job in enumerate(jobs)}
+        results: list[dict[str, Any] | None] = [None] * len(jobs)
+        bar = _Progress(len(jobs), progress)
+        for future in as_completed(futures):
+            i = futures[future]
+            try:
+                results[i] = future.result()
+            except Exception as error:  # the job's own error, or the scheduler's after repeated worker deaths
+                results[i] = {"name": jobs[i].name, "status": "failed", "output": jobs[i].output,
+                              "error": str(error)}
+            bar.step(results[i])
+        return results  # type: ignore[return-value]
+    finally:
+        if own_cluster is not None:
+            client.close()
+            own_cluster.close()
+        elif scheduler:
+            client.close()
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(prog="iarap batch", description="Run a manifest of iarap jobs on local "
+                                     "worker processes or a Dask cluster")
+    parser.add_argument("manifest", help="JSON or CSV list of jobs (see python -m pydoc iarap.batch)")
+    parser.add_argument("--scheduler", help="Dask scheduler address (tcp://host:8786); default: a local cluster")
+    parser.add_argument("--workers", type=int, default=2, help="local worker processes (default 2)")
+    parser.add_argument("--cli", help="the iarap tool (default: $IARAP_CLI, then iarap on PATH)")
+    parser.add_argument("--retries", type=int, default=1, help="retries of a failed job (default 1)")
+    parser.add_argument("--json", action="store_true", help="print the results as JSON on stdout")
+    args = parser.parse_args(argv)
+    if args.workers < 1 or args.retries < 0:
+        parser.error("--workers must be >= 1 and --retries >= 0")
+    try:
+        results = run_batch(args.manifest, scheduler=args.scheduler, workers=args.workers, cli=args.cli,
+                            retries=args.retries)
+    except (ManifestError, FileNotFoundError, ImportError) as error:
+        print(f"iarap batch: error: {error}", file=sys.stderr)
+        return 2
+    failed = [r for r in results if r["status"] == "failed"]
+    for r in failed:
+        print(f"iarap batch: failed: {r['error']}", file=sys.stderr)
+    counts = {s: sum(r["status"] == s for r in results) for s in ("done", "skipped", "failed")}
+    print(f"iarap batch: {counts['done']} done, {counts['skipped']} skipped, {counts['failed']} failed",
+          file=sys.stderr)
+    if args.json:
+        print(json.dumps(results, indent=1))
+    return 1 if failed else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

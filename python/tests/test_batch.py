@@ -1,0 +1,147 @@
+"""iarap.batch on a local Dask cluster of 2 workers: outputs bitwise those of sequential `iarap deform`
+runs, a failing job reported while the others finish, a rerun skipping finished jobs, a worker killed
+mid-run, and manifest errors naming the file and job."""
+import json
+import os
+import signal
+import subprocess
+import threading
+import time
+from pathlib import Path
+
+import pytest
+
+distributed = pytest.importorskip("distributed")
+from iarap import batch  # noqa: E402
+
+DATA = Path(__file__).resolve().parents[2] / "data"
+
+
+def deform_jobs(tmp_path, count, extra=()):
+    """count deform jobs over the bundled bunny: the three methods, scenario and constraints files."""
+    jobs = []
+    for k in range(count):
+        entry = {"mesh": str(DATA / "bunny.off"), "method": ["arap", "spokes-rims", "iarap"][k % 3],
+                 "output": str(tmp_path / "out" / f"job{k}.obj"), "args": ["--iterations", str(5 + k % 4), *extra]}
+        if k % 2:
+            entry["constraints"] = str(DATA / "bunny_constraints.txt")
+        else:
+            entry["scenario"] = str(DATA / "bunny_scenario.json")
+        jobs.append(entry)
+    return jobs
+
+
+def write_manifest(tmp_path, jobs, name="jobs.json"):
+    path = tmp_path / name
+    path.write_text(json.dumps(jobs))
+    return path
+
+
+def sequential_outputs(cli, jobs, tmp_path):
+    cli = str(cli)
+    """The same command lines run one after the other: the reference bytes."""
+    reference = {}
+    for job in jobs:
+        out = tmp_path / "sequential" / Path(job.output).name
+        out.parent.mkdir(exist_ok=True)
+        argv = job.argv(cli)
+        argv[argv.index("--out") + 1] = str(out)
+        subprocess.run(argv, check=True, capture_output=True)
+        reference[job.output] = out.read_bytes()
+    return reference
+
+
+@pytest.fixture(scope="module")
+def client():
+    cluster = distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=":0")
+    with distributed.Client(cluster) as c:
+        yield c
+    cluster.close()
+
+
+def test_outputs_equal_sequential_runs_and_failures_are_contained(cli, tmp_path, client):
+    entries = deform_jobs(tmp_path, 6)
+    entries.append({"mesh": str(DATA / "bunny.off"), "constraints": str(tmp_path / "missing.txt"),
+                    "output": str(tmp_path / "out" / "broken.obj")})
+    manifest = write_manifest(tmp_path, entries)
+    jobs = batch.read_manifest(manifest)
+    results = batch.run_batch(manifest, cli=cli, client=client, progress=None)
+    assert [r["status"] for r in results] == ["done"] * 6 + ["failed"]
+    assert "missing.txt" in results[-1]["error"]
+    assert not os.path.exists(tmp_path / "out" / "broken.obj")
+    reference = sequential_outputs(cli, jobs[:6], tmp_path)
+    for job in jobs[:6]:
+        assert Path(job.output).read_bytes() == reference[job.output], job.name
+        record = json.loads(Path(job.output + ".batch.json").read_text())
+        assert record["report"]["vertices"] == 3485
+    # A rerun skips what is finished; the broken job is tried (and fails) again.
+    again = batch.run_batch(manifest, cli=cli, client=client, progress=None)
+    assert [r["status"] for r in again] == ["skipped"] * 6 + ["failed"]
+    # A changed job (other iterations) is not mistaken for a finished one.
+    entries[0]["args"] = ["--iterations", "9"]
+    write_manifest(tmp_path, entries)
+    third = batch.run_batch(manifest, cli=cli, client=client, progress=None)
+    assert third[0]["status"] == "done" and third[1]["status"] == "skipped"
+
+
+def test_a_worker_killed_mid_run(cli, tmp_path, client):
+    # 12 jobs of ~0.3-1 s each (plain iterations) on 2 workers; one worker is killed once jobs are running.
+    jobs_entries = deform_jobs(tmp_path, 12, extra=("--accel", "none"))
+    for e in jobs_entries:
+        e["args"][1] = "200"
+    manifest = write_manifest(tmp_path, jobs_entries)
+    outcome = {}
+    runner = threading.Thread(target=lambda: outcome.update(
+        results=batch.run_batch(manifest, cli=cli, client=client, progress=None)))
+    started = time.perf_counter()
+    runner.start()
+    while not list((tmp_path / "out").glob("*.batch.json")) and time.perf_counter() - started < 120:
+        time.sleep(0.05)
+    victim = next(iter(client.run(os.getpid).values()))
+    os.kill(victim, signal.SIGKILL)
+    runner.join(timeout=300)
+    assert not runner.is_alive()
+    results = outcome["results"]
+    assert [r["status"] for r in results] == ["done"] * 12, results
+    jobs = batch.read_manifest(manifest)
+    reference = sequential_outputs(cli, jobs, tmp_path)
+    for job in jobs:
+        assert Path(job.output).read_bytes() == reference[job.output], job.name
+
+
+@pytest.mark.parametrize("entry, says", [
+    ({"mesh": "a.off"}, "'output' is missing"),
+    ({"mesh": "a.off", "output": "b.obj", "colour": 1}, "unknown field"),
+    ({"mesh": "a.off", "output": "b.obj"}, "exactly one of 'scenario' and 'constraints'"),
+    ({"mesh": "a.off", "output": "b.obj", "scenario": "s.json", "constraints": "c.txt"}, "exactly one"),
+    ({"mesh": "a.off", "output": "b.obj", "command": "simulate"}, "not one of deform, param"),
+    ({"mesh": "a.off", "output": "b.obj", "command": "param", "args": ["--out", "x"]}, "may not set --out"),
+    ({"mesh": "a.off", "output": "a.off", "command": "param"}, "the output is the input mesh"),
+])
+def test_manifest_errors_name_the_job(tmp_path, entry, says):
+    manifest = write_manifest(tmp_path, [entry])
+    with pytest.raises(batch.ManifestError, match=says) as error:
+        batch.read_manifest(manifest)
+    assert "jobs.json: job 0" in str(error.value)
+
+
+def test_csv_manifest_and_duplicate_outputs(tmp_path):
+    (tmp_path / "jobs.csv").write_text("mesh,output,command,method\nbunny.off,a.obj,param,iarap\n"
+                                       "bunny.off,a.obj,param,arap\n")
+    with pytest.raises(batch.ManifestError, match=r"jobs.csv:3: the same output as .*jobs.csv:2"):
+        batch.read_manifest(tmp_path / "jobs.csv")
+    (tmp_path / "bad.json").write_text('[{"mesh": "a.off",\n "output": }]')
+    with pytest.raises(batch.ManifestError, match=r"bad.json:2: malformed JSON"):
+        batch.read_manifest(tmp_path / "bad.json")
+
+
+def test_the_iarap_batch_command(cli, tmp_path):
+    """`iarap batch MANIFEST` hands over to python -m iarap.batch with the tool as the jobs' executable."""
+    manifest = write_manifest(tmp_path, deform_jobs(tmp_path, 2))
+    run = subprocess.run([str(cli), "batch", str(manifest), "--workers", "1", "--json"], capture_output=True,
+                         text=True, timeout=300)
+    assert run.returncode == 0, run.stderr
+    assert [r["status"] for r in json.loads(run.stdout)] == ["done", "done"]
+    assert "2 done, 0 skipped, 0 failed" in run.stderr
+    bad = subprocess.run([str(cli), "batch", str(tmp_path / "none.json")], capture_output=True, text=True)
+    assert bad.returncode == 2 and "none.json: cannot read the manifest" in bad.stderr
