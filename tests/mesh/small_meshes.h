@@ -1,6 +1,7 @@
 // Tiny meshes built in code for the validation, repair and subdivision tests.
 #pragma once
 #include <Eigen/Core>
+#include <cmath>
 
 namespace iarap::test {
 
@@ -46,6 +47,34 @@ inline SmallMesh as_soup(const SmallMesh& mesh) {
       s.F(f, k) = static_cast<int>(3 * f + k);
     }
   return s;
+}
+
+} // namespace iarap::test
+
+namespace iarap::test {
+
+// A Moebius strip of n quads (2 n triangles) around a circle of radius 2, width 1: manifold, one boundary
+// loop, no consistent orientation.
+inline SmallMesh moebius_strip(int n = 12) {
+  SmallMesh m;
+  m.V.resize(2 * n, 3);
+  for (int i = 0; i < n; ++i) {
+    const double t = 2 * 3.14159265358979323846 * i / n, half = t / 2;
+    for (int side = 0; side < 2; ++side) {
+      const double s = side == 0 ? -0.5 : 0.5;
+      m.V.row(2 * i + side) << (2 + s * std::cos(half)) * std::cos(t), (2 + s * std::cos(half)) * std::sin(t),
+          s * std::sin(half);
+    }
+  }
+  m.F.resize(2 * n, 3);
+  for (int i = 0; i < n; ++i) {
+    const int a = 2 * i, b = 2 * i + 1;
+    // The last quad joins the first with its sides swapped: the half twist.
+    const int c = i + 1 < n ? 2 * (i + 1) : 1, d = i + 1 < n ? 2 * (i + 1) + 1 : 0;
+    m.F.row(2 * i) << a, c, b;
+    m.F.row(2 * i + 1) << b, c, d;
+  }
+  return m;
 }
 
 } // namespace iarap::test
