@@ -1,6 +1,5 @@
 #include "iarap/core/errors.h"
 #include "iarap/mesh/repair.h"
-#include "iarap/mesh/subdivide.h"
 #include "iarap/mesh/validate.h"
 #include "small_meshes.h"
 
@@ -97,25 +96,8 @@ namespace {
 
 using iarap::test::SmallMesh;
 
-// The octahedron subdivided once: 18 vertices, 32 faces, outward-oriented.
-SmallMesh sphere() {
-  SmallMesh m = iarap::test::octahedron();
-  iarap::subdivide_midpoint(m.V, m.F, 1);
-  return m;
-}
-
 void reverse_face(Eigen::MatrixXi& F, Eigen::Index f) {
   std::swap(F(f, 1), F(f, 2));
-}
-
-// m with the faces of `extra` appended (on vertices of m and the rows of `new_vertices`).
-SmallMesh with_faces(const SmallMesh& m, const Eigen::MatrixXd& new_vertices, const Eigen::MatrixXi& extra) {
-  SmallMesh out;
-  out.V.resize(m.V.rows() + new_vertices.rows(), 3);
-  out.V << m.V, new_vertices;
-  out.F.resize(m.F.rows() + extra.rows(), 3);
-  out.F << m.F, extra;
-  return out;
 }
 
 bool has_action(const iarap::RepairResult& r, const std::string& part) {
@@ -127,7 +109,7 @@ bool has_action(const iarap::RepairResult& r, const std::string& part) {
 } // namespace
 
 TEST(RepairOrientation, FlipsTheMinorityBackToTheOriginal) {
-  const SmallMesh m = sphere();
+  const SmallMesh m = iarap::test::subdivided_octahedron();
   SmallMesh bad = m;
   for (int f : {1, 7, 20}) reverse_face(bad.F, f);
   ASSERT_FALSE(iarap::check_mesh(bad.V, bad.F).usable());
@@ -140,7 +122,7 @@ TEST(RepairOrientation, FlipsTheMinorityBackToTheOriginal) {
 }
 
 TEST(RepairOrientation, KeepsTheOrientationMostFacesHave) {
-  const SmallMesh m = sphere();
+  const SmallMesh m = iarap::test::subdivided_octahedron();
   SmallMesh bad = m;
   for (Eigen::Index f = 2; f < bad.F.rows(); ++f) reverse_face(bad.F, f); // 30 of 32 reversed
   const iarap::RepairResult r = iarap::repair_mesh(bad.V, bad.F);
@@ -153,12 +135,12 @@ TEST(RepairOrientation, KeepsTheOrientationMostFacesHave) {
 TEST(RepairOrientation, EachComponentOnItsOwn) {
   // Two spheres side by side: the second entirely reversed (consistent by itself: kept), the first with
   // one reversed face.
-  const SmallMesh m = sphere();
+  const SmallMesh m = iarap::test::subdivided_octahedron();
   Eigen::MatrixXd shifted = m.V;
   shifted.col(0).array() += 5;
   Eigen::MatrixXi second = m.F.array() + static_cast<int>(m.V.rows());
   for (Eigen::Index f = 0; f < second.rows(); ++f) reverse_face(second, f);
-  SmallMesh two = with_faces(m, shifted, second);
+  SmallMesh two = iarap::test::appended(m, shifted, second);
   reverse_face(two.F, 4);
   const iarap::RepairResult r = iarap::repair_mesh(two.V, two.F);
   EXPECT_EQ(r.counts.flipped_faces, 1);
@@ -218,7 +200,8 @@ TEST(RepairSplit, FinOnAnEdgeIsSeparatedFromTheSurface) {
   const SmallMesh m = iarap::test::octahedron();
   // The fin (0, 2, 6) stands on edge (0, 2) of faces 0 and 4, its tip straight out: at 125 degrees to
   // either face, flatter than the 109 degrees between them, yet the faces of one piece pair first.
-  const SmallMesh fin = with_faces(m, Eigen::RowVector3d(1.5, 1.5, 0), Eigen::RowVector3i(0, 2, 6));
+  const SmallMesh fin =
+      iarap::test::appended(m, Eigen::RowVector3d(1.5, 1.5, 0), Eigen::RowVector3i(0, 2, 6));
   ASSERT_EQ(iarap::check_mesh(fin.V, fin.F).non_manifold_edges, 1);
   const iarap::RepairResult r = iarap::repair_mesh(fin.V, fin.F);
   EXPECT_EQ(r.counts.split_edges, 1);
@@ -257,7 +240,7 @@ TEST(RepairFaces, DuplicatesEitherWayRoundAreRemoved) {
   const SmallMesh m = iarap::test::octahedron();
   Eigen::MatrixXi extra(2, 3);
   extra << m.F.row(3), m.F(5, 0), m.F(5, 2), m.F(5, 1);
-  const SmallMesh dup = with_faces(m, Eigen::MatrixXd(0, 3), extra);
+  const SmallMesh dup = iarap::test::appended(m, Eigen::MatrixXd(0, 3), extra);
   const iarap::RepairResult r = iarap::repair_mesh(dup.V, dup.F);
   EXPECT_EQ(r.counts.duplicate_faces, 2);
   EXPECT_EQ(r.F, m.F);
@@ -265,7 +248,8 @@ TEST(RepairFaces, DuplicatesEitherWayRoundAreRemoved) {
 }
 
 TEST(RepairFaces, FaceRepeatingAVertexGoesWithZeroAreaFaces) {
-  SmallMesh m = with_faces(iarap::test::octahedron(), Eigen::MatrixXd(0, 3), Eigen::RowVector3i(0, 0, 2));
+  SmallMesh m =
+      iarap::test::appended(iarap::test::octahedron(), Eigen::MatrixXd(0, 3), Eigen::RowVector3i(0, 0, 2));
   EXPECT_EQ(iarap::repair_mesh(m.V, m.F).F.rows(), 9); // kept by default: check_mesh then names it
   iarap::RepairOptions options;
   options.remove_zero_area = true;
@@ -276,7 +260,7 @@ TEST(RepairFaces, FaceRepeatingAVertexGoesWithZeroAreaFaces) {
 }
 
 TEST(RepairMesh, CleanMeshIsReturnedAsItIs) {
-  const SmallMesh m = sphere();
+  const SmallMesh m = iarap::test::subdivided_octahedron();
   iarap::RepairOptions all;
   all.remove_zero_area = true;
   const iarap::RepairResult r = iarap::repair_mesh(m.V, m.F, all);

@@ -2,7 +2,6 @@
 // `iarap deform --repair` runs them (repair_pipeline.h). Each either is repaired, the repair counting
 // exactly the defects put in, and then deforms with all three methods, or is refused with an error that
 // names the file and the element (line, vertex, face). Never a crash or another exception.
-#include "iarap/mesh/subdivide.h"
 #include "repair_pipeline.h"
 #include "small_meshes.h"
 #include "test_support.h"
@@ -21,13 +20,6 @@ namespace {
 
 using iarap::RepairCounts;
 using iarap::test::SmallMesh;
-
-// The octahedron subdivided once: 18 vertices, 32 faces, closed, outward-oriented, Delaunay.
-SmallMesh sphere() {
-  SmallMesh m = iarap::test::octahedron();
-  iarap::subdivide_midpoint(m.V, m.F, 1);
-  return m;
-}
 
 std::string obj_text(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
   std::ostringstream text;
@@ -48,15 +40,6 @@ std::string off_text(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, Eigen::
   return text.str();
 }
 
-SmallMesh append(const SmallMesh& m, const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
-  SmallMesh out;
-  out.V.resize(m.V.rows() + V.rows(), 3);
-  out.V << m.V, V;
-  out.F.resize(m.F.rows() + F.rows(), 3);
-  out.F << m.F, F;
-  return out;
-}
-
 SmallMesh flipped(SmallMesh m, const std::vector<int>& faces) {
   for (int f : faces) std::swap(m.F(f, 1), m.F(f, 2));
   return m;
@@ -64,7 +47,7 @@ SmallMesh flipped(SmallMesh m, const std::vector<int>& faces) {
 
 // A second sphere that touches the first at one vertex: it shares the vertex of largest x.
 SmallMesh two_spheres_at_a_vertex() {
-  const SmallMesh s = sphere();
+  const SmallMesh s = iarap::test::subdivided_octahedron();
   Eigen::Index tip = 0;
   s.V.col(0).maxCoeff(&tip);
   Eigen::MatrixXd V2 = s.V;
@@ -75,14 +58,15 @@ SmallMesh two_spheres_at_a_vertex() {
   Eigen::MatrixXi F2 = s.F.array() + n;
   for (Eigen::Index i = 0; i < F2.size(); ++i)
     if (F2.data()[i] == n + other_tip) F2.data()[i] = static_cast<int>(tip);
-  return append(s, V2, F2); // V2's own copy of the tip stays in the file, unused
+  return iarap::test::appended(s, V2, F2); // V2's own copy of the tip stays in the file, unused
 }
 
 // The sphere with a fin: a triangle standing on the edge of face 0 between its corners 0 and 1.
 SmallMesh sphere_with_fin() {
-  const SmallMesh s = sphere();
+  const SmallMesh s = iarap::test::subdivided_octahedron();
   const Eigen::RowVector3d mid = 0.5 * (s.V.row(s.F(0, 0)) + s.V.row(s.F(0, 1)));
-  return append(s, 2 * mid, Eigen::RowVector3i(s.F(0, 0), s.F(0, 1), static_cast<int>(s.V.rows())));
+  return iarap::test::appended(s, 2 * mid,
+                               Eigen::RowVector3i(s.F(0, 0), s.F(0, 1), static_cast<int>(s.V.rows())));
 }
 
 struct Case {
@@ -106,14 +90,14 @@ Case refused(std::string name, std::string extension, std::string content, std::
 }
 
 std::vector<Case> cases() {
-  const SmallMesh s = sphere();
+  const SmallMesh s = iarap::test::subdivided_octahedron();
   std::vector<Case> all;
   all.push_back(repaired(
       "flipped_faces", flipped(s, {3, 11, 25}), [](RepairCounts& c) { c.flipped_faces = 3; }, 18, 32));
   Eigen::MatrixXi dup(2, 3);
   dup << s.F.row(2), s.F(9, 0), s.F(9, 2), s.F(9, 1); // the same face, and one the other way round
   all.push_back(repaired(
-      "duplicate_faces", append(s, Eigen::MatrixXd(0, 3), dup),
+      "duplicate_faces", iarap::test::appended(s, Eigen::MatrixXd(0, 3), dup),
       [](RepairCounts& c) { c.duplicate_faces = 2; }, 18, 32));
   all.push_back(repaired(
       "non_manifold_vertex", two_spheres_at_a_vertex(),
@@ -133,28 +117,28 @@ std::vector<Case> cases() {
   // then used by no face.
   const Eigen::RowVector3d mid = 0.5 * (s.V.row(s.F(0, 0)) + s.V.row(s.F(0, 1)));
   all.push_back(repaired(
-      "zero_area_face", append(s, mid, Eigen::RowVector3i(s.F(0, 0), s.F(0, 1), 18)),
+      "zero_area_face", iarap::test::appended(s, mid, Eigen::RowVector3i(s.F(0, 0), s.F(0, 1), 18)),
       [](RepairCounts& c) {
         c.zero_area_faces = 1;
         c.unreferenced_vertices = 1;
       },
       18, 32));
   all.push_back(repaired(
-      "repeated_vertex_face", append(s, Eigen::MatrixXd(0, 3), Eigen::RowVector3i(0, 0, 1)),
+      "repeated_vertex_face", iarap::test::appended(s, Eigen::MatrixXd(0, 3), Eigen::RowVector3i(0, 0, 1)),
       [](RepairCounts& c) { c.repeated_vertex_faces = 1; }, 18, 32));
   const SmallMesh soup = iarap::test::as_soup(s);
   all.push_back(repaired(
       "duplicate_vertices", soup, [](RepairCounts& c) { c.welded_vertices = 96 - 18; }, 18, 32));
   all.push_back(repaired(
       "isolated_vertices",
-      append(s, Eigen::MatrixXd(Eigen::MatrixXd::Identity(2, 3) * 7.0), Eigen::MatrixXi(0, 3)),
+      iarap::test::appended(s, Eigen::MatrixXd(Eigen::MatrixXd::Identity(2, 3) * 7.0), Eigen::MatrixXi(0, 3)),
       [](RepairCounts& c) { c.unreferenced_vertices = 2; }, 18, 32));
   all.push_back(repaired(
-      "unused_nan_vertex", append(s, Eigen::RowVector3d(NAN, 0, 0), Eigen::MatrixXi(0, 3)),
+      "unused_nan_vertex", iarap::test::appended(s, Eigen::RowVector3d(NAN, 0, 0), Eigen::MatrixXi(0, 3)),
       [](RepairCounts& c) { c.unreferenced_vertices = 1; }, 18, 32));
   // Everything at once on the soup: welding, then the fin, a flipped face, a duplicate, a sliver.
   SmallMesh dirty = flipped(iarap::test::as_soup(sphere_with_fin()), {5});
-  dirty = append(dirty, Eigen::MatrixXd(0, 3), dirty.F.row(7));
+  dirty = iarap::test::appended(dirty, Eigen::MatrixXd(0, 3), dirty.F.row(7));
   all.push_back(repaired(
       "all_at_once", dirty,
       [](RepairCounts& c) {
@@ -228,7 +212,7 @@ TEST(RobustnessSuite, EveryDirtyFileIsRepairedOrNamed) {
 // The repaired sphere with reversed or duplicate faces is the clean sphere, so it deforms exactly as the
 // clean one does: the repair changes no face it did not have to.
 TEST(RobustnessSuite, RepairedSphereIsTheCleanSphere) {
-  const SmallMesh s = sphere();
+  const SmallMesh s = iarap::test::subdivided_octahedron();
   for (const SmallMesh& dirty : {flipped(s, {3, 11, 25}), flipped(s, {0})}) {
     const iarap::RepairResult r = iarap::repair_mesh(dirty.V, dirty.F, iarap::test::deform_repair_options());
     EXPECT_EQ(r.F, s.F);

@@ -1,5 +1,7 @@
 // Tiny meshes built in code for the validation, repair and subdivision tests.
 #pragma once
+#include "iarap/mesh/subdivide.h"
+
 #include <Eigen/Core>
 #include <cmath>
 
@@ -20,6 +22,13 @@ inline SmallMesh octahedron() {
   return m;
 }
 
+// The octahedron subdivided once (midpoints): 18 vertices, 32 faces, closed, outward-oriented, Delaunay.
+inline SmallMesh subdivided_octahedron() {
+  SmallMesh m = octahedron();
+  subdivide_midpoint(m.V, m.F, 1);
+  return m;
+}
+
 // Two closed square pyramids (apex up and apex down) that touch only at vertex 0: a non-manifold vertex
 // whose faces form two fans, while every edge is manifold.
 inline SmallMesh two_cones_sharing_a_tip() {
@@ -34,6 +43,16 @@ inline SmallMesh two_cones_sharing_a_tip() {
       // Lower cone: mirrored orientation.
       0, 5, 6, 0, 6, 7, 0, 7, 8, 0, 8, 5, 5, 7, 6, 5, 8, 7;
   return m;
+}
+
+// m with the rows of V appended to its vertices and those of F (on the vertices of both) to its faces.
+inline SmallMesh appended(const SmallMesh& m, const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
+  SmallMesh out;
+  out.V.resize(m.V.rows() + V.rows(), 3);
+  out.V << m.V, V;
+  out.F.resize(m.F.rows() + F.rows(), 3);
+  out.F << m.F, F;
+  return out;
 }
 
 // The mesh as an STL-like triangle soup: every face gets its own three copies of its corners.
