@@ -11,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <string>
 
 namespace iarap::test {
@@ -44,11 +45,12 @@ inline void expect_repaired_topology(const RepairResult& r, const std::string& w
   EXPECT_EQ(r.counts.non_orientable_pieces, check.non_orientable_components) << what;
 }
 
-// One solve per method on V / s (the CLI's exact power-of-two scaling): vertex 0 stays, the vertex of
+// One solve with `method` on V / s (the CLI's exact power-of-two scaling): vertex 0 stays, the vertex of
 // largest x moves by a tenth of the diagonal along y; components without a constraint are pinned (the
 // repair may split a mesh into pieces). Checks what holds for any mesh: a finite result with the
 // constrained vertices at their targets. Throws what the solver throws.
-inline void deform_with_every_method(const Eigen::MatrixXd& V_in, const Eigen::MatrixXi& F, int iterations) {
+inline void deform_with(ArapMethod method, const Eigen::MatrixXd& V_in, const Eigen::MatrixXi& F,
+                        int iterations) {
   const Eigen::MatrixXd V = V_in / normalizing_scale(V_in);
   Eigen::Index handle = 0;
   V.col(0).maxCoeff(&handle);
@@ -57,20 +59,24 @@ inline void deform_with_every_method(const Eigen::MatrixXd& V_in, const Eigen::M
   Eigen::MatrixXd targets(fixed.size(), 3);
   for (Eigen::Index k = 0; k < fixed.size(); ++k) targets.row(k) = V.row(fixed(k));
   targets(fixed.size() - 1, 1) += 0.1 * bounding_box_diagonal(V);
-  for (const ArapMethod method : {ArapMethod::Arap, ArapMethod::SpokesRims, ArapMethod::Iarap}) {
-    ArapOptions options;
-    options.method = method;
-    options.pin_unconstrained_components = true;
-    ArapData data = arap_precompute(V, F, fixed, options);
-    Eigen::MatrixXd U = V;
-    ArapSolveOptions solve;
-    solve.max_iterations = iterations;
-    const ArapReport report = arap_solve(data, targets, U, solve);
-    EXPECT_TRUE(U.allFinite()) << arap_method_name(method);
-    EXPECT_TRUE(std::isfinite(report.energies.empty() ? report.initial_energy : report.energies.back()));
-    for (Eigen::Index k = 0; k < fixed.size(); ++k)
-      EXPECT_EQ(U.row(fixed(k)), targets.row(k)) << arap_method_name(method) << ": vertex " << fixed(k);
-  }
+  ArapOptions options;
+  options.method = method;
+  options.pin_unconstrained_components = true;
+  ArapData data = arap_precompute(V, F, fixed, options);
+  Eigen::MatrixXd U = V;
+  ArapSolveOptions solve;
+  solve.max_iterations = iterations;
+  const ArapReport report = arap_solve(data, targets, U, solve);
+  EXPECT_TRUE(U.allFinite()) << arap_method_name(method);
+  EXPECT_TRUE(std::isfinite(report.energies.empty() ? report.initial_energy : report.energies.back()));
+  for (Eigen::Index k = 0; k < fixed.size(); ++k)
+    EXPECT_EQ(U.row(fixed(k)), targets.row(k)) << arap_method_name(method) << ": vertex " << fixed(k);
+}
+
+inline constexpr ArapMethod every_method[] = {ArapMethod::Arap, ArapMethod::SpokesRims, ArapMethod::Iarap};
+
+inline void deform_with_every_method(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, int iterations) {
+  for (const ArapMethod method : every_method) deform_with(method, V, F, iterations);
 }
 
 } // namespace iarap::test
