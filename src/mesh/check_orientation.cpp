@@ -28,9 +28,8 @@ void check_orientation(const CheckedFaces& faces, const EdgeTopology& t, MeshRep
                        face(first_face) + "): no choice of face orientations fixes it, and ARAP needs one; " +
                        edges + " faces oriented in the same direction" + where);
   else
-    r.errors.push_back(edges + " inconsistently oriented faces" + where +
-                       "; the surface is orientable: reverse the faces of one side (re-export with "
-                       "consistent normals)");
+    r.errors.push_back(edges + " inconsistently oriented faces" + where + "; the surface is orientable" +
+                       repair_hint("reverses the faces that disagree with most of their piece", "orient"));
 }
 
 } // namespace iarap::mesh_checks

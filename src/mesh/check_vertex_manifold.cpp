@@ -59,7 +59,8 @@ void check_vertex_manifold(const CheckedFaces& faces, const EdgeTopology& t, int
   if (r.non_manifold_vertices > open)
     r.errors.push_back(plural(r.non_manifold_vertices - open, "vertex is", "vertices are") +
                        " non-manifold (a closed fan of faces touches another fan there); first: vertex " +
-                       std::to_string(first_closed));
+                       std::to_string(first_closed) +
+                       repair_hint("splits them into one copy per fan", "split_non_manifold"));
 }
 
 } // namespace iarap::mesh_checks
