@@ -210,6 +210,7 @@ TEST(RobustnessSuite, EveryDirtyFileIsRepairedOrNamed) {
     std::cout << c.name << ": repaired: " << describe(r.counts) << "\n";
   }
   iarap::set_thread_count(0);
+  std::filesystem::remove_all(dir);
 }
 
 // The repaired sphere with reversed or duplicate faces is the clean sphere, so it deforms exactly as the
