@@ -28,6 +28,8 @@
 #include <iostream>
 #include <optional>
 #include <sstream>
+#include <utility>
+#include <vector>
 
 namespace iarap::cli {
 namespace {
@@ -44,8 +46,35 @@ struct DeformArguments {
   bool json = false, repair = false, pin_unconstrained = false, quiet = false;
 };
 
+// A constrained vertex that --repair split (one copy per fan or sheet) gets every copy constrained to its
+// target: a copy left free would leave its sheet hanging. Copies a geometric region already selected (they
+// sit at the vertex's position) stay as they are.
+void constrain_split_copies(ConstraintSet& constraints, const RepairResult& repaired) {
+  const Eigen::Index n = repaired.V.rows(), count = constraints.fixed.size();
+  std::vector<Eigen::Index> row_of(static_cast<std::size_t>(n), -1);
+  for (Eigen::Index k = 0; k < count; ++k) row_of[static_cast<std::size_t>(constraints.fixed(k))] = k;
+  std::vector<std::pair<int, Eigen::Index>> added; // (copy, row of its constrained first copy)
+  for (Eigen::Index v = 0; v < n; ++v) {
+    const int first = repaired.old_to_new(repaired.new_to_old(v));
+    if (first != v && row_of[static_cast<std::size_t>(v)] < 0 && row_of[static_cast<std::size_t>(first)] >= 0)
+      added.emplace_back(static_cast<int>(v), row_of[static_cast<std::size_t>(first)]);
+  }
+  if (added.empty()) return;
+  const auto extra = static_cast<Eigen::Index>(added.size());
+  constraints.fixed.conservativeResize(count + extra);
+  constraints.targets.conservativeResize(count + extra, 3);
+  const bool named = static_cast<Eigen::Index>(constraints.origins.size()) == count;
+  for (Eigen::Index i = 0; i < extra; ++i) {
+    const auto& [copy, row] = added[static_cast<std::size_t>(i)];
+    constraints.fixed(count + i) = copy;
+    constraints.targets.row(count + i) = constraints.targets.row(row);
+    if (named) constraints.origins.push_back(constraints.origins[static_cast<std::size_t>(row)]);
+  }
+}
+
 // The mesh to deform and its constraints. With --repair the mesh is repaired first (welded, unreferenced
-// vertices and zero-area faces dropped, the defects `iarap info` warns about) and a scenario is resolved on
+// vertices and zero-area and duplicate faces dropped, non-manifold edges and vertices split, faces
+// oriented consistently: repair_mesh with remove_zero_area) and a scenario is resolved on
 // the repaired mesh, so that its regions cannot select a vertex the repair drops; a constraints file's
 // indices are carried over.
 void load_mesh_and_constraints(const DeformArguments& args, MeshData& mesh, ConstraintSet& constraints,
@@ -70,6 +99,7 @@ void load_mesh_and_constraints(const DeformArguments& args, MeshData& mesh, Cons
         read_constraints(args.constraints, static_cast<int>(mesh.V.rows()), static_cast<int>(mesh.F.rows())),
         repaired.old_to_new);
   }
+  constrain_split_copies(constraints, repaired);
   mesh.V = std::move(repaired.V);
   mesh.F = std::move(repaired.F);
   j["repair"] = repaired.actions;
@@ -350,8 +380,10 @@ const bool registered = register_command(
        sub->add_option("--out", args->out, "Output mesh (.obj .off .ply), written atomically")->required();
        sub->add_flag("--json", args->json, "Print the run's report as one JSON object on stdout");
        sub->add_option("--report", args->report, "Also write the JSON report to this file (atomically)");
-       sub->add_flag("--repair", args->repair,
-                     "Weld coincident and drop unreferenced vertices first (constraint indices are mapped)");
+       sub->add_flag(
+           "--repair", args->repair,
+           "Repair the mesh first: weld, drop unreferenced vertices and degenerate or duplicate faces, split "
+           "non-manifold edges and vertices, orient faces consistently (constraint indices are mapped)");
        sub->add_flag("--pin-unconstrained", args->pin_unconstrained,
                      "Pin one vertex of each connected component that has no constraint (else an error)");
        sub->add_flag("--quiet", args->quiet, "No progress lines on stderr");

@@ -42,7 +42,8 @@ void check_repeated_vertices(const Eigen::MatrixXi& F, int num_vertices, MeshRep
     r.errors.push_back(plural(r.repeated_vertex_faces, "face repeats", "faces repeat") +
                        " a vertex; first: face " + std::to_string(first) + " (" +
                        std::to_string(F(first, 0)) + ", " + std::to_string(F(first, 1)) + ", " +
-                       std::to_string(F(first, 2)) + ")");
+                       std::to_string(F(first, 2)) + ")" +
+                       repair_hint("removes them with the zero-area faces", "remove_zero_area"));
 }
 
 void check_unreferenced_vertices(const Eigen::MatrixXi& F, int num_vertices, MeshReport& r) {

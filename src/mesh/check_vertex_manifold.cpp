@@ -1,39 +1,10 @@
+#include "corner_fans.h"
 #include "mesh_checks.h"
 
 #include <algorithm>
 #include <utility>
 
 namespace iarap::mesh_checks {
-
-namespace {
-
-// Per corner 3 g + k of G, its fan: corners of one vertex in faces sharing an edge at it are joined, so a
-// vertex whose corners fall into more than one group has more than one fan.
-Eigen::VectorXi corner_fans(const Eigen::MatrixXi& G, const EdgeTopology& t) {
-  const int ng = static_cast<int>(G.rows());
-  std::vector<int> join_a, join_b;
-  join_a.reserve(static_cast<std::size_t>(6 * ng));
-  join_b.reserve(static_cast<std::size_t>(6 * ng));
-  std::vector<int> first_corner(static_cast<std::size_t>(2 * t.E.rows()), -1); // per edge end: a corner seen
-  for (int g = 0; g < ng; ++g)
-    for (int k = 0; k < 3; ++k) {
-      const int e = t.FE(g, k);
-      for (int end = 0; end < 2; ++end) {
-        const int corner_k = G(g, (k + 1) % 3) == t.E(e, end) ? (k + 1) % 3 : (k + 2) % 3;
-        const int corner = 3 * g + corner_k;
-        int& seen = first_corner[static_cast<std::size_t>(2 * e + end)];
-        if (seen < 0) {
-          seen = corner;
-        } else {
-          join_a.push_back(seen);
-          join_b.push_back(corner);
-        }
-      }
-    }
-  return group_pairs(join_a, join_b, 3 * ng, nullptr);
-}
-
-} // namespace
 
 void check_vertex_manifold(const CheckedFaces& faces, const EdgeTopology& t, int num_vertices,
                            MeshReport& r) {
@@ -88,7 +59,8 @@ void check_vertex_manifold(const CheckedFaces& faces, const EdgeTopology& t, int
   if (r.non_manifold_vertices > open)
     r.errors.push_back(plural(r.non_manifold_vertices - open, "vertex is", "vertices are") +
                        " non-manifold (a closed fan of faces touches another fan there); first: vertex " +
-                       std::to_string(first_closed));
+                       std::to_string(first_closed) +
+                       repair_hint("splits them into one copy per fan", "split_non_manifold"));
 }
 
 } // namespace iarap::mesh_checks

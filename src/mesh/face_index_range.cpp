@@ -17,4 +17,12 @@ void require_face_indices_in_range(const Eigen::Ref<const Eigen::MatrixXi>& F, E
         throw InputError(context + out_of_range_face_index(f, F(f, k), vertex_count));
 }
 
+void require_triangle_mesh(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const std::string& function) {
+  if (V.cols() != 3)
+    throw InputError(function + ": V has " + std::to_string(V.cols()) + " columns; 3 needed");
+  if (F.cols() != 3)
+    throw InputError(function + ": F has " + std::to_string(F.cols()) + " columns; 3 needed");
+  require_face_indices_in_range(F, V.rows(), function + ": ");
+}
+
 } // namespace iarap

@@ -14,4 +14,8 @@ std::string out_of_range_face_index(Eigen::Index face, Eigen::Index index, Eigen
 void require_face_indices_in_range(const Eigen::Ref<const Eigen::MatrixXi>& F, Eigen::Index vertex_count,
                                    const std::string& context = "", Eigen::Index first_face = 0);
 
+// Throws InputError, "<function>: V has 2 columns; 3 needed" (or F), or as require_face_indices_in_range
+// with "<function>: ", unless V is #V x 3 and F #F x 3 with every index in range.
+void require_triangle_mesh(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const std::string& function);
+
 } // namespace iarap

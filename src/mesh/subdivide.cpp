@@ -3,19 +3,14 @@
 
 #include <utility>
 
-#include "iarap/core/errors.h"
 #include "iarap/mesh/edge_topology.h"
 
 namespace iarap {
 
 void subdivide_midpoint(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, Eigen::MatrixXd& V_out,
                         Eigen::MatrixXi& F_out) {
-  if (V.cols() != 3)
-    throw InputError("subdivide_midpoint: V has " + std::to_string(V.cols()) + " columns; 3 needed");
-  if (F.cols() != 3)
-    throw InputError("subdivide_midpoint: F has " + std::to_string(F.cols()) + " columns; 3 needed");
+  require_triangle_mesh(V, F, "subdivide_midpoint");
   const int nv = static_cast<int>(V.rows());
-  require_face_indices_in_range(F, nv, "subdivide_midpoint: ");
   const EdgeTopology t = edge_topology(F, nv);
   const Eigen::Index ne = t.E.rows();
   Eigen::MatrixXd out(nv + ne, 3); // separate buffer: V_out may alias V

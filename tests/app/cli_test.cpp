@@ -364,6 +364,37 @@ TEST(Cli, RepairMapsConstraintIndices) {
   fs::remove_all(dir);
 }
 
+// Two closed tetrahedra touching at vertex 0 (a non-manifold vertex), one face of the second reversed:
+// refused as it is; --repair splits vertex 0 (its copy, new vertex 7, keeps the second tetrahedron's faces),
+// orients the face back and constrains the copy to vertex 0's target, with every method (issue 33).
+TEST(Cli, RepairSplitsAVertexAndConstrainsItsCopies) {
+  const auto dir = iarap::test::temp_dir("cli_repair_split");
+  write_file(dir / "pinched.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv -1 0 0\nv 0 -1 0\nv 0 0 -1\n"
+                                  "f 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n"
+                                  "f 1 6 5\nf 1 7 5\nf 1 6 7\nf 5 7 6\n");
+  write_file(dir / "c.txt", "0 0 0 0.5\n1 1 0 0\n4 -1 0 0\n");
+  const std::string args = "deform '" + (dir / "pinched.obj").string() + "' --constraints '" +
+                           (dir / "c.txt").string() + "' --out '" + (dir / "o.obj").string() + "' --quiet";
+  const CliRun refused = iarap_cli(args, true);
+  EXPECT_EQ(refused.code, 1);
+  EXPECT_NE(refused.out.find("first: vertex 0"), std::string::npos) << refused.out;
+  for (const std::string method : {"arap", "spokes-rims", "iarap"}) {
+    const CliRun run = iarap_cli(args + " --repair --json --method " + method);
+    ASSERT_EQ(run.code, 0) << run.out;
+    const std::string actions = parse_json(run)["repair"].dump();
+    EXPECT_NE(actions.find("split 1 non-manifold vertex into one copy per fan of faces (1 copy added)"),
+              std::string::npos)
+        << actions;
+    EXPECT_NE(actions.find("reversed 1 face"), std::string::npos) << actions;
+    const auto result = iarap::read_mesh((dir / "o.obj").string());
+    ASSERT_EQ(result.V.rows(), 8) << method;
+    EXPECT_EQ(result.V.row(0), Eigen::RowVector3d(0, 0, 0.5)) << method;
+    EXPECT_EQ(result.V.row(7), Eigen::RowVector3d(0, 0, 0.5)) << method; // the copy, at the same target
+    EXPECT_EQ(result.F.row(4), Eigen::RowVector3i(7, 4, 5)) << method;   // (0, 5, 4) reversed, on the copy
+  }
+  fs::remove_all(dir);
+}
+
 TEST(Cli, BenchJsonHasEveryTiming) {
   const CliRun run =
       iarap_cli("bench '" + bunny + "' --methods arap,iarap --iterations 2 --threads 1 --json");

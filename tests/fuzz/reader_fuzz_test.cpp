@@ -18,6 +18,7 @@
 #include "iarap/scene/read_constraints.h"
 #include "iarap/scene/read_scenario.h"
 #include "iarap/scene/scenario.h"
+#include "mutator.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>
@@ -36,6 +37,8 @@
 namespace {
 
 namespace fs = std::filesystem;
+using iarap::test::fuzz::corpus;
+using iarap::test::fuzz::Mutator;
 
 #if defined(__SANITIZE_ADDRESS__)
 constexpr double kDefaultSeconds = 6;
@@ -49,154 +52,12 @@ constexpr double kDefaultSeconds = 1;
 constexpr double kDefaultSeconds = 1;
 #endif
 
-constexpr int kMaxInputs = 200000;        // an upper bound on inputs whatever the budget
-constexpr std::size_t kMaxSize = 1 << 16; // mutated inputs stay small: the readers' speed is not under test
+constexpr int kMaxInputs = 200000; // an upper bound on inputs whatever the budget
 
 double budget_seconds() {
   if (const char* env = std::getenv("IARAP_FUZZ_SECONDS")) return std::max(0.0, std::atof(env));
   return kDefaultSeconds;
 }
-
-std::string read_bytes(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-std::vector<std::string> corpus(const std::string& reader) {
-  std::vector<fs::path> files;
-  for (const auto& entry : fs::directory_iterator(fs::path(IARAP_SOURCE_DIR) / "tests/fuzz/corpus" / reader))
-    files.push_back(entry.path());
-  std::sort(files.begin(), files.end()); // directory order is not fixed; the sequence must be
-  std::vector<std::string> seeds;
-  for (const auto& f : files) seeds.push_back(read_bytes(f));
-  return seeds;
-}
-
-// Tokens that have broken readers elsewhere: overflow, negative and huge indices, non-numbers, a BOM,
-// outlier and extreme coordinates (issue 33: the coincident-vertex check).
-const std::vector<std::string> kHostile = {"1e400",
-                                           "-1e400",
-                                           "nan",
-                                           "inf",
-                                           "-1",
-                                           "0",
-                                           "-0",
-                                           "4294967296",
-                                           "2147483648",
-                                           "-2147483649",
-                                           "99999999999999999999",
-                                           "1e-400",
-                                           "1e30",
-                                           "-1e30",
-                                           "1e300",
-                                           "1e-300",
-                                           "0x10",
-                                           "+",
-                                           "-",
-                                           ".",
-                                           "e5",
-                                           "\xef\xbb\xbf",
-                                           "\r",
-                                           "\t",
-                                           "#",
-                                           "/",
-                                           "//",
-                                           "3",
-                                           "255",
-                                           "65535",
-                                           "1.5",
-                                           "\"",
-                                           "{",
-                                           "}",
-                                           "[",
-                                           "]",
-                                           ",",
-                                           ":",
-                                           "null",
-                                           "true",
-                                           "\"x\"",
-                                           "solid",
-                                           "endsolid",
-                                           "facet",
-                                           "end_header",
-                                           "element face 2147483647",
-                                           "property list uchar int vertex_indices",
-                                           "format binary_little_endian 1.0",
-                                           "f",
-                                           "v",
-                                           "OFF"};
-
-class Mutator {
-public:
-  Mutator(std::uint32_t seed, std::vector<std::string> seeds) : random_(seed), seeds_(std::move(seeds)) {}
-
-  std::string next() {
-    std::string data = seeds_[pick(seeds_.size())];
-    const int edits = 1 + static_cast<int>(pick(4));
-    for (int k = 0; k < edits; ++k) mutate(data);
-    if (data.size() > kMaxSize) data.resize(kMaxSize);
-    return data;
-  }
-
-private:
-  std::size_t pick(std::size_t n) {
-    return n == 0 ? 0 : std::uniform_int_distribution<std::size_t>(0, n - 1)(random_);
-  }
-
-  void mutate(std::string& data) {
-    const std::size_t n = data.size();
-    switch (pick(9)) {
-    case 0: // flip a bit
-      if (n > 0) data[pick(n)] = static_cast<char>(data[pick(n)] ^ (1 << pick(8)));
-      break;
-    case 1: // overwrite a byte with a digit, a separator or an extreme byte
-      if (n > 0) data[pick(n)] = "0123456789-+.e \n#/\x00\xff"[pick(20)];
-      break;
-    case 2: { // delete a span
-      if (n == 0) break;
-      const std::size_t at = pick(n);
-      data.erase(at, 1 + pick(std::min<std::size_t>(n - at, 32)));
-      break;
-    }
-    case 3: { // duplicate a span
-      if (n == 0) break;
-      const std::size_t at = pick(n), length = 1 + pick(std::min<std::size_t>(n - at, 64));
-      data.insert(pick(n + 1), data.substr(at, length));
-      break;
-    }
-    case 4: // insert a hostile token
-      data.insert(pick(n + 1), kHostile[pick(kHostile.size())]);
-      break;
-    case 5: { // replace a number with a hostile token
-      if (n == 0) break;
-      std::size_t at = pick(n);
-      while (at < n && !std::isdigit(static_cast<unsigned char>(data[at]))) ++at;
-      std::size_t end = at;
-      while (end < n &&
-             (std::isalnum(static_cast<unsigned char>(data[end])) || data[end] == '.' || data[end] == '-'))
-        ++end;
-      data.replace(at, end - at, kHostile[pick(kHostile.size())]);
-      break;
-    }
-    case 6: // truncate
-      data.resize(pick(n + 1));
-      break;
-    case 7: { // splice: the head of this input, the tail of another seed
-      const std::string& other = seeds_[pick(seeds_.size())];
-      data = data.substr(0, pick(n + 1)) + other.substr(pick(other.size() + 1));
-      break;
-    }
-    default: // a run of one byte (long tokens, long lines)
-      data.insert(pick(n + 1), std::string(1 + pick(300), "9 \n-"[pick(4)]));
-      break;
-    }
-  }
-
-  std::mt19937 random_;
-  std::vector<std::string> seeds_;
-};
 
 // The 4-vertex mesh the constraints and scenarios refer to.
 Eigen::MatrixXd tetrahedron() {

@@ -234,7 +234,8 @@ TEST(CheckMesh, KleinBottleIsNonOrientable) {
   std::swap(flipped.F(3, 1), flipped.F(3, 2));
   const MeshReport o = check_mesh(flipped.V, flipped.F);
   EXPECT_TRUE(o.orientable());
-  EXPECT_TRUE(any_contains(o.errors, "the surface is orientable: reverse the faces")) << joined(o.errors);
+  EXPECT_TRUE(any_contains(o.errors, "the surface is orientable; repair_mesh reverses the faces"))
+      << joined(o.errors);
 }
 
 // Issue 20: at 1e300 the diagonal overflowed (reported null) and every vertex "coincided"; at 1e-300 every

@@ -1,0 +1,23 @@
+// Internal: the fans of faces around each vertex, per corner 3 g + k of a face list G (#G x 3, three
+// distinct in-range indices per face). Two corners of one vertex are in the same fan when their faces
+// meet across an edge at that vertex; which faces of an edge meet is a "sheet" of the edge: all of them
+// for check_mesh (a non-manifold edge joins its faces into one fan), a pair of them where repair_mesh
+// separates a non-manifold edge into manifold sheets.
+#pragma once
+#include "iarap/mesh/edge_topology.h"
+
+#include <Eigen/Core>
+#include <vector>
+
+namespace iarap::mesh_checks {
+
+// Edge slot 3 g + k is edge t.FE(g, k) as face g sees it. sheet[slot] in 0..sheet_count-1: the faces
+// whose slots share a sheet meet across that edge. Returns the fan of each corner (0..#fans-1, numbered in
+// order of each fan's first corner).
+Eigen::VectorXi corner_fans(const Eigen::MatrixXi& G, const EdgeTopology& t, const std::vector<int>& sheet,
+                            int sheet_count);
+
+// Every face of an edge meets every other: sheet = the edge.
+Eigen::VectorXi corner_fans(const Eigen::MatrixXi& G, const EdgeTopology& t);
+
+} // namespace iarap::mesh_checks
