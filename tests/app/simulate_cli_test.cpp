@@ -133,6 +133,20 @@ TEST(SimulateCli, BadForcesFilesNameTheLine) {
   }
 }
 
+TEST(SimulateCli, AFailedRunLeavesNoFrame) {
+  const Scene s = scene("failed");
+  const fs::path out = s.dir / "frames", constraints = s.dir / "far.txt";
+  // Frame 0 is written before step 1, whose target 1e200 / 3 away overflows the energy (a SolverError).
+  write_file(constraints, "0 0 0 0\n1 1e200 0 0\n");
+  const CliRun run = iarap_cli("simulate '" + s.mesh.string() + "' --constraints '" + constraints.string() +
+                                   "' --out-dir '" + out.string() + "' --dt 0.1 --steps 3 --quiet",
+                               true);
+  EXPECT_EQ(run.code, 1) << run.out;
+  EXPECT_NE(run.out.find("not finite"), std::string::npos) << run.out;
+  ASSERT_TRUE(fs::is_directory(out));
+  EXPECT_TRUE(fs::is_empty(out)); // neither frame 0 nor the private folder it was written to
+}
+
 TEST(SimulateCli, AnOutDirThatIsAFileIsRefusedAndKept) {
   const Scene s = scene("outfile");
   const fs::path out = s.dir / "taken";
