@@ -1,10 +1,12 @@
 // `iarap deform MESH`: one ARAP deformation from a constraints or scenario file, written to a mesh file.
 #include "command_registry.h"
 #include "explain_error.h"
+#include "external_force_options.h"
 #include "iteration_options.h"
 #include "json_text.h"
 #include "number_validators.h"
 #include "same_file.h"
+#include "soft_constraint_sets.h"
 #include "write_text_file.h"
 
 #include "iarap/core/errors.h"
@@ -44,6 +46,7 @@ struct DeformArguments {
   double time_budget = 0; // ms; 0 = none
   int threads = 0;
   bool json = false, repair = false, pin_unconstrained = false, quiet = false;
+  ExternalForceArguments forces; // statics under gravity / per-vertex forces (none: the plain deformation)
 };
 
 // A constrained vertex that --repair split (one copy per fan or sheet) gets every copy constrained to its
@@ -77,11 +80,13 @@ void constrain_split_copies(ConstraintSet& constraints, const RepairResult& repa
 // oriented consistently: repair_mesh with remove_zero_area) and a scenario is resolved on
 // the repaired mesh, so that its regions cannot select a vertex the repair drops; a constraints file's
 // indices are carried over.
+// The forces file's rows follow the file's vertices and are carried over (added up where vertices weld).
 void load_mesh_and_constraints(const DeformArguments& args, MeshData& mesh, ConstraintSet& constraints,
-                               nlohmann::json& j) {
+                               Eigen::MatrixXd& forces, nlohmann::json& j) {
   mesh = read_mesh(args.mesh);
   Scenario scenario;
   if (!args.scenario.empty()) scenario = read_scenario(args.scenario);
+  forces = file_forces(args.forces, static_cast<int>(mesh.V.rows()));
   if (!args.repair) {
     constraints = args.constraints.empty()
                       ? resolve_scenario(scenario, mesh.V)
@@ -100,6 +105,12 @@ void load_mesh_and_constraints(const DeformArguments& args, MeshData& mesh, Cons
         repaired.old_to_new);
   }
   constrain_split_copies(constraints, repaired);
+  if (forces.rows() > 0) {
+    Eigen::MatrixXd moved = Eigen::MatrixXd::Zero(repaired.V.rows(), 3);
+    for (Eigen::Index v = 0; v < forces.rows(); ++v)
+      if (repaired.old_to_new(v) >= 0) moved.row(repaired.old_to_new(v)) += forces.row(v);
+    forces = std::move(moved);
+  }
   mesh.V = std::move(repaired.V);
   mesh.F = std::move(repaired.F);
   j["repair"] = repaired.actions;
@@ -145,22 +156,25 @@ std::string farthest_target(const ConstraintSet& constraints, const Eigen::Matri
   return text.str();
 }
 
-// The solver's soft constraints from those read from a file or scenario, and their targets (vertices first).
-ArapSoftConstraints soft_constraints_of(const SoftConstraintSet& set) {
-  ArapSoftConstraints soft;
-  soft.vertices = set.vertices;
-  soft.vertex_weights = set.vertex_weights;
-  soft.faces = set.faces;
-  soft.barycentric = set.barycentric;
-  soft.face_weights = set.face_weights;
-  return soft;
+// External forces (statics): f in the solve's units (the mesh divided by s) for the minimum of
+// E_ARAP + P - f . (U - V); 0 x 0 without --gravity and --forces. Every component must be held.
+Eigen::MatrixXd statics_forces(const DeformArguments& args, const MeshData& mesh,
+                               const Eigen::VectorXi& fixed, const ArapSoftConstraints& soft,
+                               const Eigen::MatrixXd& V, ArapMethod method, double s,
+                               const Eigen::MatrixXd& forces_in_file) {
+  if (!args.forces.any()) return Eigen::MatrixXd();
+  if (!args.pin_unconstrained)
+    require_held_components(mesh.F, static_cast<int>(mesh.V.rows()), fixed, soft.vertices, soft.faces);
+  return scaled_forces(args.forces, V, mesh.F, method, s, forces_in_file);
 }
 
-Eigen::MatrixXd soft_targets_of(const SoftConstraintSet& set) {
-  Eigen::MatrixXd T(set.size(), 3);
-  if (set.vertices.size() > 0) T.topRows(set.vertices.size()) = set.vertex_targets;
-  if (set.faces.size() > 0) T.bottomRows(set.faces.size()) = set.face_targets;
-  return T;
+// The statics' report keys: energy = arap_energy + penalty + potential, potential = -f . (U - V).
+void add_statics_keys(const ExternalForceArguments& forces, const ArapReport& report, nlohmann::json& j) {
+  j["energy"] = report.arap_energy + report.penalty + report.potential;
+  j["potential"] = report.potential;
+  j["gravity"] = forces.gravity.empty() ? std::vector<double>{0.0, 0.0, 0.0} : forces.gravity;
+  j["density"] = forces.density;
+  j["forces"] = forces.forces;
 }
 
 void run_deform(const DeformArguments& args) {
@@ -181,7 +195,8 @@ void run_deform(const DeformArguments& args) {
   j["input"] = args.mesh;
   MeshData mesh;
   ConstraintSet constraints;
-  load_mesh_and_constraints(args, mesh, constraints, j);
+  Eigen::MatrixXd forces_in_file; // 0 x 0 without --forces
+  load_mesh_and_constraints(args, mesh, constraints, forces_in_file, j);
   const MeshReport check = check_mesh(mesh.V, mesh.F);
   if (!check.usable()) {
     std::string message = args.mesh + (args.repair ? ": mesh not usable for ARAP after --repair:"
@@ -214,8 +229,11 @@ void run_deform(const DeformArguments& args) {
   // Soft weights need no scaling: E_ARAP and W |x - t|^2 both scale with length^2.
   const ArapSoftConstraints soft = soft_constraints_of(constraints.soft);
   const Eigen::MatrixXd soft_targets = soft_targets_of(constraints.soft) / s;
+  const Eigen::MatrixXd forces =
+      statics_forces(args, mesh, constraints.fixed, soft, V, options.method, s, forces_in_file);
   options.planar = (V.col(2).array() == 0.0).all() && (targets.col(2).array() == 0.0).all() &&
-                   (soft_targets.rows() == 0 || (soft_targets.col(2).array() == 0.0).all());
+                   (soft_targets.rows() == 0 || (soft_targets.col(2).array() == 0.0).all()) &&
+                   (forces.rows() == 0 || (forces.col(2).array() == 0.0).all());
   const ErrorContext context{args.mesh, args.repair};
   const auto precompute_start = Clock::now();
   std::optional<ArapData> data;
@@ -236,6 +254,7 @@ void run_deform(const DeformArguments& args) {
   solve_options.window = args.window;
   solve_options.gradient_tolerance = args.grad_tol;
   solve_options.time_budget_ms = args.time_budget;
+  solve_options.forces = forces;
   ArapReport report;
   try {
     report = arap_solve(*data, targets, soft_targets, U, solve_options);
@@ -254,6 +273,7 @@ void run_deform(const DeformArguments& args) {
   for (double& e : report.energies) e *= energy_unit;
   report.penalty *= energy_unit;
   report.arap_energy *= energy_unit;
+  report.potential *= energy_unit;
   report.initial_gradient_norm *= s;
   for (double& g : report.gradient_norms) g *= s;
   if (!args.quiet) {
@@ -291,6 +311,7 @@ void run_deform(const DeformArguments& args) {
   j["arap_energy"] = report.arap_energy;
   j["penalty"] = report.penalty;
   j["soft"] = soft.size();
+  if (args.forces.any()) add_statics_keys(args.forces, report, j);
   j["accelerator"] = arap_accelerator_name(report.accelerator);
   j["window"] = args.window;
   j["initial_gradient_norm"] = report.initial_gradient_norm;
@@ -387,6 +408,7 @@ const bool registered = register_command(
        sub->add_flag("--pin-unconstrained", args->pin_unconstrained,
                      "Pin one vertex of each connected component that has no constraint (else an error)");
        sub->add_flag("--quiet", args->quiet, "No progress lines on stderr");
+       add_external_force_options(*sub, args->forces);
        sub->callback([args] { run_deform(*args); });
      }});
 

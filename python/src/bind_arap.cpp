@@ -130,8 +130,8 @@ std::unique_ptr<ArapSolver> make_solver(const py::object& V, const py::object& F
 
 py::array_t<double> solve_py(ArapSolver& solver, const py::object& targets, const py::object& U0,
                              int iterations, double tolerance, const std::string& accelerator, int window,
-                             double gradient_tolerance, double time_budget_ms,
-                             const py::object& soft_targets) {
+                             double gradient_tolerance, double time_budget_ms, const py::object& soft_targets,
+                             const py::object& forces) {
   const auto [n, fixed_count] =
       without_gil(solver, [](const ArapData& d) { return std::make_pair(d.V.rows(), d.fixed.size()); });
   const Eigen::Index soft_count = without_gil(solver, [](const ArapData& d) { return d.soft.size(); });
@@ -152,6 +152,7 @@ py::array_t<double> solve_py(ArapSolver& solver, const py::object& targets, cons
   options.max_iterations = iterations;
   options.tolerance = tolerance;
   options.accelerator = parse_arap_accelerator(accelerator);
+  if (!forces.is_none()) options.forces = to_points(forces, "forces", true, n, "#V", planar);
   options.window = window;
   options.gradient_tolerance = gradient_tolerance;
   options.time_budget_ms = time_budget_ms;
@@ -179,6 +180,7 @@ py::object report_py(const ArapSolver& solver) {
   d["stop_reason"] = arap_stop_reason_name(report->stop_reason);
   d["initial_energy"] = report->initial_energy;
   d["penalty"] = report->penalty;
+  d["potential"] = report->potential;
   d["arap_energy"] = report->arap_energy;
   d["energies"] = to_numpy(report->energies);
   d["local_ms"] = report->local_ms;
@@ -271,6 +273,7 @@ RuntimeError) for an unconstrained component or a failed factorization.)")
            py::arg("accelerator") = arap_accelerator_name(ArapSolveOptions{}.accelerator),
            py::arg("window") = ArapSolveOptions{}.window, py::arg("gradient_tolerance") = 0.0,
            py::arg("time_budget_ms") = 0.0, py::arg("soft_targets") = py::none(),
+           py::arg("forces") = py::none(),
            R"(Deforms the mesh: returns U, float64 (#V, 3), with U[fixed] == targets.
 
 targets: (#fixed, 3) positions of the constrained vertices, in the order of `fixed`.
@@ -285,6 +288,8 @@ U0 (0 = off). time_budget_ms: stop after the iteration that ends past this many 
 report["stop_reason"] says which rule stopped the solve). Warm start: pass the previous solution as U0.
 soft_targets: (#soft, 3) targets of the soft constraints (vertices first, then face points), required when
 there are any; new soft targets reuse the factorization.
+forces: (#V, 3) external forces f (None: none): minimizes E_ARAP + penalty - f . (U - V), the statics of
+constant forces (gravity: vertex_masses(V, F)[:, None] * g); report["potential"] is -f . (U - V).
 The run is described by `report`; rotations of U by `rotations`.)")
       .def_property(
           "fixed",

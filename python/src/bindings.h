@@ -18,5 +18,7 @@ void bind_laplacian(py::module_& m);
 void bind_intrinsic(py::module_& m);
 // parameterize(V, F, ...): ARAP UV map of a disk and its report.
 void bind_param(py::module_& m);
+// Simulation (implicit-Euler ARAP dynamics) and vertex_masses.
+void bind_dynamics(py::module_& m);
 
 } // namespace iarap::python

@@ -4,6 +4,8 @@
 
 #include "iarap/core/errors.h"
 
+#include "line_tokens.h"
+
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -13,6 +15,11 @@
 
 namespace iarap {
 namespace {
+
+using detail::parse_coordinate;
+using detail::parse_index;
+using detail::tokens_of;
+using detail::where;
 
 struct Parsed {
   int line;
@@ -27,42 +34,6 @@ struct ParsedFacePoint {
   Eigen::Vector3d barycentric, target;
   double weight;
 };
-
-std::string where(const std::string& source, int line) {
-  return source + ":" + std::to_string(line) + ": ";
-}
-
-// Splits a line (comment already removed) into blank-separated tokens.
-std::vector<std::string> tokens_of(const std::string& text) {
-  std::vector<std::string> tokens;
-  std::istringstream in(text);
-  std::string token;
-  while (in >> token) tokens.push_back(token);
-  return tokens;
-}
-
-long long parse_index(const std::string& token, const std::string& at) {
-  errno = 0;
-  char* end = nullptr;
-  const long long value = std::strtoll(token.c_str(), &end, 10);
-  if (end == token.c_str() || *end != '\0' || errno == ERANGE) {
-    throw InputError(at + "bad vertex index '" + token + "' (expected a non-negative integer)");
-  }
-  return value;
-}
-
-double parse_coordinate(const std::string& token, const std::string& at, const char* name) {
-  errno = 0;
-  char* end = nullptr;
-  const double value = std::strtod(token.c_str(), &end);
-  if (end == token.c_str() || *end != '\0') {
-    throw InputError(at + "bad " + name + " coordinate '" + token + "' (expected a number)");
-  }
-  if (!std::isfinite(value)) {
-    throw InputError(at + "non-finite " + name + " coordinate '" + token + "'");
-  }
-  return value;
-}
 
 double parse_weight(const std::string& token, const std::string& at) {
   const double W = parse_coordinate(token, at, "weight");

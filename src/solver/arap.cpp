@@ -273,16 +273,24 @@ double penalty_of(const ArapData& data, const Eigen::MatrixXd& soft_targets, con
   return detail::soft_penalty(detail::soft_points(data.soft, data.F), soft_targets, U_rows.data());
 }
 
+// -f . (U - V) for forces f #V x 3 (0 x 0: none).
+double potential_of(const ArapData& data, const Eigen::MatrixXd& forces, const Eigen::MatrixXd& U) {
+  if (forces.rows() == 0) return 0.0;
+  return forces.cwiseProduct(data.V).sum() - forces.cwiseProduct(U).sum();
+}
+
 ArapReport solve_checked(ArapData& data, const Eigen::MatrixXd& targets, const Eigen::MatrixXd& soft_targets,
-                         Eigen::MatrixXd& U, const ArapSolveOptions& options, Clock::time_point start) {
+                         const Eigen::MatrixXd& forces, Eigen::MatrixXd& U, const ArapSolveOptions& options,
+                         Clock::time_point start) {
   ArapReport report;
   {
-    detail::LocalGlobalProblem problem(data, targets, U, soft_targets);
+    detail::LocalGlobalProblem problem(data, targets, U, soft_targets, forces);
     report = detail::run_local_global(problem, options, data.solver.kind(), start);
   } // U holds the result in the file's order from here
   report.penalty = penalty_of(data, soft_targets, U);
-  report.arap_energy =
-      (report.energies.empty() ? report.initial_energy : report.energies.back()) - report.penalty;
+  report.potential = potential_of(data, forces, U);
+  report.arap_energy = (report.energies.empty() ? report.initial_energy : report.energies.back()) -
+                       report.penalty - report.potential;
   return report;
 }
 
@@ -313,15 +321,17 @@ ArapReport arap_solve(ArapData& data, const Eigen::MatrixXd& targets, const Eige
   check_solver_positions(data, targets, data.fixed.size(), "targets");
   check_solver_positions(data, soft_targets, data.soft.size(), "soft targets");
   check_solver_positions(data, U, data.V.rows(), "initial guess U");
+  if (options.forces.size() > 0) check_solver_positions(data, options.forces, data.V.rows(), "forces");
   const Eigen::MatrixXd target_rows = targets.cols() == 2 ? embedded(targets) : targets;
   const Eigen::MatrixXd soft_rows = soft_targets.cols() == 2 ? embedded(soft_targets) : soft_targets;
+  const Eigen::MatrixXd force_rows = options.forces.cols() == 2 ? embedded(options.forces) : options.forces;
   if (U.cols() == 2) { // planar: solved embedded at z = 0, handed back in the caller's two columns
     Eigen::MatrixXd U3 = embedded(U);
-    ArapReport report = solve_checked(data, target_rows, soft_rows, U3, options, start);
+    ArapReport report = solve_checked(data, target_rows, soft_rows, force_rows, U3, options, start);
     U = U3.leftCols(2);
     return report;
   }
-  return solve_checked(data, target_rows, soft_rows, U, options, start);
+  return solve_checked(data, target_rows, soft_rows, force_rows, U, options, start);
 }
 
 double arap_penalty(const ArapData& data, const Eigen::MatrixXd& soft_targets, const Eigen::MatrixXd& U) {

@@ -13,7 +13,7 @@
 namespace iarap::detail {
 
 LocalGlobalProblem::LocalGlobalProblem(ArapData& data, const Eigen::MatrixXd& targets, Eigen::MatrixXd& U,
-                                       const Eigen::MatrixXd& soft_targets)
+                                       const Eigen::MatrixXd& soft_targets, const Eigen::MatrixXd& forces)
     : data_(data), U_(U) {
   // Constrained positions in L_fc's column order: targets, then pinned vertices where the guess has them.
   Eigen::MatrixXd U_c(data.fixed.size() + data.pinned.size(), 3);
@@ -50,27 +50,34 @@ LocalGlobalProblem::LocalGlobalProblem(ArapData& data, const Eigen::MatrixXd& ta
   const Eigen::MatrixXd Lfc_Uc = data.L_fc * U_c; // rows in data.free's order
   Lfc_Uc_.resize(nf, 3);
   for (Eigen::Index r = 0; r < nf; ++r) Lfc_Uc_.row(r) = Lfc_Uc.row(free_index_[static_cast<size_t>(r)]);
-  // The soft points' part of the right-hand side, s_f = sum_k 2 W_k c_k t_k^T at the free rows, folded into
-  // L_fc U_c (B = rhs_f + s_f - L_fc U_c) and kept for the gradient.
+  // The linear part of the right-hand side at the free rows, s_f = sum_k 2 W_k c_k t_k^T of the soft points
+  // plus the forces f_f, folded into L_fc U_c (B = rhs_f + s_f + f_f - L_fc U_c) and kept for the gradient.
   soft_points_ = soft_points(data.soft, data.F);
+  linear_ = !soft_points_.empty() || forces.rows() > 0;
+  if (linear_) linear_f_.setZero(nf, 3);
   if (!soft_points_.empty()) {
     soft_targets_ = soft_targets;
     position_ = position;
     std::vector<int> row_of_free(static_cast<size_t>(nf), -1);
     for (Eigen::Index r = 0; r < nf; ++r)
       row_of_free[static_cast<size_t>(free_index_[static_cast<size_t>(r)])] = static_cast<int>(r);
-    soft_f_.setZero(nf, 3);
     for (size_t k = 0; k < soft_points_.size(); ++k) {
       const SoftPoint& p = soft_points_[k];
       for (int j = 0; j < 3; ++j) {
         const int i = data.free_slot(p.v[j]);
         if (i >= 0)
-          soft_f_.row(row_of_free[static_cast<size_t>(i)]) +=
+          linear_f_.row(row_of_free[static_cast<size_t>(i)]) +=
               2.0 * p.W * p.c[j] * soft_targets.row(static_cast<Eigen::Index>(k));
       }
     }
-    Lfc_Uc_ -= soft_f_;
   }
+  if (forces.rows() > 0) {
+    for (Eigen::Index r = 0; r < nf; ++r)
+      linear_f_.row(r) += forces.row(data.free(free_index_[static_cast<size_t>(r)]));
+    visit_rows(el, forces, f_rows_);
+    f_dot_rest_ = forces.cwiseProduct(data.V).sum();
+  }
+  if (linear_) Lfc_Uc_ -= linear_f_;
   B_.resize(nf, 3);
   X_.resize(nf, 3);
   // The first fit starts cold (fit_rotations warm-starts from rotations it is given): a solve's result then
@@ -102,9 +109,10 @@ void LocalGlobalProblem::set_positions(const Eigen::MatrixXd& x) {
 double LocalGlobalProblem::local_step() {
   const double E = fit_rotations_in_visit_order(data_.elements, U_rows_, data_.R, cell_energy_,
                                                 keep_covariances_ ? &S_ : nullptr);
-  if (soft_points_.empty()) return E;
-  penalty_ = soft_penalty(soft_points_, soft_targets_, U_rows_.data(), &position_);
-  return E + penalty_;
+  if (!linear_) return E;
+  if (!soft_points_.empty()) penalty_ = soft_penalty(soft_points_, soft_targets_, U_rows_.data(), &position_);
+  if (f_rows_.rows() > 0) potential_ = f_dot_rest_ - f_rows_.cwiseProduct(U_rows_).sum();
+  return E + penalty_ + potential_;
 }
 
 namespace {
@@ -125,13 +133,14 @@ inline void L_row_times(const int* start, const int* column, const double* value
 void LocalGlobalProblem::assemble_rhs() {
   // B = rhs_f - L_fc U_c (Eq. 16) and g = (L U)_f - rhs_f = L_ff x - B (Eq. 14 at the free rows), streamed
   // over the free vertices in visit order: the rotations' terms and L's rows are read once, in order. With
-  // soft constraints Lfc_Uc_ holds L_fc U_c - s_f and L is L + Q: g = (L + Q) U - rhs - s at the free rows.
+  // soft constraints and forces Lfc_Uc_ holds L_fc U_c - s_f - f_f and L is L + Q: g = (L + Q) U - rhs - s -
+  // f at the free rows.
   const auto rows = static_cast<int>(free_position_.size());
   B_.resize(free_count(), 3);
   g_.resize(free_count(), 3);
   const double* u = U_rows_.data();
   const StreamedLayout& sl = streamed(data_.elements);
-  const bool soft = !soft_points_.empty();
+  const bool linear = linear_;
 #pragma omp parallel for schedule(static)
   for (int r = 0; r < rows; ++r) {
     double rhs[3], LU[3];
@@ -141,7 +150,7 @@ void LocalGlobalProblem::assemble_rhs() {
       B_(r, d) = rhs[d] - Lfc_Uc_(r, d);
       g_(r, d) = LU[d] - Lfc_Uc_(r, d) - B_(r, d);
     }
-    if (soft) g_.row(r) -= soft_f_.row(r);
+    if (linear) g_.row(r) -= linear_f_.row(r);
   }
 }
 

@@ -26,9 +26,12 @@ public:
   // data.R are kept in the elements' visit order (ArapElements::visit_order), and so are the rows of x, B,
   // g and every #free x 3 matrix of this interface (the free vertices in visit order: the passes over them
   // stream); the destructor writes U and data.R back in the file's order. soft_targets: #soft x 3 targets
-  // of data.soft's points (ArapSoftConstraints::size rows; data.Q must be of data.soft).
+  // of data.soft's points (ArapSoftConstraints::size rows; data.Q must be of data.soft). forces: #V x 3
+  // external forces f (0 x 0: none; ArapSolveOptions::forces): B gains f_f, local_step() the potential
+  // -f . (U - V).
   LocalGlobalProblem(ArapData& data, const Eigen::MatrixXd& targets, Eigen::MatrixXd& U,
-                     const Eigen::MatrixXd& soft_targets = Eigen::MatrixXd(0, 3));
+                     const Eigen::MatrixXd& soft_targets = Eigen::MatrixXd(0, 3),
+                     const Eigen::MatrixXd& forces = Eigen::MatrixXd(0, 3));
   ~LocalGlobalProblem();
   LocalGlobalProblem(const LocalGlobalProblem&) = delete;
   LocalGlobalProblem& operator=(const LocalGlobalProblem&) = delete;
@@ -38,10 +41,13 @@ public:
   Eigen::MatrixXd positions() const;
   void set_positions(const Eigen::MatrixXd& x);
 
-  // Local step at U: fits data.R and returns E(U) + P(U) (P = 0 without soft constraints).
+  // Local step at U: fits data.R and returns E(U) + P(U) - f . (U - V) (P = 0 without soft constraints, f
+  // = 0 without forces).
   double local_step();
   // P(U) at the last local step.
   double penalty() const { return penalty_; }
+  // -f . (U - V) at the last local step.
+  double potential() const { return potential_; }
   // B(U) from data.R (the rotations of the last local step), kept for plain_step, and the gradient there
   // (gradient()), in one pass over the free vertices.
   void assemble_rhs();
@@ -89,8 +95,12 @@ private:
   std::vector<SoftPoint> soft_points_; // data.soft's points, their targets, and the visit position of each
   Eigen::MatrixXd soft_targets_;       // vertex (for the penalty on U_rows_)
   std::vector<int> position_;
-  Eigen::MatrixXd soft_f_; // #free x 3 s_f = sum_k 2 W_k c_k t_k^T at the free rows (visit order)
-  double penalty_ = 0.0;
+  // #free x 3 linear term at the free rows (visit order): s_f = sum_k 2 W_k c_k t_k^T plus the forces f_f
+  Eigen::MatrixXd linear_f_;
+  bool linear_ = false;            // linear_f_ is in use (soft points or forces)
+  ArapElements::ValueRows f_rows_; // the forces in visit order (0 rows without), and f . V
+  double f_dot_rest_ = 0.0;
+  double penalty_ = 0.0, potential_ = 0.0;
 };
 
 } // namespace iarap::detail

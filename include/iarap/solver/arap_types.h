@@ -149,6 +149,14 @@ struct ArapSolveOptions {
   // counted from the start of arap_solve (report.stop_reason = TimeBudget). For interactive updates: an
   // answer in bounded time, the shape at that iterate (every iterate is whole and lowers the energy).
   double time_budget_ms = 0;
+  // External forces f (#V x 3, planar data #V x 2 or x 3 with z = 0; 0 x 0: none), a linear term of the
+  // energy: the solve minimizes E_ARAP + P - sum_i f_i . (U_i - V_i), the potential of constant forces
+  // measured from the rest shape V (so that the relative-decrease rule does not depend on where the mesh
+  // lies). The global step's right-hand side gains f at the free rows; every accelerator sees the same total
+  // energy and gradient. A free component has no minimum under a force with a non-zero sum: give it a fixed
+  // vertex or a soft point (dynamics, src/dynamics, makes every vertex one through its inertia). Gravity on
+  // a lumped mass: f_i = m_i g (arap_vertex_masses, iarap/dynamics/simulation.h).
+  Eigen::MatrixXd forces;
   ArapIterationCallback on_iteration; // optional
 };
 
@@ -168,9 +176,11 @@ struct ArapReport {
   int iterations = 0;           // accepted iterates (each one global solve at least)
   double initial_energy = 0;    // E of the initial guess once the constrained rows are set to the targets
   std::vector<double> energies; // E(U_k) = min_R energy after each iteration k (size iterations); with soft
-                                // constraints the total E_ARAP + P (arap_soft_constraints.h)
+                                // constraints and forces the total E_ARAP + P + potential
   double penalty = 0;           // P(U) of the returned U (0 without soft constraints)
+  double potential = 0;         // -sum_i f_i . (U_i - V_i) of the returned U (0 without forces)
   double arap_energy = 0;       // E_ARAP(U) of the returned U: the last energy (or initial_energy) - penalty
+                                // - potential
   double local_ms = 0;          // all local steps, including the one that evaluates the last iterate
   double global_ms = 0;         // all global steps (right-hand side, solve and gradient)
   bool converged = false;       // a tolerance rule stopped the iteration (false: max_iterations or callback)

@@ -1,0 +1,163 @@
+// Simulation (implicit-Euler dynamics of the ARAP energy, iarap/dynamics/simulation.h) and vertex_masses.
+// Steps run without the GIL; a mutex keeps two Python threads off one simulation at a time.
+#include "bindings.h"
+#include "numpy_arrays.h"
+
+#include "iarap/core/errors.h"
+#include "iarap/dynamics/simulation.h"
+
+#include <memory>
+#include <mutex>
+
+namespace iarap::python {
+namespace {
+
+class PySimulation {
+public:
+  PySimulation(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const Eigen::VectorXi& fixed,
+               const SimulationOptions& options)
+      : sim_(V, F, fixed, options) {}
+
+  template <typename Function> auto with(Function&& f) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return f(sim_);
+  }
+
+private:
+  std::mutex mutex_;
+  Simulation sim_;
+};
+
+// Three finite numbers (a sequence or an array of 3) as a vector; InputError naming `name` otherwise.
+Eigen::Vector3d to_vector3(const py::object& value, const std::string& name) {
+  const py::object flat = py::module_::import("numpy").attr("ravel")(value);
+  const auto count = py::len(flat);
+  if (count != 3) throw InputError(name + ": want 3 numbers (x, y, z), got " + std::to_string(count));
+  const Eigen::MatrixXd g = to_points(flat.attr("reshape")(1, 3), name, true, 1, "1");
+  return g.row(0).transpose();
+}
+
+std::unique_ptr<PySimulation> make_simulation(const py::object& V, const py::object& F,
+                                              const py::object& fixed, double dt, const std::string& method,
+                                              const py::object& gravity, double damping, double density,
+                                              const py::object& forces, bool refine_boundary, int iterations,
+                                              double tolerance, const std::string& accelerator, int window) {
+  const Eigen::MatrixXd positions = to_points(V, "V");
+  const Eigen::MatrixXi faces = to_faces(F, "F", positions.rows());
+  const Eigen::VectorXi constrained =
+      fixed.is_none() ? Eigen::VectorXi(0) : to_indices(fixed, "fixed", positions.rows());
+  SimulationOptions options;
+  options.arap.method = parse_arap_method(method);
+  options.arap.intrinsic.refine_boundary = refine_boundary;
+  options.dt = dt;
+  options.damping = damping;
+  options.density = density;
+  options.gravity = to_vector3(gravity, "gravity");
+  if (!forces.is_none()) options.forces = to_points(forces, "forces", true, positions.rows(), "#V");
+  options.solve.max_iterations = iterations;
+  options.solve.tolerance = tolerance;
+  options.solve.accelerator = parse_arap_accelerator(accelerator);
+  options.solve.window = window;
+  py::gil_scoped_release release;
+  return std::make_unique<PySimulation>(positions, faces, constrained, options);
+}
+
+py::dict step_py(PySimulation& sim, const py::object& targets) {
+  const Eigen::Index fixed_count = sim.with([](Simulation& s) { return s.data().fixed.size(); });
+  SimulationStepReport r;
+  if (targets.is_none()) {
+    py::gil_scoped_release release;
+    r = sim.with([](Simulation& s) { return s.step(); });
+  } else {
+    const Eigen::MatrixXd rows = to_points(targets, "targets", true, fixed_count, "#fixed");
+    py::gil_scoped_release release;
+    r = sim.with([&](Simulation& s) { return s.step(rows, Eigen::MatrixXd(0, 3)); });
+  }
+  py::dict d;
+  d["step"] = r.step;
+  d["time"] = r.time;
+  d["kinetic_energy"] = r.kinetic_energy;
+  d["elastic_energy"] = r.elastic_energy;
+  d["potential_energy"] = r.potential_energy;
+  d["iterations"] = r.iterations;
+  d["converged"] = r.converged;
+  return d;
+}
+
+// A read-only property of the simulation: f(simulation) converted by to_numpy or as it is.
+template <typename Function> auto getter(Function f) {
+  return [f](PySimulation& s) { return s.with([&](Simulation& sim) { return f(sim); }); };
+}
+
+} // namespace
+
+void bind_dynamics(py::module_& m) {
+  m.def(
+      "vertex_masses",
+      [](const py::object& V, const py::object& F, const std::string& method, double density) {
+        const Eigen::MatrixXd positions = to_points(V, "V");
+        const Eigen::MatrixXi faces = to_faces(F, "F", positions.rows());
+        const ArapMethod kind = parse_arap_method(method);
+        py::gil_scoped_release release;
+        const Eigen::VectorXd masses = arap_vertex_masses(positions, faces, kind, density);
+        py::gil_scoped_acquire acquire;
+        return to_numpy(masses);
+      },
+      py::arg("V"), py::arg("F"), py::arg("method") = "iarap", py::arg("density") = 1.0,
+      R"(float64 (#V,): lumped masses m_i = density x the area of vertex i's mixed Voronoi cell, on the
+intrinsic Delaunay triangulation for "iarap", on the input mesh for "arap" and "spokes-rims".)");
+
+  py::class_<PySimulation>(m, "Simulation", R"(Implicit-Euler dynamics of the ARAP elastic energy.
+
+Each step minimizes sum_i m_i / (2 dt^2) |y_i - x_i - dt v_i|^2 + E_ARAP(y) - f . (y - V) over y by the
+local/global solver (the inertia is a soft constraint on every free vertex), then sets
+v = (1 - damping) (y - x) / dt at the free vertices and x = y. Units: positions in mesh units, masses density x
+area, gravity in mesh units / time^2, energies in mass x (mesh units / time)^2 with E_ARAP at stiffness 1.
+
+    sim = iarap.Simulation(V, F, fixed=bottom, dt=0.1, gravity=(0, -1, 0), damping=0.1)
+    for _ in range(100):
+        report = sim.step()          # the fixed vertices stay at their last targets (at first: rest)
+    sim.positions, sim.velocities, sim.kinetic_energy, sim.elastic_energy)")
+      .def(py::init(&make_simulation), py::arg("V"), py::arg("F"), py::arg("fixed") = py::none(),
+           py::kw_only(), py::arg("dt"), py::arg("method") = "iarap",
+           py::arg("gravity") = py::make_tuple(0.0, 0.0, 0.0), py::arg("damping") = 0.0,
+           py::arg("density") = 1.0, py::arg("forces") = py::none(), py::arg("refine_boundary") = true,
+           py::arg("iterations") = SimulationOptions::default_step_options().max_iterations,
+           py::arg("tolerance") = SimulationOptions::default_step_options().tolerance,
+           py::arg("accelerator") = arap_accelerator_name(ArapSolveOptions{}.accelerator),
+           py::arg("window") = ArapSolveOptions{}.window,
+           R"(V (#V, 3), F (#F, 3), fixed: vertex indices held at their targets (None: a free body). dt > 0;
+damping in [0, 1); density > 0; gravity (3,); forces (#V, 3) further constant forces; iterations, tolerance,
+accelerator, window: each step's solve (as ARAP.solve). Raises InputError for a bad value, naming it.)")
+      .def("step", &step_py, py::arg("targets") = py::none(),
+           "One step to time + dt; targets (#fixed, 3) where the fixed vertices are then (None: where they "
+           "were). Returns {step, time, kinetic_energy, elastic_energy, potential_energy, iterations, "
+           "converged}.")
+      .def_property_readonly("positions", getter([](Simulation& s) { return to_numpy(s.positions()); }),
+                             "float64 (#V, 3): the positions now.")
+      .def_property(
+          "velocities", getter([](Simulation& s) { return to_numpy(s.velocities()); }),
+          [](PySimulation& s, const py::object& v) {
+            const Eigen::Index n = s.with([](Simulation& sim) { return sim.positions().rows(); });
+            const Eigen::MatrixXd rows = to_points(v, "velocities", true, n, "#V");
+            s.with([&](Simulation& sim) { sim.set_velocities(rows); });
+          },
+          "float64 (#V, 3): the velocities now (assign an initial velocity).")
+      .def_property_readonly("masses", getter([](Simulation& s) { return to_numpy(s.masses()); }),
+                             "float64 (#V,): the lumped masses.")
+      .def_property_readonly("forces", getter([](Simulation& s) { return to_numpy(s.forces()); }),
+                             "float64 (#V, 3): gravity's forces plus `forces`.")
+      .def_property_readonly("momentum",
+                             getter([](Simulation& s) { return to_numpy(Eigen::VectorXd(s.momentum())); }),
+                             "float64 (3,): sum_i m_i v_i.")
+      .def_property_readonly("kinetic_energy", getter([](Simulation& s) { return s.kinetic_energy(); }),
+                             "sum_i m_i |v_i|^2 / 2.")
+      .def_property_readonly("elastic_energy", getter([](Simulation& s) { return s.elastic_energy(); }),
+                             "E_ARAP of the positions.")
+      .def_property_readonly("potential_energy", getter([](Simulation& s) { return s.potential_energy(); }),
+                             "-f . (positions - V).")
+      .def_property_readonly("time", getter([](Simulation& s) { return s.time(); }), "steps x dt.")
+      .def_property_readonly("steps", getter([](Simulation& s) { return s.steps(); }), "Steps taken.");
+}
+
+} // namespace iarap::python

@@ -1,0 +1,140 @@
+#include "iarap/dynamics/simulation.h"
+
+#include "iarap/core/errors.h"
+#include "iarap/solver/arap.h"
+
+#include <cmath>
+#include <string>
+
+namespace iarap {
+
+namespace {
+
+void check_options(const SimulationOptions& options, Eigen::Index n) {
+  if (!(std::isfinite(options.dt) && options.dt > 0))
+    throw InputError("simulation: dt must be finite and > 0, got " + std::to_string(options.dt));
+  if (!(options.damping >= 0 && options.damping < 1))
+    throw InputError("simulation: damping must be in [0, 1), got " + std::to_string(options.damping));
+  if (!options.gravity.allFinite()) throw InputError("simulation: gravity must be finite");
+  if (options.arap.planar)
+    throw InputError("simulation: ArapOptions::planar is not supported (a simulation moves in 3D)");
+  if (options.forces.size() == 0) return;
+  if (options.forces.rows() != n || options.forces.cols() != 3)
+    throw InputError("simulation: forces must be " + std::to_string(n) + " x 3, got " +
+                     std::to_string(options.forces.rows()) + " x " + std::to_string(options.forces.cols()));
+  for (Eigen::Index r = 0; r < n; ++r)
+    if (!options.forces.row(r).allFinite())
+      throw InputError("simulation: forces row " + std::to_string(r) + " is not finite");
+}
+
+// The inertia term as soft vertices (W_i = m_i / (2 h^2) at every free vertex with mass) ahead of the
+// caller's soft points.
+ArapSoftConstraints with_inertia(const ArapSoftConstraints& soft, const Eigen::VectorXi& inertial,
+                                 const Eigen::VectorXd& masses, double dt) {
+  ArapSoftConstraints all = soft;
+  const Eigen::Index k = inertial.size(), s = soft.vertices.size();
+  all.vertices.resize(k + s);
+  all.vertex_weights.resize(k + s);
+  for (Eigen::Index i = 0; i < k; ++i) {
+    all.vertices(i) = inertial(i);
+    all.vertex_weights(i) = masses(inertial(i)) / (2.0 * dt * dt);
+  }
+  all.vertices.tail(s) = soft.vertices;
+  all.vertex_weights.tail(s) = soft.vertex_weights;
+  return all;
+}
+
+} // namespace
+
+Simulation::Simulation(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const Eigen::VectorXi& fixed,
+                       const SimulationOptions& options, const ArapSoftConstraints& soft)
+    : options_(options) {
+  if (V.cols() != 3)
+    throw InputError("simulation: V must be #V x 3, got " + std::to_string(V.rows()) + " x " +
+                     std::to_string(V.cols()));
+  check_options(options, V.rows());
+  masses_ = arap_vertex_masses(V, F, options.arap.method, options.density);
+  forces_ = gravity_forces(masses_, options.gravity);
+  if (options.forces.size() > 0) forces_ += options.forces;
+  is_fixed_.assign(static_cast<size_t>(V.rows()), 0);
+  for (Eigen::Index k = 0; k < fixed.size(); ++k)
+    if (fixed(k) >= 0 && fixed(k) < V.rows()) is_fixed_[static_cast<size_t>(fixed(k))] = 1;
+  std::vector<int> inertial;
+  for (Eigen::Index v = 0; v < V.rows(); ++v)
+    if (!is_fixed_[static_cast<size_t>(v)] && masses_(v) > 0) inertial.push_back(static_cast<int>(v));
+  inertial_ = Eigen::Map<const Eigen::VectorXi>(inertial.data(), static_cast<Eigen::Index>(inertial.size()));
+  data_ = arap_precompute(V, F, fixed, with_inertia(soft, inertial_, masses_, options.dt), options.arap);
+  X_ = V;
+  velocity_ = Eigen::MatrixXd::Zero(V.rows(), 3);
+  targets_.resize(fixed.size(), 3);
+  for (Eigen::Index k = 0; k < fixed.size(); ++k) targets_.row(k) = V.row(fixed(k));
+  soft_targets_ = Eigen::MatrixXd(0, 3);
+}
+
+SimulationStepReport Simulation::step() {
+  if (soft_targets_.rows() != data_.soft.size() - inertial_.size())
+    throw InputError("simulation: the soft constraints need targets: step(targets, soft_targets)");
+  return step(Eigen::MatrixXd(targets_), Eigen::MatrixXd(soft_targets_));
+}
+
+SimulationStepReport Simulation::step(const Eigen::MatrixXd& targets, const Eigen::MatrixXd& soft_targets) {
+  const double h = options_.dt;
+  const Eigen::Index k = inertial_.size();
+  const Eigen::Index user_soft = data_.soft.size() - k;
+  if (soft_targets.rows() != user_soft || soft_targets.cols() != 3)
+    throw InputError("simulation: soft targets must be " + std::to_string(user_soft) + " x 3, got " +
+                     std::to_string(soft_targets.rows()) + " x " + std::to_string(soft_targets.cols()));
+  // x_pred = x_n + h v_n: the inertia's targets and the warm start.
+  Eigen::MatrixXd U = X_ + h * velocity_;
+  Eigen::MatrixXd all_targets(k + user_soft, 3);
+  for (Eigen::Index i = 0; i < k; ++i) all_targets.row(i) = U.row(inertial_(i));
+  all_targets.bottomRows(user_soft) = soft_targets;
+  ArapSolveOptions solve = options_.solve;
+  solve.forces = forces_;
+  const ArapReport report = arap_solve(data_, targets, all_targets, U, solve); // throws before any change
+  velocity_ = (U - X_) / h;
+  for (Eigen::Index v = 0; v < U.rows(); ++v)
+    if (!is_fixed_[static_cast<size_t>(v)]) velocity_.row(v) *= 1.0 - options_.damping;
+  X_ = std::move(U);
+  targets_ = targets;
+  soft_targets_ = soft_targets;
+  ++steps_;
+  time_ = steps_ * h;
+  SimulationStepReport out;
+  out.step = steps_;
+  out.time = time_;
+  out.kinetic_energy = kinetic_energy();
+  out.elastic_energy = report.arap_energy;
+  out.potential_energy = report.potential;
+  out.iterations = report.iterations;
+  out.converged = report.converged;
+  return out;
+}
+
+void Simulation::set_velocities(const Eigen::MatrixXd& velocities) {
+  if (velocities.rows() != X_.rows() || velocities.cols() != 3)
+    throw InputError("simulation: velocities must be " + std::to_string(X_.rows()) + " x 3, got " +
+                     std::to_string(velocities.rows()) + " x " + std::to_string(velocities.cols()));
+  for (Eigen::Index r = 0; r < velocities.rows(); ++r)
+    if (!velocities.row(r).allFinite())
+      throw InputError("simulation: velocities row " + std::to_string(r) + " is not finite");
+  velocity_ = velocities;
+}
+
+Eigen::Vector3d Simulation::momentum() const {
+  return (velocity_.transpose() * masses_);
+}
+
+double Simulation::kinetic_energy() const {
+  return 0.5 * masses_.dot(velocity_.rowwise().squaredNorm());
+}
+
+double Simulation::elastic_energy() const {
+  return arap_energy(data_, X_);
+}
+
+double Simulation::potential_energy() const {
+  return forces_.cwiseProduct(data_.V).sum() - forces_.cwiseProduct(X_).sum();
+}
+
+} // namespace iarap
