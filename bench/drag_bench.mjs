@@ -11,7 +11,7 @@
 // OBJ) from $IARAP_SHARED_MESHES or ../shared/meshes.
 // Usage: IARAP_CLI=build/iarap node bench/drag_bench.mjs [--meshes beetle,armadillo,armadillo173k]
 //        [--method iarap] [--accel none] [--refine-accel newton] [--budget-ms 20] [--threads 2] [--steps 30]
-//        [--no-refine]
+//        [--no-refine]      (DRAG_DEBUG=1 also prints each answer and refinement frame)
 import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
