@@ -127,9 +127,10 @@ void run_serve(const ServeArguments& args, bool host_given) {
   }
   serve::register_routes(server, config, state, temp);
 
-  std::thread signal_thread([&server, signals] {
+  std::thread signal_thread([&server, &state, signals] {
     int received = 0;
     sigwait(&signals, &received);
+    state.frames().close(); // frame waits answer at once, so that the workers end
     server.stop();
   });
   const std::string shown_host = args.host.find(':') != std::string::npos ? "[" + args.host + "]" : args.host;

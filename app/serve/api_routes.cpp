@@ -17,6 +17,8 @@
 
 #include <algorithm>
 #include <cctype>
+#include <charconv>
+#include <chrono>
 #include <fstream>
 #include <iostream>
 #include <limits>
@@ -27,6 +29,10 @@ namespace iarap::serve {
 namespace {
 
 using nlohmann::json;
+
+// The longest GET /api/frame waits: long enough to span a refinement chunk many times, short enough that
+// a client gone away does not hold a worker for long.
+constexpr long long max_frame_wait_ms = 10000;
 
 // Invalid UTF-8 (a client's bytes quoted in a parser's message) becomes U+FFFD: a strict dump would throw
 // inside the exception handler and end the process.
@@ -150,21 +156,26 @@ json state_json(const ServeConfig& config, const ServeState& state) {
   return j;
 }
 
+ArapAccelerator accelerator_field(const json& body, const char* field, ArapAccelerator fallback) {
+  try {
+    return parse_arap_accelerator(string_field(body, field, arap_accelerator_name(fallback)));
+  } catch (const InputError&) {
+    throw HttpError(400, std::string(field) + " must be \"lbfgs\", \"newton\", \"anderson\" or \"none\"");
+  }
+}
+
 SolveRequest parse_solve_request(const json& body, int max_iterations) {
-  require_known_fields(body,
-                       {"method", "iterations", "tolerance", "transform", "handle_targets", "cell_energy",
-                        "accelerator", "window", "gradient_tolerance", "time_budget_ms"});
+  require_known_fields(body, {"method", "iterations", "tolerance", "transform", "handle_targets",
+                              "cell_energy", "accelerator", "window", "gradient_tolerance", "time_budget_ms",
+                              "refine", "refine_accelerator"});
   SolveRequest request;
   request.method = parse_arap_method(string_field(body, "method", "iarap"));
   request.iterations = integer_field(body, "iterations", 5, 1, max_iterations);
   request.tolerance = number_field(body, "tolerance", 1e-6);
   request.cell_energy = bool_field(body, "cell_energy", false);
-  try {
-    request.accelerator =
-        parse_arap_accelerator(string_field(body, "accelerator", arap_accelerator_name(request.accelerator)));
-  } catch (const InputError&) {
-    throw HttpError(400, "accelerator must be \"lbfgs\", \"newton\", \"anderson\" or \"none\"");
-  }
+  request.refine_iterations = bool_field(body, "refine", false) ? max_iterations : 0;
+  request.accelerator = accelerator_field(body, "accelerator", request.accelerator);
+  request.refine_accelerator = accelerator_field(body, "refine_accelerator", request.refine_accelerator);
   request.window = integer_field(body, "window", request.window, 0, 1000);
   request.gradient_tolerance = number_field(body, "gradient_tolerance", 0.0);
   if (!(request.gradient_tolerance >= 0) || !std::isfinite(request.gradient_tolerance))
@@ -204,13 +215,49 @@ std::string solve_frame(const SolveRequest& request, const SolveResult& result) 
                        {"initial_energy", report.initial_energy},
                        {"energies", report.energies},
                        {"gradient_norms", report.gradient_norms},
+                       {"wait_ms", result.wait_ms},
+                       {"refinement_preempted", result.refinement_preempted},
                        {"precompute_ms", result.precompute_ms},
                        {"solve_ms", result.solve_ms},
                        {"local_ms", report.local_ms},
                        {"global_ms", report.global_ms},
                        {"pinned", result.pinned},
                        {"cancelled", result.cancelled},
+                       {"generation", result.generation},
+                       {"sequence", result.sequence},
+                       {"refining", result.refining},
                        {"vertices", result.positions.size() / 3}});
+}
+
+std::string session_frame(const SessionFrame& frame) {
+  BinaryFrame body;
+  body.add("positions", frame.positions);
+  json header = {{"sequence", frame.sequence},
+                 {"generation", frame.generation},
+                 {"method", arap_method_name(frame.method)},
+                 {"refined", frame.refined},
+                 {"iterations", frame.iterations},
+                 {"energy", frame.energy},
+                 {"relative_decrease", frame.relative_decrease},
+                 {"tolerance", frame.tolerance},
+                 {"refining", frame.refining},
+                 {"converged", frame.converged},
+                 {"vertices", frame.positions.size() / 3}};
+  if (!frame.error.empty()) header["error"] = frame.error;
+  return body.encode(header);
+}
+
+// A whole-number query parameter in [min, max], fallback when absent; 400 naming it otherwise.
+long long integer_param(const httplib::Request& req, const char* name, long long fallback, long long min,
+                        long long max) {
+  if (!req.has_param(name)) return fallback;
+  const std::string text = req.get_param_value(name);
+  long long value = 0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (error != std::errc() || end != text.data() + text.size() || value < min || value > max)
+    throw HttpError(400, std::string(name) + " must be a whole number from " + std::to_string(min) + " to " +
+                             std::to_string(max) + ", got \"" + safe_label(text) + "\"");
+  return value;
 }
 
 // Messages may quote client data (a parser's last token, a file's line): at most 600 characters go back.
@@ -414,11 +461,26 @@ void register_routes(httplib::Server& server, const ServeConfig& config, ServeSt
                     {"energy", p.energy.load()}});
   });
 
+  // The newest frame after sequence `after` (a solve's answer or the background refinement's), waiting at
+  // most wait_ms for one (long polling); 204 when none came. No session mutex.
+  routes.get("/api/frame", [&](const httplib::Request& req, httplib::Response& res) {
+    const auto after = integer_param(req, "after", 0, 0, std::numeric_limits<long long>::max());
+    const auto wait_ms = integer_param(req, "wait_ms", 0, 0, max_frame_wait_ms);
+    const std::shared_ptr<const SessionFrame> frame =
+        state.frames().wait_newer(static_cast<std::uint64_t>(after), std::chrono::milliseconds(wait_ms));
+    if (!frame) {
+      res.status = 204;
+      return;
+    }
+    send_binary(res, session_frame(*frame));
+  });
+
   routes.post("/api/cancel", [&](const httplib::Request&, httplib::Response& res) {
     SolveProgress& p = state.progress();
     const bool running = p.running.load();
     if (running) p.cancel_requested = true;
-    send_json(res, {{"cancelling", running}});
+    const bool refining = state.stop_refinement();
+    send_json(res, {{"cancelling", running}, {"refinement_stopped", refining}});
   });
 
   routes.post("/api/reset", [&](const httplib::Request& req, httplib::Response& res) {

@@ -8,9 +8,12 @@
 //   POST /api/constraints      {"fixed": [...], "handle": [...]} (a new revision), or {"revision": R} (undo:
 //                              an earlier revision's sets and anchors back)
 //   POST /api/solve            {"method", "iterations", "tolerance", "transform" | "handle_targets",
-//                               "cell_energy"} -> binary frame: energies + positions (+ cell energies)
+//                               "cell_energy", "refine"} -> binary frame: energies + positions (+ cell
+//                               energies); with refine the server keeps solving in the background
+//   GET  /api/frame?after=S&wait_ms=T   binary frame: the newest answer or refinement frame numbered
+//                              above S, waiting up to T ms (long polling; 204 when none; no session lock)
 //   GET  /api/progress         JSON: the running solve's method, iteration, iterations (no session lock)
-//   POST /api/cancel           stops the running solve after its current iteration
+//   POST /api/cancel           stops the running solve after its current iteration, and the refinement
 //   POST /api/reset            every method back to the rest shape
 //   POST /api/scenario         {"method", "transform" | "handle_targets"} -> a scenario (JSON) or
 //                              constraints file (text) `iarap deform` replays (scenario_files.h)

@@ -45,6 +45,18 @@ void check_index_set(const Eigen::VectorXi& set, const char* name, int vertex_co
   }
 }
 
+// (E_prev - E) / |E_prev| of the report's last iteration: what the energy tolerance compares.
+double last_relative_decrease(const ArapReport& report) {
+  if (report.energies.empty()) return 0;
+  const double previous =
+      report.energies.size() > 1 ? report.energies[report.energies.size() - 2] : report.initial_energy;
+  return previous != 0 ? (previous - report.energies.back()) / std::abs(previous) : 0;
+}
+
+double last_energy(const ArapReport& report) {
+  return report.energies.empty() ? report.initial_energy : report.energies.back();
+}
+
 // One arap_solve call that publishes its progress after every iteration and stops when a cancel is
 // requested (the callback returns false). One call, not chunks: the accelerators keep their history, so the
 // page's result equals `iarap deform`'s with the same options bit for bit.
@@ -68,13 +80,120 @@ ArapReport solve_with_progress(ArapData& data, const Eigen::MatrixXd& targets, E
   options.time_budget_ms = request.time_budget_ms;
   options.on_iteration = [&progress](const ArapReport& report) {
     progress.iteration = report.iterations;
-    progress.energy = report.energies.empty() ? report.initial_energy : report.energies.back();
+    progress.energy = last_energy(report);
     return !progress.cancel_requested.load();
   };
   return arap_solve(data, targets, U, options);
 }
 
 } // namespace
+
+ServeState::SessionLock::SessionLock(const ServeState& state) : state_(state) {
+  ++state_.waiting_;
+  lock_ = std::unique_lock<std::mutex>(state_.mutex_);
+  --state_.waiting_;
+}
+
+ServeState::SessionLock::~SessionLock() {
+  state_.last_release_ = Clock::now();
+  lock_.unlock();
+  state_.refine_wake_.notify_one();
+}
+
+ServeState::ServeState() : refiner_([this] { refine_in_background(); }) {}
+
+ServeState::~ServeState() {
+  {
+    std::lock_guard<std::mutex> lock(mutex_); // stopping_ is read under it by the refiner's wait
+    stopping_ = true;
+  }
+  refine_wake_.notify_one();
+  refiner_.join();
+  frames_.close();
+}
+
+void ServeState::new_generation() {
+  ++generation_;
+  refine_job_.reset();
+}
+
+// Waits, with the mutex released, until there is a job, nobody queues for the mutex and the last caller
+// left refine_delay_ms ago; then one chunk.
+void ServeState::refine_in_background() {
+  std::unique_lock<std::mutex> lock(mutex_);
+  for (;;) {
+    refine_wake_.wait(lock, [this] { return stopping_ || (refine_job_ && waiting_.load() == 0); });
+    if (stopping_) return;
+    const auto start = last_release_ + std::chrono::duration_cast<Clock::duration>(
+                                           std::chrono::duration<double, std::milli>(refine_delay_ms));
+    if (Clock::now() < start) {
+      refine_wake_.wait_until(lock, start); // then everything is checked again
+      continue;
+    }
+    refine_chunk();
+  }
+}
+
+void ServeState::refine_chunk() {
+  RefineJob& job = *refine_job_;
+  MethodState& state = state_of(job.method);
+  ArapSolveOptions options = job.options;
+  options.time_budget_ms = refine_frame_ms;
+  if (job.gradient_target > 0) options.gradient_tolerance = job.gradient_target / job.gradient_now;
+  options.newton_trust_radius = job.trust_radius;
+  options.newton_reference_gradient = job.reference_gradient;
+  const bool plain = job.options.accelerator == ArapAccelerator::None || job.options.window == 0;
+  bool energy_rule = false;
+  // The iteration boundary where a caller of the session takes over (or the server stops), and the
+  // energy rule on accelerated iterates.
+  options.on_iteration = [&](const ArapReport& report) {
+    energy_rule = job.tolerance >= 0 && (plain || report.accepted.back() != 0) &&
+                  last_relative_decrease(report) <= job.tolerance;
+    return !energy_rule && waiting_.load() == 0 && !stopping_.load();
+  };
+  SessionFrame frame;
+  frame.generation = generation_;
+  frame.method = job.method;
+  frame.refined = true;
+  frame.tolerance = job.tolerance;
+  try {
+    Eigen::MatrixXd U = state.U;
+    const ArapReport report = arap_solve(*state.data, job.targets, U, options);
+    state.U = std::move(U);
+    job.iterations_done += report.iterations;
+    job.options.max_iterations -= report.iterations;
+    if (!report.gradient_norms.empty()) job.gradient_now = report.gradient_norms.back();
+    job.trust_radius = report.newton_trust_radius;
+    job.reference_gradient = report.newton_reference_gradient;
+    frame.energy = last_energy(report);
+    frame.relative_decrease = last_relative_decrease(report);
+    frame.converged = report.converged || energy_rule;
+    frame.refining = !frame.converged && job.options.max_iterations > 0;
+  } catch (const std::exception& e) { // the solver's refusal ends the refinement; U stays the last iterate
+    frame.error = e.what();
+  }
+  frame.iterations = job.iterations_done;
+  frame.positions = to_float_rows(state.U);
+  if (!frame.refining) refine_job_.reset();
+  frames_.publish(std::move(frame));
+}
+
+bool ServeState::stop_refinement() {
+  const SessionLock lock(*this);
+  if (!refine_job_) return false;
+  const RefineJob job = std::move(*refine_job_);
+  refine_job_.reset();
+  SessionFrame frame;
+  frame.generation = generation_;
+  frame.method = job.method;
+  frame.refined = true;
+  frame.iterations = job.iterations_done;
+  frame.tolerance = job.tolerance;
+  frame.energy = arap_energy(*state_of(job.method).data, state_of(job.method).U);
+  frame.positions = to_float_rows(state_of(job.method).U);
+  frames_.publish(std::move(frame));
+  return true;
+}
 
 void ServeState::load_mesh(const std::string& name, MeshData mesh) {
   const MeshReport report = check_mesh(mesh.V, mesh.F);
@@ -83,7 +202,7 @@ void ServeState::load_mesh(const std::string& name, MeshData mesh) {
     for (const auto& error : report.errors) message += "\n  " + cli::name_repair(error, viewer_repair);
     throw TopologyError(message);
   }
-  std::lock_guard<std::mutex> lock(mutex_);
+  const SessionLock lock(*this);
   summary_ = MeshSummary{name,
                          static_cast<int>(mesh.V.rows()),
                          static_cast<int>(mesh.F.rows()),
@@ -99,12 +218,13 @@ void ServeState::load_mesh(const std::string& name, MeshData mesh) {
   handle_.resize(0);
   constrained_.resize(0);
   overlay_.reset();
+  new_generation();
   history_.clear(); // revisions index the previous mesh's vertices
   mesh_ = std::move(mesh);
 }
 
 bool ServeState::has_mesh() const {
-  std::lock_guard<std::mutex> lock(mutex_);
+  const SessionLock lock(*this);
   return mesh_.has_value();
 }
 
@@ -113,19 +233,19 @@ void ServeState::require_mesh() const {
 }
 
 MeshSummary ServeState::mesh_summary() const {
-  std::lock_guard<std::mutex> lock(mutex_);
+  const SessionLock lock(*this);
   require_mesh();
   return summary_;
 }
 
 Eigen::VectorXi ServeState::fixed() const {
-  std::lock_guard<std::mutex> lock(mutex_);
+  const SessionLock lock(*this);
   require_mesh();
   return fixed_;
 }
 
 Eigen::VectorXi ServeState::handle() const {
-  std::lock_guard<std::mutex> lock(mutex_);
+  const SessionLock lock(*this);
   require_mesh();
   return handle_;
 }
@@ -162,16 +282,17 @@ int ServeState::record_revision() {
 }
 
 int ServeState::set_constraints(const Eigen::VectorXi& fixed, const Eigen::VectorXi& handle) {
-  std::lock_guard<std::mutex> lock(mutex_);
+  const SessionLock lock(*this);
   require_mesh();
   check_sets(fixed, handle);
   use_sets(fixed, handle);
+  new_generation();
   for (MethodState& state : methods_) state.anchor = gather_rows(state.U, constrained_);
   return record_revision();
 }
 
 void ServeState::restore_constraints(int revision) {
-  std::lock_guard<std::mutex> lock(mutex_);
+  const SessionLock lock(*this);
   require_mesh();
   const auto it = std::find_if(history_.begin(), history_.end(),
                                [revision](const Revision& r) { return r.id == revision; });
@@ -180,6 +301,7 @@ void ServeState::restore_constraints(int revision) {
                              std::to_string(history_limit) + " of this mesh are)");
   }
   use_sets(it->fixed, it->handle);
+  new_generation();
   for (std::size_t m = 0; m < methods_.size(); ++m) methods_[m].anchor = it->anchors[m];
   // The restored state becomes the newest, so that it outlives the revisions undone past it.
   Revision restored = *it;
@@ -188,13 +310,13 @@ void ServeState::restore_constraints(int revision) {
 }
 
 int ServeState::revision() const {
-  std::lock_guard<std::mutex> lock(mutex_);
+  const SessionLock lock(*this);
   return history_.empty() ? 0 : history_.back().id;
 }
 
 int ServeState::load_constraints(const Eigen::VectorXi& fixed, const Eigen::VectorXi& handle,
                                  const Eigen::MatrixXd& targets) {
-  std::lock_guard<std::mutex> lock(mutex_);
+  const SessionLock lock(*this);
   require_mesh();
   check_sets(fixed, handle);
   if (targets.rows() != fixed.size() + handle.size() || targets.cols() != 3)
@@ -204,6 +326,7 @@ int ServeState::load_constraints(const Eigen::VectorXi& fixed, const Eigen::Vect
       throw InputError("constraint target " + std::to_string(i) + " is not finite");
   }
   use_sets(fixed, handle);
+  new_generation();
   for (MethodState& state : methods_) {
     state.U = mesh_->V;
     state.anchor = targets;
@@ -212,7 +335,7 @@ int ServeState::load_constraints(const Eigen::VectorXi& fixed, const Eigen::Vect
 }
 
 ConstraintTargets ServeState::constraint_targets(ArapMethod method, const SolveRequest& request) const {
-  std::lock_guard<std::mutex> lock(mutex_);
+  const SessionLock lock(*this);
   require_mesh();
   if (constrained_.size() == 0) throw HttpError(409, "no fixed or handle vertices; select some first");
   const MethodState& state = state_of(method);
@@ -264,14 +387,19 @@ Eigen::MatrixXd ServeState::targets_for(const MethodState& state, const SolveReq
 }
 
 SolveResult ServeState::solve(const SolveRequest& request) {
-  std::lock_guard<std::mutex> lock(mutex_);
+  const auto arrival = Clock::now();
+  const SessionLock lock(*this);
+  const double wait_ms = ms_since(arrival);
   require_mesh();
   if (constrained_.size() == 0)
     throw HttpError(409, "no fixed or handle vertices; select some before solving");
   MethodState& state = state_of(request.method);
   const Eigen::MatrixXd targets = targets_for(state, request);
-
   SolveResult result;
+  result.wait_ms = wait_ms;
+  result.refinement_preempted = refine_job_.has_value();
+  new_generation();
+
   const auto precompute_start = Clock::now();
   if (!state.data) {
     ArapOptions options;
@@ -288,7 +416,7 @@ SolveResult ServeState::solve(const SolveRequest& request) {
   Eigen::MatrixXd U = state.U; // commit only a successful solve
   const auto solve_start = Clock::now();
   result.report = solve_with_progress(*state.data, targets, U, request, progress_);
-  result.cancelled = !result.report.converged && result.report.iterations < request.iterations;
+  result.cancelled = result.report.stop_reason == ArapStopReason::Callback; // not a time budget
   result.solve_ms = ms_since(solve_start);
   result.pinned = static_cast<int>(state.data->pinned.size());
   result.positions = to_float_rows(U);
@@ -298,12 +426,44 @@ SolveResult ServeState::solve(const SolveRequest& request) {
     result.cell_energy.assign(energy.data(), energy.data() + std::min<Eigen::Index>(energy.size(), U.rows()));
   }
   state.U = std::move(U);
+  result.generation = generation_;
+  result.refining = request.refine_iterations > 0 && !result.report.converged && !result.cancelled;
+  if (result.refining) {
+    RefineJob job;
+    job.method = request.method;
+    job.targets = targets;
+    job.options.max_iterations = request.refine_iterations;
+    job.options.tolerance = -1; // the job's own rules, in refine_chunk
+    job.options.accelerator = request.refine_accelerator;
+    job.options.window = request.window;
+    job.tolerance = request.tolerance;
+    job.gradient_target = request.gradient_tolerance * result.report.initial_gradient_norm;
+    if (request.refine_accelerator == request.accelerator) { // Newton's state goes on (same targets)
+      job.trust_radius = result.report.newton_trust_radius;
+      job.reference_gradient = result.report.newton_reference_gradient;
+    }
+    job.gradient_now = result.report.gradient_norms.empty() ? result.report.initial_gradient_norm
+                                                            : result.report.gradient_norms.back();
+    refine_job_ = std::move(job); // the refiner starts when this call releases the mutex
+  }
+  SessionFrame frame;
+  frame.generation = generation_;
+  frame.method = request.method;
+  frame.iterations = result.report.iterations;
+  frame.energy = last_energy(result.report);
+  frame.relative_decrease = last_relative_decrease(result.report);
+  frame.tolerance = request.tolerance;
+  frame.refining = result.refining;
+  frame.converged = result.report.converged;
+  frame.positions = result.positions;
+  result.sequence = frames_.publish(std::move(frame));
   return result;
 }
 
 void ServeState::reset() {
-  std::lock_guard<std::mutex> lock(mutex_);
+  const SessionLock lock(*this);
   require_mesh();
+  new_generation();
   for (MethodState& state : methods_) {
     state.U = mesh_->V;
     state.anchor = gather_rows(state.U, constrained_);
@@ -312,13 +472,13 @@ void ServeState::reset() {
 }
 
 std::vector<float> ServeState::positions(std::optional<ArapMethod> method) const {
-  std::lock_guard<std::mutex> lock(mutex_);
+  const SessionLock lock(*this);
   require_mesh();
   return to_float_rows(method ? state_of(*method).U : mesh_->V);
 }
 
 std::vector<std::uint32_t> ServeState::faces() const {
-  std::lock_guard<std::mutex> lock(mutex_);
+  const SessionLock lock(*this);
   require_mesh();
   const Eigen::MatrixXi& F = mesh_->F;
   std::vector<std::uint32_t> out(static_cast<std::size_t>(F.rows() * 3));
@@ -329,13 +489,13 @@ std::vector<std::uint32_t> ServeState::faces() const {
 }
 
 MeshSnapshot ServeState::snapshot(std::optional<ArapMethod> method) const {
-  std::lock_guard<std::mutex> lock(mutex_);
+  const SessionLock lock(*this);
   require_mesh();
   return {method ? state_of(*method).U : mesh_->V, mesh_->F, summary_.name};
 }
 
 std::shared_ptr<const IntrinsicOverlay> ServeState::intrinsic_overlay() {
-  std::lock_guard<std::mutex> lock(mutex_);
+  const SessionLock lock(*this);
   require_mesh();
   if (overlay_) return overlay_;
   const IntrinsicDelaunay intrinsic = intrinsic_delaunay(mesh_->V, mesh_->F);

@@ -6,21 +6,33 @@
 // anchors moved by the request's affine transform (or to explicit targets). Each method keeps its own
 // deformed positions U, the warm start of its next solve, and its factorization, refactorized only when
 // the constrained set changes (libigl habit: new targets reuse it).
+//
+// A solve asked to refine keeps going toward its targets after answering, on the session's one background
+// thread, in chunks of about refine_frame_ms that each publish a frame (FrameBoard). Every call that takes
+// the session mutex preempts it at the next iteration boundary: the chunk's callback sees the caller
+// waiting and stops, the last finished iterate is kept, and the caller gets the mutex. The generation
+// counts the states a frame can belong to: every solve and every change of constraints, shapes or mesh
+// starts a new one, and ends the refinement of the previous one.
 #pragma once
+#include "frame_board.h"
 #include "solve_progress.h"
 
+#include "iarap/core/stopwatch.h"
 #include "iarap/intrinsic/intrinsic_delaunay.h"
 #include "iarap/io/read_mesh.h"
 #include "iarap/solver/arap.h"
 
 #include <Eigen/Core>
 #include <array>
+#include <atomic>
+#include <condition_variable>
 #include <cstdint>
 #include <deque>
 #include <memory>
 #include <mutex>
 #include <optional>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace iarap::serve {
@@ -49,16 +61,28 @@ struct SolveRequest {
   std::optional<Eigen::Matrix4d> transform;
   std::optional<Eigen::MatrixXd> handle_targets;
   bool cell_energy = false; // also return arap_cell_energy of the result
+  // > 0: unless the solve converged, keep solving toward the same targets in the background after the
+  // answer (same method, accelerator, window and tolerance), at most this many more iterations.
+  int refine_iterations = 0;
+  // The refinement's accelerator. Newton by default: its end-game is the fastest (beetle, from a drag's
+  // last answer: 31 iterations to a 3e-7 gap, where L-BFGS stopped at 5e-5 and Anderson at 6e-4), while
+  // the drag's own updates are cheapest with plain iterations (bench/drag_bench.mjs).
+  ArapAccelerator refine_accelerator = ArapAccelerator::Newton;
 };
 
 struct SolveResult {
   ArapReport report;
-  double precompute_ms = 0; // > 0 when this solve built or refactorized the method's data
+  double wait_ms = 0; // for the session: another request's work, or the refinement's last iteration
+  bool refinement_preempted = false; // an unfinished refinement (of an earlier solve) ended for this one
+  double precompute_ms = 0;          // > 0 when this solve built or refactorized the method's data
   double solve_ms = 0;
   int pinned = 0;                 // vertices pinned because their component had no constrained vertex
   std::vector<float> positions;   // #V x 3 row-major
   std::vector<float> cell_energy; // #V when requested
   bool cancelled = false;         // POST /api/cancel stopped it early; positions are the last iterate's
+  std::uint64_t generation = 0;   // the session generation this solve started
+  std::uint64_t sequence = 0;     // its frame's number on the FrameBoard
+  bool refining = false;          // the background refinement continues from it
 };
 
 // The constrained vertices of a method with their targets for a request, for saving them as a file.
@@ -86,6 +110,17 @@ struct MeshSnapshot {
 
 class ServeState {
 public:
+  ServeState();  // starts the refinement thread
+  ~ServeState(); // stops it at its next iteration boundary
+  ServeState(const ServeState&) = delete;
+  ServeState& operator=(const ServeState&) = delete;
+
+  // How long one refinement chunk solves before it publishes a frame (the last iteration may run over).
+  static constexpr double refine_frame_ms = 100;
+  // The refinement starts once no caller has held the session for this long, so that it does not cost a
+  // drag, whose next update comes within a frame of the pointer (16 ms at 60 Hz) plus a round trip.
+  static constexpr double refine_delay_ms = 40;
+
   // Replaces the mesh (and clears constraints and solver states) after check_mesh. Throws TopologyError
   // listing check_mesh's errors; the previous mesh then stays.
   void load_mesh(const std::string& name, MeshData mesh);
@@ -122,6 +157,11 @@ public:
 
   // Read without the session mutex (see SolveProgress).
   SolveProgress& progress() { return progress_; }
+  // The answers and refinement frames, read without the session mutex.
+  FrameBoard& frames() { return frames_; }
+  // Ends the background refinement (its last iterate stays) and publishes a frame saying so; false when
+  // none was running.
+  bool stop_refinement();
 
   // Every method back to the rest positions; anchors re-taken there; constraints and factorizations kept.
   void reset();
@@ -142,6 +182,41 @@ private:
     Eigen::MatrixXd anchor;       // #constrained x 3 positions of the constrained vertices when set
   };
 
+  // What the background refinement works toward: a solve's targets and stopping rule.
+  //
+  // Its stopping rule is the request's, made independent of where the chunks begin: the energy rule
+  // counts only accelerated iterates (a fallback plain step of Newton, L-BFGS or Anderson decreases the
+  // energy little far from the minimum: 5e-7 of it at a 5e-4 gap on the beetle, which stopped the
+  // refinement there), and the gradient rule compares with the gradient at the solve's initial guess.
+  struct RefineJob {
+    ArapMethod method = ArapMethod::Iarap;
+    Eigen::MatrixXd targets;
+    ArapSolveOptions options;   // max_iterations: the iterations left
+    double tolerance = 0;       // the energy rule (relative decrease of an accelerated iterate)
+    double gradient_target = 0; // stop once ||g|| <= this (0: no gradient rule)
+    double gradient_now = 0;    // ||g|| at the method's U
+    // Newton's trust radius and reference gradient, carried from the answer to the first chunk and from
+    // chunk to chunk (same targets). Not from one answer to the next: carried over moved targets, the
+    // radius of the previous step let the first steps of the beetle's drag run far (its last answer's
+    // energy was 400 times the minimum's instead of 1.2 times).
+    double trust_radius = 0, reference_gradient = 0;
+    int iterations_done = 0;
+  };
+
+  // The session mutex, taken so that a running refinement chunk stops at its next iteration boundary:
+  // waiting_ counts the callers queued for the mutex; the refinement thread is woken on release.
+  class SessionLock {
+  public:
+    explicit SessionLock(const ServeState& state);
+    ~SessionLock();
+    SessionLock(const SessionLock&) = delete;
+    SessionLock& operator=(const SessionLock&) = delete;
+
+  private:
+    const ServeState& state_;
+    std::unique_lock<std::mutex> lock_;
+  };
+
   struct Revision {
     int id = 0;
     Eigen::VectorXi fixed, handle;
@@ -156,6 +231,9 @@ private:
   MethodState& state_of(ArapMethod method);
   const MethodState& state_of(ArapMethod method) const;
   Eigen::MatrixXd targets_for(const MethodState& state, const SolveRequest& request) const;
+  void new_generation(); // ends the refinement; a new state for frames
+  void refine_in_background();
+  void refine_chunk(); // one chunk of refine_job_, with the session mutex held
 
   mutable std::mutex mutex_;
   std::optional<MeshData> mesh_;
@@ -166,6 +244,14 @@ private:
   std::deque<Revision> history_; // oldest first, at most history_limit
   int next_revision_ = 1;
   SolveProgress progress_;
+  FrameBoard frames_;
+  std::uint64_t generation_ = 0;
+  std::optional<RefineJob> refine_job_;
+  mutable std::atomic<int> waiting_{0};
+  mutable std::condition_variable refine_wake_;
+  mutable Clock::time_point last_release_; // when a caller last released the session (under mutex_)
+  std::atomic<bool> stopping_{false};
+  std::thread refiner_; // last: starts once everything above exists
 };
 
 } // namespace iarap::serve

@@ -318,6 +318,13 @@ ArapReport arap_solve(ArapData& data, const Eigen::MatrixXd& targets, const Eige
   if (!(options.time_budget_ms >= 0) || !std::isfinite(options.time_budget_ms))
     throw InputError("ARAP: time_budget_ms must be a finite number >= 0, got " +
                      std::to_string(options.time_budget_ms));
+  for (const auto& [name, value] :
+       {std::pair<const char*, double>{"newton_trust_radius", options.newton_trust_radius},
+        {"newton_reference_gradient", options.newton_reference_gradient}}) {
+    if (!(value >= 0) || !std::isfinite(value))
+      throw InputError(std::string("ARAP: ") + name + " must be a finite number >= 0, got " +
+                       std::to_string(value));
+  }
   check_solver_positions(data, targets, data.fixed.size(), "targets");
   check_solver_positions(data, soft_targets, data.soft.size(), "soft targets");
   check_solver_positions(data, U, data.V.rows(), "initial guess U");

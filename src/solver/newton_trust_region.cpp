@@ -86,9 +86,10 @@ void run_newton(LocalGlobalProblem& problem, const ArapSolveOptions& options, do
                 Eigen::MatrixXd g, ArapReport& report, Progress& progress) {
   constexpr double kAccept = 0.1;                // rho above this: the step is taken
   constexpr double kShrink = 0.25, kGrow = 0.75; // rho below / above: radius shrinks / grows (N&W Alg. 4.1)
-  const double g0 = g.norm();
+  const double g0 = options.newton_reference_gradient > 0 ? options.newton_reference_gradient : g.norm();
   Eigen::MatrixXd x = problem.positions();
-  double radius = 0; // in the L_ff norm; set from the first plain step's length
+  // In the L_ff norm; 0: set from the first plain step's length.
+  double radius = options.newton_trust_radius > 0 ? options.newton_trust_radius : 0;
   for (int k = 0; k < options.max_iterations; ++k) {
     const SteihaugStep cg = timed(report.accelerator_ms, [&] {
       problem.prepare_hessian();
@@ -117,6 +118,8 @@ void run_newton(LocalGlobalProblem& problem, const ArapSolveOptions& options, do
       g = problem.gradient();
     });
     x.swap(step.x);
+    report.newton_trust_radius = radius;
+    report.newton_reference_gradient = g0;
     if (progress.record(energy, g.norm(), step.accepted, step.local_ms, step.global_ms)) return;
   }
 }

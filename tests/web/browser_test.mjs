@@ -104,6 +104,67 @@ try {
   const handle = labels.flatMap((l, i) => (l === 2 ? [i] : []));
   assert.ok(fixed.length > 10 && handle.length > 10, `selection: ${fixed.length} fixed, ${handle.length} handle`);
 
+  // 0. Background refinement. One plain iteration per update, so that the refinement has work: after the
+  // last pointer event frames keep arriving until Newton's refinement converges, and the last one shows what
+  // the server keeps. Then, with a plain refinement (seconds on this edit), a drag during it is answered
+  // after at most the refinement's current iteration.
+  {
+    await page.selectOption('#accelerator', 'none');
+    await page.fill('#iterations', '1');
+    await page.fill('#budget', '0');
+    const g = await viewer('gizmoXArrowScreenPoint', 0);
+    await page.check('input[name=tool][value=orbit]');
+    await page.mouse.move(g.x, g.y);
+    await page.mouse.down();
+    for (let k = 1; k <= 6; ++k) {
+      await page.mouse.move(g.x + 16 * k, g.y);
+      await page.waitForTimeout(30);
+    }
+    await page.mouse.up();
+    const lastInput = await page.evaluate(() => performance.now());
+    await idle();
+    const generation = (await viewer('answers')).at(-1).generation;
+    await page.waitForFunction(([t, gen]) => window.iarapViewer.frames().some((f) => f.receivedAt > t && f.generation === gen && !f.refining), [lastInput, generation], { timeout: 60000 });
+    const frames = (await viewer('frames')).filter((f) => f.generation === generation);
+    const last = frames.at(-1);
+    console.log(`refinement after the drag: ${frames.length} frames, the first ${(frames[0].receivedAt - lastInput).toFixed(0)} ms and the last ${(last.receivedAt - lastInput).toFixed(0)} ms after the last pointer event, ${last.iterations} iterations, converged ${last.converged}`);
+    assert.ok(frames.every((f) => f.receivedAt > lastInput), 'a frame of the last generation came before the last input');
+    assert.equal(last.converged, true);
+    assert.match(await page.textContent('#refine-info'), /converged/);
+    const kept = Array.from(new Float32Array(await (await fetch(`${server.url}api/positions?method=iarap`)).arrayBuffer()));
+    assert.deepEqual(await viewer('displayedPositions'), kept, 'the page does not show the refined iterate the server keeps');
+
+    await page.selectOption('#refine-accelerator', 'none');
+    await page.fill('#tolerance', '1e-12'); // the plain refinement then runs to the server's iteration limit
+    await page.mouse.move(g.x + 96, g.y);
+    await page.mouse.down();
+    await page.mouse.move(g.x + 300, g.y); // a large edit in one update: the plain refinement is long
+    await page.mouse.up();
+    await idle();
+    const plainGeneration = (await viewer('answers')).at(-1).generation;
+    await page.waitForFunction((gen) => window.iarapViewer.frames().some((f) => f.generation === gen && f.refining), plainGeneration, { timeout: 60000 });
+    await page.mouse.move(g.x + 300, g.y);
+    await page.mouse.down();
+    await page.mouse.move(g.x + 280, g.y);
+    await page.mouse.up();
+    await idle();
+    const preempting = (await viewer('answers')).find((a) => a.generation > plainGeneration);
+    const refined = (await viewer('frames')).filter((f) => f.generation === plainGeneration);
+    // About 2 ms (one plain iteration on the bunny) unless the machine is loaded; the remainder of the
+    // plain refinement was hundreds of iterations (it had not converged).
+    console.log(`drag during the refinement: answered after waiting ${preempting.wait_ms.toFixed(1)} ms for the session; the refinement had run ${refined.at(-1).iterations} iterations`);
+    assert.ok(refined.every((f) => !f.converged), 'the plain refinement converged before the drag');
+    assert.equal(preempting.refinement_preempted, true);
+    assert.ok(preempting.wait_ms < 1000, `the drag waited ${preempting.wait_ms} ms`);
+    await page.selectOption('#refine-accelerator', 'newton');
+    await page.fill('#tolerance', '1e-6');
+    await page.uncheck('#refine'); // the checks below compare solves with the CLI's
+    await page.selectOption('#accelerator', 'lbfgs');
+    await page.fill('#iterations', '5');
+    await page.click('#reset');
+    await settle();
+  }
+
   // 1. Drag the gizmo: the handle follows, the fixed vertices stay.
   const rest = await viewer('displayedPositions');
   const solvesBefore = await viewer('solves');

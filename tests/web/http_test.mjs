@@ -508,13 +508,104 @@ describe('undo revisions, scenario files, progress', () => {
     assert.ok(progress.running && progress.iteration > 0, JSON.stringify(progress));
     assert.equal(progress.iterations, 1000);
     assert.equal(progress.method, 'arap');
-    assert.deepEqual(await (await postJson('/api/cancel', {})).json(), { cancelling: true });
+    assert.deepEqual(await (await postJson('/api/cancel', {})).json(), { cancelling: true, refinement_stopped: false });
     const { header } = decodeFrame(await (await solving).arrayBuffer());
     assert.equal(header.cancelled, true);
     assert.ok(header.iterations >= progress.iteration && header.iterations < 1000, `${header.iterations}`);
     assert.equal(header.energies.length, header.iterations);
     assert.equal((await (await fetch(base + '/api/progress')).json()).running, false);
-    assert.deepEqual(await (await postJson('/api/cancel', {})).json(), { cancelling: false });
+    assert.deepEqual(await (await postJson('/api/cancel', {})).json(), { cancelling: false, refinement_stopped: false });
+  });
+});
+
+describe('background refinement', () => {
+  const solveFrame = async (body) => decodeFrame(await (await postJson('/api/solve', body)).arrayBuffer());
+  // The next frame after `after` (null when none came within waitMs).
+  const nextFrame = async (after, waitMs = 10000) => {
+    const response = await fetch(`${base}/api/frame?after=${after}&wait_ms=${waitMs}`);
+    if (response.status === 204) return null;
+    assert.equal(response.status, 200);
+    return decodeFrame(await response.arrayBuffer());
+  };
+  // A large edit whose plain refinement takes hundreds of iterations (seconds) on the bunny.
+  const bend = async () => {
+    const { fixed, handle, height } = await bottomAndTop();
+    await postJson('/api/constraints', { fixed, handle });
+    return [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0.3 * height, 0, 0, 1];
+  };
+
+  test('frames follow the answer until the tolerance; the last one is the session\'s iterate', async () => {
+    const transform = await bend();
+    const answer = await solveFrame({ method: 'spokes-rims', iterations: 1, transform, refine: true, refine_accelerator: 'newton' });
+    assert.equal(answer.header.refining, true);
+    let { sequence } = answer.header;
+    const frames = [];
+    for (let frame = await nextFrame(sequence); frame; frame = frame.header.refining ? await nextFrame(sequence) : null) {
+      frames.push(frame);
+      sequence = frame.header.sequence;
+    }
+    assert.ok(frames.length > 0);
+    const last = frames.at(-1).header;
+    assert.ok(frames.every((f) => f.header.generation === answer.header.generation && f.header.refined && f.header.method === 'spokes-rims'));
+    // Newton never increases the energy (a step that would is replaced by the plain one), and each frame
+    // continues from the one before.
+    const energies = [answer.header.energies.at(-1), ...frames.map((f) => f.header.energy)];
+    energies.slice(1).forEach((e, k) => assert.ok(e <= energies[k], `frame ${k}: ${e} > ${energies[k]}`));
+    assert.equal(last.converged, true, JSON.stringify(last));
+    assert.ok(last.relative_decrease <= last.tolerance && last.tolerance === 1e-6);
+    // A frame is one whole iterate: the positions the session keeps, bit for bit.
+    const kept = new Float32Array(await (await fetch(base + '/api/positions?method=spokes-rims')).arrayBuffer());
+    assert.deepEqual(Array.from(frames.at(-1).arrays.positions), Array.from(kept));
+    // The next solve starts there: its initial energy is the last frame's (the same U and targets, the same
+    // sums; 1e-12 leaves room for a different summation order only).
+    const again = await solveFrame({ method: 'spokes-rims', iterations: 1, transform });
+    assert.ok(Math.abs(again.header.initial_energy - last.energy) <= 1e-12 * last.energy, `${again.header.initial_energy} vs ${last.energy}`);
+    assert.equal(again.header.refining, false);
+    assert.equal(await nextFrame(again.header.sequence, 300), null); // no refinement without `refine`
+  });
+
+  test('a solve during the refinement preempts it at an iteration boundary', async () => {
+    const transform = await bend();
+    const answer = await solveFrame({ method: 'arap', iterations: 1, transform, refine: true, refine_accelerator: 'none' });
+    const frame = await nextFrame(answer.header.sequence);
+    assert.ok(frame.header.refining, 'the plain refinement ended within one frame');
+    const started = performance.now();
+    const preempting = await solveFrame({ method: 'arap', iterations: 1, transform });
+    const roundTrip = performance.now() - started;
+    // It waited for at most the refinement's current iteration (about 2 ms on the bunny; the remaining
+    // refinement takes hundreds of them). 1 s leaves room for a loaded machine, far below the remainder.
+    console.log(`preempting solve: waited ${preempting.header.wait_ms.toFixed(1)} ms for the session, round trip ${roundTrip.toFixed(1)} ms`);
+    assert.ok(preempting.header.wait_ms < 1000, `${preempting.header.wait_ms} ms`);
+    assert.equal(preempting.header.generation, answer.header.generation + 1);
+    assert.equal(preempting.header.refinement_preempted, true);
+    assert.equal(answer.header.refinement_preempted, false); // bend() set new constraints: nothing to end
+    // The old generation's refinement is over: no frame follows the new answer.
+    assert.equal(await nextFrame(preempting.header.sequence, 300), null);
+  });
+
+  test('reads pause the refinement, which then goes on; cancel ends it with a last frame', async () => {
+    const transform = await bend();
+    const answer = await solveFrame({ method: 'arap', iterations: 1, transform, refine: true, refine_accelerator: 'none' });
+    const first = await nextFrame(answer.header.sequence);
+    assert.ok(first.header.refining);
+    await state(); // takes the session: the chunk stops at an iteration boundary
+    const resumed = await nextFrame(first.header.sequence);
+    assert.equal(resumed.header.generation, answer.header.generation);
+    assert.ok(resumed.header.iterations > first.header.iterations);
+    const cancel = await (await postJson('/api/cancel', {})).json();
+    assert.deepEqual(cancel, { cancelling: false, refinement_stopped: true });
+    let last = await nextFrame(resumed.header.sequence);
+    while (last.header.refining) last = await nextFrame(last.header.sequence); // a chunk published before the cancel
+    assert.deepEqual([last.header.refining, last.header.converged, last.header.generation], [false, false, answer.header.generation]);
+    assert.equal(await nextFrame(last.header.sequence, 300), null);
+  });
+
+  test('frame parameters are checked', async () => {
+    for (const query of ['after=-1', 'after=x', 'wait_ms=10001', 'wait_ms=1.5', 'after=99999999999999999999']) {
+      await expectError(fetch(`${base}/api/frame?${query}`), 400, /must be a whole number/);
+    }
+    await expectError(postJson('/api/solve', { refine: 1 }), 400, /refine/);
+    await expectError(postJson('/api/solve', { refine_accelerator: 'fast' }), 400, /refine_accelerator must be/);
   });
 });
 

@@ -62,6 +62,11 @@ export const api = {
   restoreConstraints: async (revision) => (await postJson('/api/constraints', { revision })).json(),
   solve: async (body) => decodeFrame(await (await postJson('/api/solve', body)).arrayBuffer()),
   progress: () => getJson('/api/progress'),
+  // The newest frame after `after` (waiting up to waitMs), or null when none came.
+  frame: async (after, waitMs) => {
+    const response = await request(`/api/frame?after=${after}&wait_ms=${waitMs}`);
+    return response.status === 204 ? null : decodeFrame(await response.arrayBuffer());
+  },
   cancel: async () => (await postJson('/api/cancel', {})).json(),
   reset: async () => (await postJson('/api/reset', {})).json(),
   // The rest mesh's UV map (the UV tab): {header: report, arrays: {uv: Float32Array #V x 2}}.

@@ -5,6 +5,7 @@ import { drawColorBar, energyColors, energyScale } from './colormap.js';
 import { drawEnergyPlot, methodColors } from './energy_plot.js';
 import { UndoHistory } from './history.js';
 import { LatestOnly } from './latest_only.js';
+import { RefinementFeed } from './refinement.js';
 import { FIXED, HANDLE, box, brush, indicesWith, paintLabel } from './selection.js';
 import { UvPanel } from './uv_panel.js';
 import { Viewer } from './viewer.js';
@@ -16,6 +17,7 @@ const app = {
   labels: new Uint8Array(0), mesh: null, revision: 0, limits: { max_iterations: 1000 },
   cellEnergy: {}, energyColors: {}, scale: null, curves: {},
   history: new UndoHistory(), cancelling: false, converge: false, solves: 0, errors: 0,
+  answers: [], frames: [], // the last solve answers' and refinement frames' headers, for tests/web
 };
 
 function setStatus(text) {
@@ -52,6 +54,28 @@ function iterations() {
   }
   return value;
 }
+
+// The time budget of an update in ms (0: none), checked as iterations() is.
+function budgetMs() {
+  const text = $('budget').value.trim();
+  const value = Number(text);
+  if (!/^\d+$/.test(text) || value > 10000) throw new Error(`Time per update must be a whole number of milliseconds from 0 to 10000; got "${text}".`);
+  return value;
+}
+
+// The relative energy decrease that stops updates and the refinement, a number in (0, 1).
+function tolerance() {
+  const text = $('tolerance').value.trim();
+  const value = Number(text);
+  if (text === '' || !(value > 0 && value < 1)) throw new Error(`Tolerance must be a number between 0 and 1 (e.g. 1e-6); got "${text}".`);
+  return value;
+}
+
+// Keeps only the last entries of a record list the tests read.
+const remember = (list, entry) => {
+  list.push(entry);
+  if (list.length > 100) list.shift();
+};
 
 // Energy colours on one scale over every shown method, and the colour bar showing it.
 function updateEnergyColors() {
@@ -102,9 +126,10 @@ function watchProgress() {
   };
 }
 
+// Stops the solve in progress, or else the background refinement (the server keeps its last iterate and
+// publishes it as a last frame).
 async function cancelSolve() {
-  if ($('progress').hidden) return;
-  app.cancelling = true;
+  if (!$('progress').hidden) app.cancelling = true;
   await api.cancel().catch(() => null);
 }
 
@@ -112,9 +137,11 @@ async function solveShown() {
   const fixed = indicesWith(app.labels, FIXED);
   const handle = indicesWith(app.labels, HANDLE);
   if (fixed.length + handle.length === 0) return;
-  let count;
+  let count, budget, stopAt;
   try {
     count = iterations();
+    budget = budgetMs();
+    stopAt = tolerance();
   } catch (error) {
     showError(error.message);
     return;
@@ -124,14 +151,19 @@ async function solveShown() {
   app.converge = false;
   const stopping = converge
     ? { iterations: app.limits.max_iterations, tolerance: 0, gradient_tolerance: 1e-6 }
-    : { iterations: count };
+    : { iterations: count, time_budget_ms: budget, tolerance: stopAt };
   const accelerator = $('accelerator').value;
   const transform = viewer.handleTransform();
   const methods = shownMethods();
   const cellEnergy = $('show-energy').checked;
+  // The server refines one method, and its frames carry no cell energies.
+  const refine = $('refine').checked && methods.length === 1 && !cellEnergy && !converge;
+  const refineAccelerator = $('refine-accelerator').value;
+  refinement.stop();
+  $('refine-info').textContent = '';
   const stopWatching = watchProgress();
   const results = await guarded(() =>
-    Promise.all(methods.map((method) => api.solve({ method, ...stopping, accelerator, transform, cell_energy: cellEnergy }))),
+    Promise.all(methods.map((method) => api.solve({ method, ...stopping, accelerator, transform, cell_energy: cellEnergy, refine, refine_accelerator: refineAccelerator }))),
   ).finally(stopWatching);
   if (!results) return;
   const lines = [];
@@ -143,6 +175,11 @@ async function solveShown() {
     if (arrays.cell_energy) app.cellEnergy[method] = Float32Array.from(arrays.cell_energy);
     app.curves[method] = [header.initial_energy, ...header.energies];
     cancelled ||= header.cancelled;
+    remember(app.answers, { ...header, receivedAt: performance.now() });
+    if (header.refining) {
+      refinement.follow(header.sequence, header.generation);
+      $('refine-info').textContent = 'refining in the background...';
+    }
     const last = header.energies.at(-1) ?? header.initial_energy;
     const precompute = header.precompute_ms > 0 ? ` + setup ${header.precompute_ms.toFixed(0)} ms` : '';
     const stop = header.cancelled ? ' (cancelled)' : header.converged ? ' (converged)' : '';
@@ -158,6 +195,23 @@ async function solveShown() {
 }
 
 const solver = new LatestOnly(solveShown);
+
+// A refinement frame: the next iterate toward the last answer's targets, and how far it still moves.
+function showRefinedFrame({ header, arrays }) {
+  if (solver.running) return; // a newer solve is on its way
+  viewer.setPositions(header.method, arrays.positions);
+  remember(app.frames, { ...header, receivedAt: performance.now() });
+  const where = `${header.method}: E = ${header.energy.toExponential(4)} after ${header.iterations} more it`;
+  $('refine-info').textContent = header.error
+    ? `refinement stopped: ${header.error}`
+    : header.converged
+      ? `${where}, converged (last relative decrease ${header.relative_decrease.toExponential(1)} <= ${header.tolerance})`
+      : header.refining
+        ? `${where}; refining: last relative decrease ${header.relative_decrease.toExponential(1)}, stops at ${header.tolerance}`
+        : `${where}; refinement stopped`;
+}
+
+const refinement = new RefinementFeed(showRefinedFrame);
 
 async function fetchPositions(methods) {
   const positions = {};
@@ -439,6 +493,8 @@ function setupPanel(state) {
 window.iarapViewer = {
   ready: false,
   solves: () => app.solves,
+  answers: () => app.answers,
+  frames: () => app.frames,
   errors: () => app.errors,
   idle: () => solver.idle(),
   displayedPositions: (method) => Array.from(viewer.view(method ?? shownMethods()[0]).positions()),

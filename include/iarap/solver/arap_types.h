@@ -157,6 +157,14 @@ struct ArapSolveOptions {
   // vertex or a soft point (dynamics, src/dynamics, makes every vertex one through its inertia). Gravity on
   // a lumped mass: f_i = m_i g (arap_vertex_masses, iarap/dynamics/simulation.h).
   Eigen::MatrixXd forces;
+  // Warm start of Newton's state from an earlier solve's report (ArapReport::newton_trust_radius and
+  // newton_reference_gradient), for a solve that continues one (the viewer's refinement in chunks) or
+  // follows it on moved targets (a drag). 0: fresh, the radius from the first plain step's length and the
+  // reference ||g_0|| of this solve's initial guess. The reference sets CG's forcing term
+  // eta = min(0.5, sqrt(||g|| / reference)): a fresh one at every restart would give eta = 0.5 and lose
+  // the superlinear end-game.
+  double newton_trust_radius = 0;
+  double newton_reference_gradient = 0;
   ArapIterationCallback on_iteration; // optional
 };
 
@@ -198,6 +206,10 @@ struct ArapReport {
                                   // L-BFGS's one per direction and Newton's one per conjugate-gradient step
   double accelerator_ms = 0;      // the accelerator's own work (history, least squares, two-loop recursion)
   std::vector<double> elapsed_ms; // wall time from the start of arap_solve to the end of iteration k
+  // Newton only (0 otherwise): the trust radius (L_ff norm) and the reference gradient norm after the last
+  // iteration, to pass on as ArapSolveOptions::newton_trust_radius / newton_reference_gradient.
+  double newton_trust_radius = 0;
+  double newton_reference_gradient = 0;
 };
 
 } // namespace iarap
