@@ -32,9 +32,12 @@ import sys
 import tempfile
 import time
 import uuid
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Iterable
+import collections.abc as _abc
+from typing import Any
+
+__all__ = ["Job", "ManifestError", "main", "read_manifest", "run_batch", "run_job"]
 
 _FIELDS = {"mesh", "output", "command", "scenario", "constraints", "method", "args", "name"}
 _COMMANDS = ("deform", "param")
@@ -50,7 +53,7 @@ class Job:
     command: str
     mesh: str
     output: str
-    options: tuple[str, ...] = field(default_factory=tuple)
+    options: tuple[str, ...] = ()
 
     def argv(self, cli: str) -> list[str]:
         return [cli, self.command, self.mesh, *self.options, "--out", self.output, "--threads", "1", "--quiet"]
@@ -204,7 +207,7 @@ class _Progress:
         self.stream.flush()
 
 
-def run_batch(manifest: str | os.PathLike[str] | Iterable[Job], *, scheduler: str | None = None,
+def run_batch(manifest: str | os.PathLike[str] | _abc.Iterable[Job], *, scheduler: str | None = None,
               workers: int = 2, cli: str | None = None, retries: int = 1, progress=sys.stderr,
               client=None) -> list[dict[str, Any]]:
     """Runs the jobs; returns one result per job in manifest order: {"name", "status" ("done", "skipped"
@@ -233,12 +236,13 @@ def run_batch(manifest: str | os.PathLike[str] | Iterable[Job], *, scheduler: st
         bar = _Progress(len(jobs), progress)
         for future in as_completed(futures):
             i = futures[future]
+            result: dict[str, Any]
             try:
-                results[i] = future.result()
+                result = future.result()
             except Exception as error:  # the job's own error, or the scheduler's after repeated worker deaths
-                results[i] = {"name": jobs[i].name, "status": "failed", "output": jobs[i].output,
-                              "error": str(error)}
-            bar.step(results[i])
+                result = {"name": jobs[i].name, "status": "failed", "output": jobs[i].output, "error": str(error)}
+            results[i] = result
+            bar.step(result)
         return results  # type: ignore[return-value]
     finally:
         if own_cluster is not None:

@@ -102,7 +102,9 @@ def test_a_worker_killed_mid_run(cli, tmp_path, client):
     runner.join(timeout=300)
     assert not runner.is_alive()
     results = outcome["results"]
-    assert [r["status"] for r in results] == ["done"] * 12, results
+    # A job the killed worker had finished may come back as "skipped": Dask resubmits it (its result died
+    # with the worker) and the rerun finds its record. None fails, and every output is the sequential one.
+    assert all(r["status"] in ("done", "skipped") for r in results), results
     jobs = batch.read_manifest(manifest)
     reference = sequential_outputs(cli, jobs, tmp_path)
     for job in jobs:
