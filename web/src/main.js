@@ -264,6 +264,7 @@ function showMeshChoice(state) {
 }
 
 async function loadMesh(state) {
+  refinement.stop(); // frames of the previous mesh's refinement must not land on this one
   app.mesh = state.mesh;
   clearResults();
   showMeshChoice(state);
@@ -288,6 +289,7 @@ async function refreshIntrinsic() {
 
 async function commitSelection() {
   await solver.idle();
+  refinement.stop();
   const handle = indicesWith(app.labels, HANDLE);
   app.revision = (await api.setConstraints(indicesWith(app.labels, FIXED), handle)).revision;
   viewer.placeGizmo(handle);
@@ -300,6 +302,7 @@ async function commitSelection() {
 async function travel(state) {
   if (!state) return;
   await solver.idle();
+  refinement.stop(); // a frame still on its way would undo the undo
   if (state.revision === 0) app.revision = (await api.setConstraints([], [])).revision;
   else if (state.revision !== app.revision) app.revision = (await api.restoreConstraints(state.revision)).revision;
   app.labels.set(state.labels);
@@ -414,6 +417,7 @@ function setupPanel(state) {
   $('cancel').addEventListener('click', cancelSolve);
   $('reset').addEventListener('click', () => guarded(async () => {
     await solver.idle();
+    refinement.stop();
     app.revision = (await api.reset()).revision ?? app.revision;
     await showPositions(shownMethods());
     viewer.placeGizmo(indicesWith(app.labels, HANDLE));
@@ -438,6 +442,7 @@ function setupPanel(state) {
     if (!file) return;
     $('load-scenario').value = '';
     await solver.idle();
+    refinement.stop();
     const loaded = await api.loadScenario(file);
     setLabels(loaded);
     clearResults();
