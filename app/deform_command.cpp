@@ -163,8 +163,11 @@ Eigen::MatrixXd statics_forces(const DeformArguments& args, const MeshData& mesh
                                const Eigen::MatrixXd& V, ArapMethod method, double s,
                                const Eigen::MatrixXd& forces_in_file) {
   if (!args.forces.any()) return Eigen::MatrixXd();
-  if (!args.pin_unconstrained)
-    require_held_components(mesh.F, static_cast<int>(mesh.V.rows()), fixed, soft.vertices, soft.faces);
+  if (!args.pin_unconstrained) {
+    Eigen::VectorXi faces(soft.faces.size() + soft.hard_faces.size()); // a hard point holds its body too
+    faces << soft.faces, soft.hard_faces;
+    require_held_components(mesh.F, static_cast<int>(mesh.V.rows()), fixed, soft.vertices, faces);
+  }
   return scaled_forces(args.forces, V, mesh.F, method, s, forces_in_file);
 }
 
@@ -258,6 +261,8 @@ void run_deform(const DeformArguments& args) {
   ArapReport report;
   try {
     report = arap_solve(*data, targets, soft_targets, U, solve_options);
+  } catch (const HardPointConflict& e) {
+    throw InputError(hard_point_conflict_message(e, constraints.soft));
   } catch (const SolverError& e) {
     if (std::string(e.what()).find("initial guess is not finite") != std::string::npos)
       throw SolverError(

@@ -82,6 +82,11 @@ public:
       for (int j = 0; j < 3; ++j) rest += s.barycentric(k, j) * V_.row(F(s.faces(k), j));
       s.face_targets.row(k) = rest + alpha * (s.face_targets.row(k) - rest);
     }
+    for (Eigen::Index k = 0; k < s.hard_faces.size(); ++k) {
+      Eigen::RowVector3d rest = Eigen::RowVector3d::Zero();
+      for (int j = 0; j < 3; ++j) rest += s.hard_barycentric(k, j) * V_.row(F(s.hard_faces(k), j));
+      s.hard_targets.row(k) = rest + alpha * (s.hard_targets.row(k) - rest);
+    }
     return c;
   }
 
@@ -183,7 +188,12 @@ void run_simulate(const SimulateArguments& args) {
   names.push_back(frames.write(0, sim->positions() * s, mesh.F));
   for (int n = 1; n <= args.steps; ++n) {
     const ConstraintSet c = path.at(std::min(1.0, static_cast<double>(n) / ramp), mesh.F);
-    const SimulationStepReport r = sim->step(c.targets / s, soft_targets_of(c.soft) / s);
+    SimulationStepReport r;
+    try {
+      r = sim->step(c.targets / s, soft_targets_of(c.soft) / s);
+    } catch (const HardPointConflict& e) {
+      throw InputError(hard_point_conflict_message(e, c.soft));
+    }
     const double kinetic = r.kinetic_energy * energy_unit, elastic = r.elastic_energy * energy_unit,
                  potential = r.potential_energy * energy_unit;
     steps.push_back({{"step", n},

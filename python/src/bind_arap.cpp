@@ -97,7 +97,8 @@ Eigen::VectorXd to_weights(const py::object& weights, const std::string& name) {
 
 // The soft constraints of the ARAP constructor (each argument None or an array; see its docstring).
 ArapSoftConstraints to_soft(const py::object& vertices, const py::object& weights, const py::object& faces,
-                            const py::object& barycentric, const py::object& face_weights, Eigen::Index n,
+                            const py::object& barycentric, const py::object& face_weights,
+                            const py::object& hard_faces, const py::object& hard_barycentric, Eigen::Index n,
                             Eigen::Index face_count) {
   ArapSoftConstraints soft;
   if (!vertices.is_none()) soft.vertices = to_indices(vertices, "soft_vertices", n);
@@ -105,6 +106,8 @@ ArapSoftConstraints to_soft(const py::object& vertices, const py::object& weight
   if (!faces.is_none()) soft.faces = to_indices(faces, "soft_faces", face_count);
   if (!barycentric.is_none()) soft.barycentric = to_points(barycentric, "soft_barycentric");
   soft.face_weights = to_weights(face_weights, "soft_face_weights");
+  if (!hard_faces.is_none()) soft.hard_faces = to_indices(hard_faces, "hard_faces", face_count);
+  if (!hard_barycentric.is_none()) soft.hard_barycentric = to_points(hard_barycentric, "hard_barycentric");
   return soft;
 }
 
@@ -113,13 +116,15 @@ std::unique_ptr<ArapSolver> make_solver(const py::object& V, const py::object& F
                                         bool refine_boundary, const py::object& soft_vertices,
                                         const py::object& soft_weights, const py::object& soft_faces,
                                         const py::object& soft_barycentric,
-                                        const py::object& soft_face_weights) {
+                                        const py::object& soft_face_weights, const py::object& hard_faces,
+                                        const py::object& hard_barycentric) {
   // #V x 2: a planar mesh, deformed in its plane (rotations about z); solves then take and give 2 columns.
   const Eigen::MatrixXd positions = to_points(V, "V", true, -1, "", true);
   const Eigen::MatrixXi faces = to_faces(F, "F", positions.rows());
   const Eigen::VectorXi constrained = to_indices(fixed, "fixed", positions.rows());
-  const ArapSoftConstraints soft = to_soft(soft_vertices, soft_weights, soft_faces, soft_barycentric,
-                                           soft_face_weights, positions.rows(), faces.rows());
+  const ArapSoftConstraints soft =
+      to_soft(soft_vertices, soft_weights, soft_faces, soft_barycentric, soft_face_weights, hard_faces,
+              hard_barycentric, positions.rows(), faces.rows());
   ArapOptions options;
   options.method = parse_arap_method(method);
   options.pin_unconstrained_components = pin_unconstrained_components;
@@ -253,7 +258,8 @@ Energies are in squared mesh units. Methods release the GIL; one solver serves o
            py::kw_only(), py::arg("pin_unconstrained_components") = false, py::arg("refine_boundary") = true,
            py::arg("soft_vertices") = py::none(), py::arg("soft_weights") = py::none(),
            py::arg("soft_faces") = py::none(), py::arg("soft_barycentric") = py::none(),
-           py::arg("soft_face_weights") = py::none(),
+           py::arg("soft_face_weights") = py::none(), py::arg("hard_faces") = py::none(),
+           py::arg("hard_barycentric") = py::none(),
            R"(Precomputes the elements of `method`, the system matrix L and the factorization of L_ff.
 
 V: (#V, 3) rest positions, or (#V, 2) for a planar mesh, deformed in its plane with rotations about z
@@ -266,6 +272,10 @@ Soft constraints (issue 32): soft_vertices (#sv,) with soft_weights (#sv,) W > 0
 soft_faces (#sb,), soft_barycentric (#sb, 3) rows summing to 1, soft_face_weights (#sb,). The solve then
 minimizes E_ARAP + sum_k W_k |c_k^T U - t_k|^2 (c_k: the vertex, or B0, B1, B2 at the face's corners); the
 soft vertices stay free, and `fixed` may be empty when every component has a soft point.
+Hard points on faces: hard_faces (#hb,) and hard_barycentric (#hb, 3): the solve keeps each point exactly on
+its target (the last #hb rows of soft_targets), by a Schur complement on the factorized system; a point that
+contradicts others (the same point, or one whose corners are all fixed, sent elsewhere) raises ValueError
+naming both.
 Raises ValueError (InputError, TopologyError) for bad arrays, indices, weights or meshes; SolverError (a
 RuntimeError) for an unconstrained component or a failed factorization.)")
       .def("solve", &solve_py, py::arg("targets"), py::arg("U0") = py::none(), py::arg("iterations") = 50,
@@ -286,8 +296,8 @@ accelerator: "newton" (default), "lbfgs", "anderson" or "none" (plain local/glob
 gradient_tolerance: also stop when the gradient norm at the free vertices is this fraction of its value at
 U0 (0 = off). time_budget_ms: stop after the iteration that ends past this many milliseconds (0 = none;
 report["stop_reason"] says which rule stopped the solve). Warm start: pass the previous solution as U0.
-soft_targets: (#soft, 3) targets of the soft constraints (vertices first, then face points), required when
-there are any; new soft targets reuse the factorization.
+soft_targets: (#soft, 3) targets of the soft constraints (vertices first, then soft face points, then hard
+face points), required when there are any; new soft targets reuse the factorization.
 forces: (#V, 3) external forces f (None: none): minimizes E_ARAP + penalty - f . (U - V), the statics of
 constant forces (gravity: vertex_masses(V, F)[:, None] * g); report["potential"] is -f . (U - V).
 The run is described by `report`; rotations of U by `rotations`.)")

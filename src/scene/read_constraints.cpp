@@ -27,12 +27,12 @@ struct Parsed {
   double weight; // 0: hard
 };
 
-// A soft point on a face: b FACE B0 B1 B2 X Y Z W.
+// A point on a face: b FACE B0 B1 B2 X Y Z [W].
 struct ParsedFacePoint {
   int line;
   int face;
   Eigen::Vector3d barycentric, target;
-  double weight;
+  double weight; // 0: hard
 };
 
 double parse_weight(const std::string& token, const std::string& at) {
@@ -41,15 +41,13 @@ double parse_weight(const std::string& token, const std::string& at) {
   return W;
 }
 
-// b FACE B0 B1 B2 X Y Z W (tokens[0] == "b").
+// b FACE B0 B1 B2 X Y Z [W] (tokens[0] == "b").
 ParsedFacePoint parse_face_point(const std::vector<std::string>& tokens, const std::string& at, int line,
                                  int num_faces) {
-  if (tokens.size() == 8)
-    throw InputError(at + "hard point-on-face constraints ('b face b0 b1 b2 x y z' without a weight) are "
-                          "not supported yet; give a weight: 'b face b0 b1 b2 x y z w'");
-  if (tokens.size() != 9)
-    throw InputError(at + "expected 'b face b0 b1 b2 x y z w', found " + std::to_string(tokens.size()) +
-                     " token(s)");
+  if (tokens.size() != 8 && tokens.size() != 9)
+    throw InputError(at +
+                     "expected 'b face b0 b1 b2 x y z' (hard) or 'b face b0 b1 b2 x y z w' (soft), found " +
+                     std::to_string(tokens.size()) + " token(s)");
   errno = 0;
   char* end = nullptr;
   const long long face = std::strtoll(tokens[1].c_str(), &end, 10);
@@ -69,7 +67,7 @@ ParsedFacePoint parse_face_point(const std::vector<std::string>& tokens, const s
   }
   p.target << parse_coordinate(tokens[5], at, "x"), parse_coordinate(tokens[6], at, "y"),
       parse_coordinate(tokens[7], at, "z");
-  p.weight = parse_weight(tokens[8], at);
+  p.weight = tokens.size() == 9 ? parse_weight(tokens[8], at) : 0.0;
   return p;
 }
 
@@ -98,7 +96,7 @@ ConstraintSet parse_constraints(std::istream& in, const std::string& source, int
       throw InputError(
           at +
           "expected 'index x y z' (hard; 'index x y' in the plane z = 0), 'index x y z w' (soft) "
-          "or 'b face b0 b1 b2 x y z w', found " +
+          "or 'b face b0 b1 b2 x y z [w]', found " +
           std::to_string(tokens.size()) + " token(s)");
     }
     const long long index = parse_index(tokens[0], at);
@@ -142,7 +140,9 @@ ConstraintSet parse_constraints(std::istream& in, const std::string& source, int
     result.origins.push_back(source + ":" + std::to_string(seen.at(hard[k]).line));
   }
   SoftConstraintSet& s = result.soft;
-  const auto ns = static_cast<Eigen::Index>(soft.size()), nb = static_cast<Eigen::Index>(face_points.size());
+  std::vector<ParsedFacePoint> soft_points, hard_points;
+  for (const ParsedFacePoint& p : face_points) (p.weight > 0 ? soft_points : hard_points).push_back(p);
+  const auto ns = static_cast<Eigen::Index>(soft.size()), nb = static_cast<Eigen::Index>(soft_points.size());
   s.vertices.resize(ns);
   s.vertex_weights.resize(ns);
   s.vertex_targets.resize(ns, 3);
@@ -158,11 +158,22 @@ ConstraintSet parse_constraints(std::istream& in, const std::string& source, int
   s.face_weights.resize(nb);
   s.face_targets.resize(nb, 3);
   for (Eigen::Index k = 0; k < nb; ++k) {
-    const ParsedFacePoint& p = face_points[static_cast<size_t>(k)];
+    const ParsedFacePoint& p = soft_points[static_cast<size_t>(k)];
     s.faces(k) = p.face;
     s.barycentric.row(k) = p.barycentric.transpose();
     s.face_weights(k) = p.weight;
     s.face_targets.row(k) = p.target.transpose();
+    s.origins.push_back(source + ":" + std::to_string(p.line));
+  }
+  const auto nh = static_cast<Eigen::Index>(hard_points.size());
+  s.hard_faces.resize(nh);
+  s.hard_barycentric.resize(nh, 3);
+  s.hard_targets.resize(nh, 3);
+  for (Eigen::Index k = 0; k < nh; ++k) {
+    const ParsedFacePoint& p = hard_points[static_cast<size_t>(k)];
+    s.hard_faces(k) = p.face;
+    s.hard_barycentric.row(k) = p.barycentric.transpose();
+    s.hard_targets.row(k) = p.target.transpose();
     s.origins.push_back(source + ":" + std::to_string(p.line));
   }
   return result;

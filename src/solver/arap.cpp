@@ -270,7 +270,8 @@ namespace {
 double penalty_of(const ArapData& data, const Eigen::MatrixXd& soft_targets, const Eigen::MatrixXd& U) {
   if (data.soft.size() == 0) return 0.0;
   const ArapElements::ValueRows U_rows = U; // row-major, as soft_penalty reads it
-  return detail::soft_penalty(detail::soft_points(data.soft, data.F), soft_targets, U_rows.data());
+  return detail::soft_penalty(detail::soft_points(data.soft, data.F), soft_targets, U_rows.data(), nullptr,
+                              static_cast<size_t>(data.soft.soft_size()));
 }
 
 // -f . (U - V) for forces f #V x 3 (0 x 0: none).
@@ -356,7 +357,7 @@ Eigen::MatrixXd arap_penalty_gradient(const ArapData& data, const Eigen::MatrixX
   const Eigen::MatrixXd X = U.cols() == 2 ? embedded(U) : U;
   Eigen::MatrixXd G = Eigen::MatrixXd::Zero(X.rows(), 3);
   const std::vector<detail::SoftPoint> points = detail::soft_points(data.soft, data.F);
-  for (size_t k = 0; k < points.size(); ++k) { // 2 W c (c^T U - t)
+  for (size_t k = 0; k < static_cast<size_t>(data.soft.soft_size()); ++k) { // 2 W c (c^T U - t)
     const detail::SoftPoint& p = points[k];
     Eigen::RowVector3d d = -T.row(static_cast<Eigen::Index>(k));
     for (int j = 0; j < 3; ++j) d += p.c[j] * X.row(p.v[j]);

@@ -39,6 +39,8 @@ ConstraintLayout constraint_layout(const ArapData& data, const Eigen::VectorXi& 
   for (Eigen::Index k = 0; k < soft.vertices.size(); ++k) ++constrained_in[data.component(soft.vertices(k))];
   for (Eigen::Index k = 0; k < soft.faces.size(); ++k)
     ++constrained_in[data.component(data.F(soft.faces(k), 0))];
+  for (Eigen::Index k = 0; k < soft.hard_faces.size(); ++k)
+    ++constrained_in[data.component(data.F(soft.hard_faces(k), 0))];
   // A vertex used by no face has no element: it is pinned where the initial guess puts it (the rest
   // position unless the caller moves it), so a mesh with unreferenced vertices deforms with them kept.
   std::vector<char> used(static_cast<size_t>(n), 0);

@@ -20,13 +20,13 @@ struct ConstraintLayout {
 };
 
 // The layout for the constrained set `fixed` (#fixed, 0-based) of data's mesh (data.V, data.F,
-// data.component). A component with a soft point (soft: checked, weights > 0) needs no constrained vertex:
-// Q makes the system positive definite on its translations (1^T Q 1 = 2 W (sum_j c_j)^2 = 2 W per point).
-// Throws InputError for an empty set without soft points, an index out of range or a duplicate (naming the
-// position and the index), SolverError for a connected component without constrained vertex or soft point
-// (naming the component, its size and one vertex) unless data.pin_unconstrained_components, which pins its
-// first vertex instead. A vertex used by no face is pinned either way (layout.pinned): it has no energy and
-// stays where the initial guess is.
+// data.component). A component with a soft or hard point (soft: checked, weights > 0) needs no constrained
+// vertex: Q makes the system positive definite on its translations (1^T Q 1 = 2 W (sum_j c_j)^2 = 2 W per
+// point). Throws InputError for an empty set without soft points, an index out of range or a duplicate
+// (naming the position and the index), SolverError for a connected component without constrained vertex or
+// soft point (naming the component, its size and one vertex) unless data.pin_unconstrained_components, which
+// pins its first vertex instead. A vertex used by no face is pinned either way (layout.pinned): it has no
+// energy and stays where the initial guess is.
 ConstraintLayout constraint_layout(const ArapData& data, const Eigen::VectorXi& fixed,
                                    const ArapSoftConstraints& soft = {});
 

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 namespace iarap::detail {
 
@@ -78,11 +79,63 @@ LocalGlobalProblem::LocalGlobalProblem(ArapData& data, const Eigen::MatrixXd& ta
     f_dot_rest_ = forces.cwiseProduct(data.V).sum();
   }
   if (linear_) Lfc_Uc_ -= linear_f_;
+  if (data.soft.hard_faces.size() > 0) set_up_hard_points(soft_targets);
   B_.resize(nf, 3);
   X_.resize(nf, 3);
   // The first fit starts cold (fit_rotations warm-starts from rotations it is given): a solve's result then
   // depends on its inputs only, bit for bit, not on what earlier solves left in data.R.
   data.R.clear();
+}
+
+// C x = d for the hard points (the last rows of soft_points_): the corners that are unknowns give C's
+// columns (rows of x), the constrained ones (targets, pinned guesses) move to d. Contradictory points throw
+// HardPointConflict before any iteration; the initial guess is then moved onto the constraints.
+void LocalGlobalProblem::set_up_hard_points(const Eigen::MatrixXd& soft_targets) {
+  const Eigen::Index first = data_.soft.soft_size(), m = data_.soft.hard_faces.size();
+  // Y = A^{-1} C^T is dense, #free x #points: refuse what would take over 1 GiB rather than swap.
+  if (static_cast<double>(m) * static_cast<double>(free_count()) * sizeof(double) > 1073741824.0)
+    throw InputError(
+        "ARAP: " + std::to_string(m) + " hard points on a mesh of " + std::to_string(free_count()) +
+        " free vertices need " +
+        std::to_string(static_cast<double>(m) * static_cast<double>(free_count()) * 8 / 1048576) +
+        " MiB of dense columns; give fewer, or make them soft with a large weight");
+  std::vector<int> row_of_free(free_index_.size(), -1);
+  for (size_t r = 0; r < free_index_.size(); ++r)
+    row_of_free[static_cast<size_t>(free_index_[r])] = static_cast<int>(r);
+  std::vector<ConstraintRow> rows(static_cast<size_t>(m));
+  hard_d_.resize(m, 3);
+  for (Eigen::Index k = 0; k < m; ++k) {
+    const SoftPoint& p = soft_points_[static_cast<size_t>(first + k)];
+    ConstraintRow& row = rows[static_cast<size_t>(k)];
+    hard_d_.row(k) = soft_targets.row(first + k);
+    for (int j = 0; j < 3; ++j) {
+      const int i = data_.free_slot(p.v[j]);
+      row.column[j] = i >= 0 ? row_of_free[static_cast<size_t>(i)] : -1;
+      row.c[j] = p.c[j];
+      if (i < 0) hard_d_.row(k) -= p.c[j] * U_.row(p.v[j]);
+    }
+  }
+  hard_ = HardPointProjection(std::move(rows), free_count(),
+                              [this](const Eigen::MatrixXd& b) { return solve_unconstrained(b); });
+  // Agreement is judged at 1e-9 of the scene's extent: targets that differ by rounding do not conflict.
+  const double extent = (data_.V.colwise().maxCoeff() - data_.V.colwise().minCoeff()).norm() +
+                        soft_targets.cwiseAbs().maxCoeff();
+  if (const auto conflict = hard_.find_conflict(hard_d_, 1e-9 * extent)) {
+    const auto name = [&](Eigen::Index k) {
+      return "hard face point [" + std::to_string(k) + "] (face " + std::to_string(data_.soft.hard_faces(k)) +
+             ")";
+    };
+    const std::string with = conflict->depends_on >= 0
+                                 ? name(conflict->depends_on) + " and the fixed vertices"
+                                 : "the fixed vertices";
+    throw HardPointConflict(conflict->row, conflict->depends_on, conflict->gap,
+                            "ARAP: " + name(conflict->row) + " contradicts " + with +
+                                ": it is a combination of theirs but its target is " +
+                                std::to_string(conflict->gap) + " off what they impose on it");
+  }
+  Eigen::MatrixXd x = positions();
+  hard_.correct(x, hard_d_);
+  set_positions(x);
 }
 
 LocalGlobalProblem::~LocalGlobalProblem() {
@@ -110,7 +163,9 @@ double LocalGlobalProblem::local_step() {
   const double E = fit_rotations_in_visit_order(data_.elements, U_rows_, data_.R, cell_energy_,
                                                 keep_covariances_ ? &S_ : nullptr);
   if (!linear_) return E;
-  if (!soft_points_.empty()) penalty_ = soft_penalty(soft_points_, soft_targets_, U_rows_.data(), &position_);
+  if (!soft_points_.empty())
+    penalty_ = soft_penalty(soft_points_, soft_targets_, U_rows_.data(), &position_,
+                            static_cast<size_t>(data_.soft.soft_size()));
   if (f_rows_.rows() > 0) potential_ = f_dot_rest_ - f_rows_.cwiseProduct(U_rows_).sum();
   return E + penalty_ + potential_;
 }
@@ -152,14 +207,23 @@ void LocalGlobalProblem::assemble_rhs() {
     }
     if (linear) g_.row(r) -= linear_f_.row(r);
   }
+  hard_.project_gradient(g_);
 }
 
 const Eigen::MatrixXd& LocalGlobalProblem::plain_step() {
   solve_into(B_, X_);
+  hard_.correct(X_, hard_d_);
   return X_;
 }
 
 Eigen::MatrixXd LocalGlobalProblem::solve(const Eigen::MatrixXd& r) const {
+  Eigen::MatrixXd x;
+  solve_into(r, x);
+  hard_.project(x);
+  return x;
+}
+
+Eigen::MatrixXd LocalGlobalProblem::solve_unconstrained(const Eigen::MatrixXd& r) const {
   Eigen::MatrixXd x;
   solve_into(r, x);
   return x;

@@ -4,11 +4,15 @@
 // step) and the gradient g(x) = L_ff x - B(x) = L_ff (x - G(x)) (Eq. 14 at the free rows, by the envelope
 // theorem). With soft constraints (arap_soft_constraints.h) every piece is of the total E + P: L stands for
 // L + Q (in L_ff, L_fc and the Hessian), B gains the free rows of sum_k 2 W_k c_k t_k^T and local_step()
-// returns E + P, so that every optimizer minimizes the total. Internal to the solver; the public contract
-// is arap_solve's.
+// returns E + P, so that every optimizer minimizes the total. With hard points (C x = d, hard_points.h) x
+// stays on the constraints: the initial guess is moved onto them, plain_step is the constrained global
+// step, solve() maps onto their tangent space and the gradient is projected so that its preconditioned
+// step keeps them (zero at the constrained minimum): the loops need not know. Internal to the solver; the
+// public contract is arap_solve's.
 #pragma once
 #include "iarap/solver/arap_types.h"
 
+#include "hard_points.h"
 #include "inner.h"
 #include "soft_terms.h"
 
@@ -56,7 +60,7 @@ public:
   const Eigen::MatrixXd& plain_step();
   // g = L_ff x - B at the point assemble_rhs last saw, computed there (kept until its next call).
   const Eigen::MatrixXd& gradient() const { return g_; }
-  // L_ff^{-1} r (r #free x 3).
+  // L_ff^{-1} r (r #free x 3), projected onto the hard points' tangent space when there are any.
   Eigen::MatrixXd solve(const Eigen::MatrixXd& r) const;
 
   // The Hessian of E(x) = min_R energy at the point of the last local step, for Newton-type steps:
@@ -73,6 +77,8 @@ public:
 
 private:
   void solve_into(const Eigen::MatrixXd& b, Eigen::MatrixXd& x) const;
+  Eigen::MatrixXd solve_unconstrained(const Eigen::MatrixXd& r) const;
+  void set_up_hard_points(const Eigen::MatrixXd& soft_targets);
 
   ArapData& data_;
   Eigen::MatrixXd& U_;
@@ -101,6 +107,8 @@ private:
   ArapElements::ValueRows f_rows_; // the forces in visit order (0 rows without), and f . V
   double f_dot_rest_ = 0.0;
   double penalty_ = 0.0, potential_ = 0.0;
+  HardPointProjection hard_; // empty without hard points
+  Eigen::MatrixXd hard_d_;   // #hard x 3: their targets less the constrained corners' share
 };
 
 } // namespace iarap::detail

@@ -2,6 +2,7 @@
 
 #include "iarap/core/errors.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -13,6 +14,16 @@ void check_weight(double W, const std::string& what) {
   if (!(std::isfinite(W) && W > 0))
     throw InputError("ARAP: " + what + " has weight " + std::to_string(W) +
                      "; a soft weight must be finite and > 0");
+}
+
+void check_face_point(int face, const Eigen::RowVector3d& B, const Eigen::MatrixXi& F,
+                      const std::string& what) {
+  if (face < 0 || face >= F.rows())
+    throw InputError("ARAP: " + what + " is out of range; mesh has " + std::to_string(F.rows()) + " faces");
+  if (!B.allFinite()) throw InputError("ARAP: " + what + " has non-finite barycentric coordinates");
+  if (std::abs(B.sum() - 1.0) > 1e-9)
+    throw InputError("ARAP: " + what + " has barycentric coordinates summing to " + std::to_string(B.sum()) +
+                     ", not 1 (within 1e-9)");
 }
 
 } // namespace
@@ -44,15 +55,19 @@ void check_soft_constraints(const ArapSoftConstraints& soft, int n, const Eigen:
   for (Eigen::Index k = 0; k < soft.faces.size(); ++k) {
     const std::string what =
         "soft face point [" + std::to_string(k) + "] on face " + std::to_string(soft.faces(k));
-    if (soft.faces(k) < 0 || soft.faces(k) >= F.rows())
-      throw InputError("ARAP: " + what + " is out of range; mesh has " + std::to_string(F.rows()) + " faces");
-    const Eigen::RowVector3d B = soft.barycentric.row(k);
-    if (!B.allFinite()) throw InputError("ARAP: " + what + " has non-finite barycentric coordinates");
-    if (std::abs(B.sum() - 1.0) > 1e-9)
-      throw InputError("ARAP: " + what + " has barycentric coordinates summing to " +
-                       std::to_string(B.sum()) + ", not 1 (within 1e-9)");
+    check_face_point(soft.faces(k), soft.barycentric.row(k), F, what);
     check_weight(soft.face_weights(k), what);
   }
+  if (soft.hard_barycentric.rows() != soft.hard_faces.size() ||
+      (soft.hard_faces.size() > 0 && soft.hard_barycentric.cols() != 3))
+    throw InputError("ARAP: hard point constraints have " + std::to_string(soft.hard_faces.size()) +
+                     " faces and " + std::to_string(soft.hard_barycentric.rows()) + " x " +
+                     std::to_string(soft.hard_barycentric.cols()) +
+                     " barycentric coordinates (want #faces x 3)");
+  for (Eigen::Index k = 0; k < soft.hard_faces.size(); ++k)
+    check_face_point(soft.hard_faces(k), soft.hard_barycentric.row(k), F,
+                     "hard face point [" + std::to_string(k) + "] on face " +
+                         std::to_string(soft.hard_faces(k)));
 }
 
 std::vector<SoftPoint> soft_points(const ArapSoftConstraints& soft, const Eigen::MatrixXi& F) {
@@ -67,6 +82,12 @@ std::vector<SoftPoint> soft_points(const ArapSoftConstraints& soft, const Eigen:
     points.push_back({{F(f, 0), F(f, 1), F(f, 2)},
                       {soft.barycentric(k, 0), soft.barycentric(k, 1), soft.barycentric(k, 2)},
                       soft.face_weights(k)});
+  }
+  for (Eigen::Index k = 0; k < soft.hard_faces.size(); ++k) {
+    const int f = soft.hard_faces(k);
+    points.push_back({{F(f, 0), F(f, 1), F(f, 2)},
+                      {soft.hard_barycentric(k, 0), soft.hard_barycentric(k, 1), soft.hard_barycentric(k, 2)},
+                      kHardPointWeight});
   }
   return points;
 }
@@ -92,9 +113,9 @@ Eigen::SparseMatrix<double> with_soft(const Eigen::SparseMatrix<double>& L,
 }
 
 double soft_penalty(const std::vector<SoftPoint>& points, const Eigen::MatrixXd& targets, const double* U,
-                    const std::vector<int>* row_of) {
+                    const std::vector<int>* row_of, size_t count) {
   double P = 0.0;
-  for (size_t k = 0; k < points.size(); ++k) {
+  for (size_t k = 0; k < std::min(count, points.size()); ++k) {
     const SoftPoint& p = points[k];
     double d[3] = {-targets(static_cast<Eigen::Index>(k), 0), -targets(static_cast<Eigen::Index>(k), 1),
                    -targets(static_cast<Eigen::Index>(k), 2)};

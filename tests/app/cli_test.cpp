@@ -14,6 +14,7 @@
 #include <fstream>
 #include <sstream>
 #include <sys/wait.h>
+#include <vector>
 
 namespace {
 
@@ -215,6 +216,67 @@ TEST(Cli, DeformWithSoftConstraints) {
   EXPECT_EQ(failed.code, 1) << failed.out;
   EXPECT_NE(failed.out.find(bad.string() + ":2: barycentric coordinates sum to 1.1"), std::string::npos)
       << failed.out;
+  fs::remove_all(dir);
+}
+
+// Hard points on faces ('b f b0 b1 b2 x y z', no weight): the bottom held by vertices, points on the top
+// faces moved; the written mesh has every point on its target to 1e-9 of the diagonal (the bound;
+// the OBJ is written with 17 digits), and a point that contradicts an earlier one exits 1 naming both lines.
+TEST(Cli, DeformWithHardFacePoints) {
+  const auto dir = iarap::test::temp_dir("cli_hard_points");
+  const auto rest = iarap::read_mesh(bunny);
+  const double lo = rest.V.col(1).minCoeff(), hi = rest.V.col(1).maxCoeff();
+  const double diagonal = (rest.V.colwise().maxCoeff() - rest.V.colwise().minCoeff()).norm();
+  const fs::path constraints = dir / "hard.txt", bad = dir / "bad.txt", out = dir / "out.obj";
+  std::vector<Eigen::Index> faces;
+  std::vector<Eigen::RowVector3d> targets;
+  const Eigen::RowVector3d B(0.2, 0.3, 0.5);
+  {
+    std::ofstream file(constraints);
+    file.precision(17);
+    for (Eigen::Index v = 0; v < rest.V.rows(); ++v)
+      if ((rest.V(v, 1) - lo) / (hi - lo) <= 0.1)
+        file << v << " " << rest.V(v, 0) << " " << rest.V(v, 1) << " " << rest.V(v, 2) << "\n";
+    for (Eigen::Index f = 0; f < rest.F.rows(); f += 25) {
+      Eigen::RowVector3d p = Eigen::RowVector3d::Zero();
+      for (int j = 0; j < 3; ++j) p += B(j) * rest.V.row(rest.F(f, j));
+      if ((p.y() - lo) / (hi - lo) < 0.9) continue;
+      p.x() += 0.05 * diagonal;
+      faces.push_back(f);
+      targets.push_back(p);
+      file << "b " << f << " 0.2 0.3 0.5 " << p.x() << " " << p.y() << " " << p.z() << "\n";
+    }
+    std::ofstream bad_file(bad);
+    bad_file.precision(17);
+    bad_file << "0 0 0 0\nb 7 0.2 0.3 0.5 0 0 0\nb 8 1 0 0 1 1 1\nb 7 0.2 0.3 0.5 0 0 1\n";
+  }
+  ASSERT_GT(faces.size(), 3u);
+  const CliRun run = iarap_cli("deform '" + bunny + "' --constraints '" + constraints.string() +
+                               "' --iterations 100 --threads 1 --json --quiet --out '" + out.string() + "'");
+  ASSERT_EQ(run.code, 0) << run.out;
+  const json j = parse_json(run);
+  EXPECT_EQ(j["soft"].get<size_t>(), faces.size());
+  EXPECT_EQ(j["penalty"].get<double>(), 0.0);
+  const auto result = iarap::read_mesh(out.string());
+  double off = 0.0;
+  for (size_t k = 0; k < faces.size(); ++k) {
+    Eigen::RowVector3d p = Eigen::RowVector3d::Zero();
+    for (int c = 0; c < 3; ++c) p += B(c) * result.V.row(rest.F(faces[k], c));
+    off = std::max(off, (p - targets[k]).norm());
+  }
+  std::printf("%zu hard points, largest distance to a target %.3g of the diagonal\n", faces.size(),
+              off / diagonal);
+  EXPECT_LT(off, 1e-9 * diagonal);
+  EXPECT_GT((result.V - rest.V).rowwise().norm().maxCoeff(), 0.02 * diagonal);
+  const CliRun failed = iarap_cli("deform '" + bunny + "' --constraints '" + bad.string() +
+                                      "' --quiet --out '" + (dir / "bad.obj").string() + "'",
+                                  true);
+  EXPECT_EQ(failed.code, 1) << failed.out;
+  EXPECT_NE(failed.out.find(bad.string() + ":4: this hard point on a face contradicts the one at " +
+                            bad.string() + ":2"),
+            std::string::npos)
+      << failed.out;
+  EXPECT_FALSE(fs::exists(dir / "bad.obj"));
   fs::remove_all(dir);
 }
 

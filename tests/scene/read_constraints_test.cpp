@@ -104,6 +104,26 @@ TEST(ReadConstraints, SoftVerticesAndFacePoints) {
   EXPECT_EQ(parse("5 0 1 0 2.5\n").soft.size(), 1);
 }
 
+// 'b FACE B0 B1 B2 X Y Z' without a weight is a hard point; its origin follows the soft ones'.
+TEST(ReadConstraints, HardFacePoints) {
+  const auto c = parse("b 1 0.2 0.3 0.5 1 2 3\nb 2 0.25 0.25 0.5 1 1 1 4\n0 0 0 0\nb 3 1 0 0 -1 0 0\n");
+  EXPECT_EQ(c.fixed.size(), 1);
+  ASSERT_EQ(c.soft.faces.size(), 1);
+  EXPECT_EQ(c.soft.faces(0), 2);
+  ASSERT_EQ(c.soft.hard_faces.size(), 2);
+  EXPECT_EQ(c.soft.hard_faces(0), 1);
+  EXPECT_EQ(c.soft.hard_faces(1), 3);
+  EXPECT_EQ(c.soft.hard_barycentric.row(0), Eigen::RowVector3d(0.2, 0.3, 0.5));
+  EXPECT_EQ(c.soft.hard_targets.row(1), Eigen::RowVector3d(-1, 0, 0));
+  EXPECT_EQ(c.soft.size(), 3);
+  ASSERT_EQ(c.soft.origins.size(), 3u);
+  EXPECT_EQ(c.soft.origins[0], "c.txt:2");
+  EXPECT_EQ(c.soft.origins[1], "c.txt:1");
+  EXPECT_EQ(c.soft.origins[2], "c.txt:4");
+  // Hard points alone are a constraint set.
+  EXPECT_EQ(parse("b 1 0.2 0.3 0.5 1 2 3\n").soft.hard_faces.size(), 1);
+}
+
 TEST(ReadConstraints, BadSoftConstraintsNameTheLine) {
   expect_error("1 0 0 0 0\n", {"c.txt:1", "weight 0 must be > 0"});
   expect_error("1 0 0 0\n2 0 0 0 -1\n", {"c.txt:2", "weight -1 must be > 0"});
@@ -117,9 +137,8 @@ TEST(ReadConstraints, BadSoftConstraintsNameTheLine) {
   expect_error("\nb 0 0.5 0.5 0.1 0 0 0 1\n", {"c.txt:2", "sum to 1.1", "within 1e-9"});
   expect_error("b 0 0.5 0.5 nan 0 0 0 1\n", {"c.txt:1", "non-finite b2 barycentric"});
   expect_error("b 0 1 0 0 0 0 0 0\n", {"c.txt:1", "weight 0 must be > 0"});
-  expect_error("b 0 1 0 0 0 0 0\n",
-               {"c.txt:1", "hard point-on-face constraints", "not supported yet", "give a weight"});
-  expect_error("b 0 1 0 0 0 0\n", {"c.txt:1", "expected 'b face b0 b1 b2 x y z w', found 7 token"});
+  expect_error("b 0 1 0 0 0 0\n", {"c.txt:1", "expected 'b face b0 b1 b2 x y z' (hard)", "found 7 token"});
+  expect_error("b 0 0.5 0.6 0 0 0 0\n", {"c.txt:1", "sum to 1.1"}); // hard points are checked alike
   // Within 1e-9 passes.
   EXPECT_EQ(parse("b 0 0.3333333333 0.3333333333 0.3333333334 0 0 0 1\n").soft.faces.size(), 1);
 }

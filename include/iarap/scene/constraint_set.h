@@ -6,9 +6,9 @@
 
 namespace iarap {
 
-// Soft constraints as read from a file or scenario (the fields of the solver's ArapSoftConstraints, which
-// this layer does not include): weighted vertices and points on faces with their targets. The penalty of
-// point k is W_k ||c_k^T U - t_k||^2 (arap_soft_constraints.h).
+// Soft constraints (and hard points on faces) as read from a file or scenario (the fields of the solver's
+// ArapSoftConstraints, which this layer does not include): weighted vertices and points on faces with their
+// targets. The penalty of point k is W_k ||c_k^T U - t_k||^2 (arap_soft_constraints.h).
 struct SoftConstraintSet {
   Eigen::VectorXi vertices;       // #sv soft vertices, distinct, none of them also hard
   Eigen::VectorXd vertex_weights; // #sv W > 0
@@ -17,9 +17,14 @@ struct SoftConstraintSet {
   Eigen::MatrixXd barycentric;    // #sb x 3, each row summing to 1 within 1e-9
   Eigen::VectorXd face_weights;   // #sb W > 0
   Eigen::MatrixXd face_targets;   // #sb x 3
-  // #sv + #sb: where each came from (vertices first), as ConstraintSet::origins.
+  // Hard points on faces (c_k^T U = t_k exactly): 'b FACE B0 B1 B2 X Y Z' lines without a weight.
+  Eigen::VectorXi hard_faces;       // #hb
+  Eigen::MatrixXd hard_barycentric; // #hb x 3, each row summing to 1 within 1e-9
+  Eigen::MatrixXd hard_targets;     // #hb x 3
+  // #sv + #sb + #hb: where each came from (vertices first, then the soft and the hard face points), as
+  // ConstraintSet::origins.
   std::vector<std::string> origins;
-  Eigen::Index size() const { return vertices.size() + faces.size(); }
+  Eigen::Index size() const { return vertices.size() + faces.size() + hard_faces.size(); }
 };
 
 // The input of arap_precompute / arap_solve: fixed(k) is a vertex index, targets.row(k) its position.

@@ -10,6 +10,8 @@
 //   ArapData data = arap_precompute(V, F, fixed, soft);             // factorizes (L + Q)_ff
 //   ArapReport report = arap_solve(data, targets, soft_targets, U);  // new soft targets: no refactorization
 //   arap_set_soft_weights(data, vertex_weights, face_weights);      // numeric refactorization only
+// Hard points on faces (ArapSoftConstraints::hard_faces) go in the same struct, their targets last in
+// soft_targets; arap_solve keeps them exactly (throws HardPointConflict for contradictory ones).
 // The types (ArapMethod, ArapOptions, ArapData, ArapSolveOptions, ArapReport, ...) are in arap_types.h.
 #pragma once
 #include "iarap/solver/arap_types.h"
