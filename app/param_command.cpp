@@ -3,6 +3,7 @@
 #include "command_registry.h"
 #include "iteration_options.h"
 #include "json_text.h"
+#include "number_validators.h"
 #include "param_report_json.h"
 #include "same_file.h"
 #include "write_text_file.h"
@@ -29,9 +30,9 @@ namespace iarap::cli {
 namespace {
 
 struct ParamArguments {
-  std::string mesh, out, report, picture, pins, energy = "triangle", init, boundary = "free", accel = "none";
-  int iterations = ParamOptions{}.max_iterations;
-  double tolerance = ParamOptions{}.tolerance;
+  std::string mesh, out, report, picture, pins, energy = "triangle", init, boundary = "free";
+  ArapSolveOptions solve = default_param_solve_options();
+  std::string accel = arap_accelerator_name(solve.accelerator);
   int threads = 0;
   bool allow_flips = false, json = false, quiet = false;
 };
@@ -76,12 +77,8 @@ ParamOptions options_of(const ParamArguments& args) {
   if (options.boundary == ParamBoundary::Circle && options.init == ParamInit::Lscm)
     throw CLI::ValidationError("--boundary circle needs --init tutte or harmonic (lscm has a free boundary)");
   options.allow_flips = args.allow_flips;
-  options.accelerator = parse_param_accelerator(args.accel);
-  if (options.accelerator == ParamAccelerator::Anderson && !options.allow_flips)
-    throw CLI::ValidationError("--accel anderson mixes the plain iteration: add --allow-flips (the flip-free "
-                               "steps stop short of degenerate triangles, where the mixing does not help)");
-  options.max_iterations = args.iterations;
-  options.tolerance = args.tolerance;
+  options.solve = args.solve;
+  options.solve.accelerator = parse_arap_accelerator(args.accel);
   return options;
 }
 
@@ -152,7 +149,9 @@ void run_param(const ParamArguments& args) {
     if (report.init_fallback)
       std::cerr << "param: the " << param_init_name(report.requested_init) << " map flips "
                 << report.init_flipped << " triangles; starting from Tutte's map (injective) instead\n";
-    std::cerr << "param: " << report.iterations << " iterations" << (report.converged ? " (converged)" : "")
+    std::cerr << "param: " << report.solve.iterations << " iterations ("
+              << arap_accelerator_name(report.solve.accelerator) << ", stopped by "
+              << arap_stop_reason_name(report.solve.stop_reason) << ")"
               << ", energy " << report.distortion.energy << " (at best scale "
               << report.distortion.scaled_energy << "), " << report.distortion.flipped
               << " flipped triangles, min det J " << report.distortion.min_det_J << "\n";
@@ -199,14 +198,28 @@ const bool registered = register_command(
                        "circle: inner vertices, circle centred at 0 with radius sqrt(area / pi)")
            ->check(CLI::ExistingFile);
        sub->add_flag("--allow-flips", args->allow_flips,
-                     "The plain local/global iteration (no injectivity-preserving line search)");
-       sub->add_option(
-              "--accel", args->accel,
-              "none, or anderson: safeguarded Anderson mixing of the steps (a mixed map is kept only "
-              "when it lowers the energy, flip-free too)")
-           ->check(CLI::IsMember({"none", "anderson"}))
+                     "Minimize the energy alone (no barrier, no injectivity bound on the steps): triangles "
+                     "may fold, as in libigl and CGAL");
+       add_iteration_options(*sub, args->solve.max_iterations, args->solve.tolerance);
+       sub->add_option("--accel", args->accel,
+                       "Accelerator of the local/global iteration: newton, lbfgs, anderson or none; every "
+                       "one keeps the map flip-free unless --allow-flips")
+           ->check(CLI::IsMember({"anderson", "lbfgs", "newton", "none"}))
            ->capture_default_str();
-       add_iteration_options(*sub, args->iterations, args->tolerance);
+       sub->add_option("--window", args->solve.window,
+                       "History length of the accelerator (newton: conjugate-gradient steps per Newton step; "
+                       "0 = plain iteration)")
+           ->check(CLI::Range(0, 1000))
+           ->capture_default_str();
+       sub->add_option("--grad-tol", args->solve.gradient_tolerance,
+                       "Also stop when the gradient norm at the free vertices falls to this fraction of its "
+                       "initial value (0 = off)")
+           ->check(finite_non_negative)
+           ->capture_default_str();
+       sub->add_option("--time-budget", args->solve.time_budget_ms,
+                       "Stop after the iteration that ends past this many milliseconds (0 = off)")
+           ->check(finite_non_negative)
+           ->capture_default_str();
        sub->add_option("--threads", args->threads, "Threads for the parallel loops; 0 = automatic (one)")
            ->check(CLI::Range(0, 4096))
            ->capture_default_str();

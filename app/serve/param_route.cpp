@@ -18,7 +18,8 @@ std::string param_frame(const MeshSnapshot& rest, const nlohmann::json& body, in
   const std::string init = string_field(body, "init", "");
   options.init = init.empty() ? default_param_init(options.boundary) : parse_param_init(init);
   options.allow_flips = bool_field(body, "allow_flips", false);
-  options.max_iterations = integer_field(body, "iterations", options.max_iterations, 0, max_iterations);
+  options.solve.max_iterations =
+      integer_field(body, "iterations", options.solve.max_iterations, 0, max_iterations);
   const ParamResult result = arap_parameterize(rest.V, rest.F, options);
   std::vector<float> uv(static_cast<std::size_t>(result.UV.size()));
   for (Eigen::Index v = 0; v < result.UV.rows(); ++v)

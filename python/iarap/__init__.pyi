@@ -124,7 +124,10 @@ def parameterize(
     tolerance: float = 1e-06,
     pins: npt.ArrayLike | None = None,
     pin_uv: npt.ArrayLike | None = None,
-    accel: str = "none",
+    accelerator: str = "newton",
+    window: int = 8,
+    gradient_tolerance: float = 0.0,
+    time_budget_ms: float = 0.0,
 ) -> tuple[_FloatArray, dict[str, Any]]: ...
 def set_thread_count(n: int) -> None: ...
 def thread_count() -> int: ...

@@ -34,7 +34,8 @@ py::dict report_dict(const ParamReport& report) {
 py::tuple parameterize_py(const py::object& V, const py::object& F, const std::string& energy,
                           const py::object& init, const std::string& boundary, bool allow_flips,
                           int iterations, double tolerance, const py::object& pins, const py::object& pin_uv,
-                          const std::string& accel) {
+                          const std::string& accelerator, int window, double gradient_tolerance,
+                          double time_budget_ms) {
   const Eigen::MatrixXd positions = to_points(V, "V");
   const Eigen::MatrixXi faces = to_faces(F, "F", positions.rows());
   ParamOptions options;
@@ -52,9 +53,12 @@ py::tuple parameterize_py(const py::object& V, const py::object& F, const std::s
   options.init =
       init.is_none() ? default_param_init(options.boundary) : parse_param_init(init.cast<std::string>());
   options.allow_flips = allow_flips;
-  options.accelerator = parse_param_accelerator(accel);
-  options.max_iterations = iterations;
-  options.tolerance = tolerance;
+  options.solve.accelerator = parse_arap_accelerator(accelerator);
+  options.solve.max_iterations = iterations;
+  options.solve.tolerance = tolerance;
+  options.solve.window = window;
+  options.solve.gradient_tolerance = gradient_tolerance;
+  options.solve.time_budget_ms = time_budget_ms;
   ParamResult result;
   {
     py::gil_scoped_release release;
@@ -68,9 +72,13 @@ py::tuple parameterize_py(const py::object& V, const py::object& F, const std::s
 void bind_param(py::module_& m) {
   m.def("parameterize", &parameterize_py, py::arg("V"), py::arg("F"), py::kw_only(),
         py::arg("energy") = "triangle", py::arg("init") = py::none(), py::arg("boundary") = "free",
-        py::arg("allow_flips") = false, py::arg("iterations") = ParamOptions{}.max_iterations,
-        py::arg("tolerance") = ParamOptions{}.tolerance, py::arg("pins") = py::none(),
-        py::arg("pin_uv") = py::none(), py::arg("accel") = "none",
+        py::arg("allow_flips") = false, py::arg("iterations") = default_param_solve_options().max_iterations,
+        py::arg("tolerance") = default_param_solve_options().tolerance, py::arg("pins") = py::none(),
+        py::arg("pin_uv") = py::none(),
+        py::arg("accelerator") = arap_accelerator_name(default_param_solve_options().accelerator),
+        py::arg("window") = default_param_solve_options().window,
+        py::arg("gradient_tolerance") = default_param_solve_options().gradient_tolerance,
+        py::arg("time_budget_ms") = default_param_solve_options().time_budget_ms,
         R"(ARAP parameterization (Liu et al. 2008) of a disk-like mesh: (UV (#V, 2), report dict).
 
 V: (#V, 3) positions. F: (#F, 3) faces of a topological disk (one component, one boundary loop, genus 0).
@@ -78,20 +86,25 @@ energy: "triangle" (per-triangle rotations, as libigl and CGAL), or per vertex w
 flattened cells: "arap" (cotan edges, negative weights kept) or "iarap" (intrinsic Delaunay segments).
 init: "lscm" (free boundary), "tutte" or "harmonic" (boundary on a circle of the surface's area); None:
 lscm, or harmonic with boundary="circle". boundary: "free" (one vertex pinned) or "circle" (held on that
-circle). allow_flips: the plain local/global iteration; by default it is flip-free (an injective start,
-Tutte's map if the requested one flips, and a line search that keeps every det J > 0). iterations: at most
-this many; tolerance: stop when an iteration lowers the energy by at most this fraction of it.
+circle). allow_flips: minimize the energy alone, folds allowed; by default it is flip-free (an injective
+start, Tutte's map if the requested one flips, a barrier, and steps that keep every det J > 0).
+The solve runs on the engine of ARAP.solve, with the same options: iterations: at most this many;
+tolerance: stop when an iteration lowers the energy by at most this fraction of it; accelerator: "newton"
+(default), "lbfgs", "anderson" or "none" (the plain iteration), each flip-free unless allow_flips; window:
+its history (Newton: CG steps per step); gradient_tolerance: also stop when the gradient norm falls to this
+fraction of its initial value (0 = off); time_budget_ms: stop after the iteration that ends past it (0 = off).
 pins (#p,) vertex indices with pin_uv (#p, 2): held exactly at those UV positions (mesh units). With the
 free boundary they replace the default pin (two or more: the start is LSCM with them held); with
 boundary="circle" they must be inner vertices, in the circle's coordinates (centre 0, radius
 sqrt(area / pi)). Flip-free, pins that fold the start raise InputError (move them or allow_flips=True).
-accel: "none" or "anderson" (safeguarded Anderson mixing of the plain iteration; needs allow_flips=True).
 
 The report: energy = sum_f area_f ||J_f - R_f||_F^2 of the result whatever energy_kind was minimized
-(squared mesh units; initial_energy and energies are the minimized one's), scaled_energy at the best uniform
+(squared mesh units; initial_energy and energies are the minimized one's, with the barrier when flip-free,
+barrier its final value), scaled_energy at the best uniform
 scale best_scale, flipped (triangles with det J <= 0), min_det_J (UV area over surface area, signed),
 area_distortion and angle_distortion (min / median / max of sigma1 * sigma2 and sigma1 / sigma2),
-initial_energy, energies and steps per iteration, accelerator, accepted_mixings, iterations, converged, requested_init, init, init_flipped,
+accelerator, iterations, converged, stop_reason, initial_energy, energies, initial_gradient_norm,
+gradient_norms, rejected, solves, elapsed_ms (as ARAP.solve's report), requested_init, init, init_flipped,
 init_fallback, pinned, check_ms, init_ms, cells_ms, factor_ms, iterate_ms, parameterize_ms.
 Raises InputError for bad arrays or options, TopologyError for a mesh that is not a disk (saying what it has:
 components, boundary loops, genus) or has degenerate triangles.)");

@@ -66,7 +66,9 @@ def test_flip_free_where_the_plain_iteration_folds():
     assert report["flipped"] == 0
     assert np.all(det_J_signs(V, F, UV) > 0)
     assert UV.shape == (len(V), 2) and UV.dtype == np.float64
-    assert len(report["energies"]) == report["iterations"] == len(report["steps"])
+    assert len(report["energies"]) == report["iterations"] == len(report["gradient_norms"])
+    assert report["accelerator"] == "newton" and report["converged"]
+    assert report["stop_reason"] == "energy_tolerance"
     assert report["scaled_energy"] <= report["energy"] * (1 + 1e-12)
     assert report["area_distortion"]["min"] <= report["area_distortion"]["median"] <= report["area_distortion"]["max"]
 
@@ -142,16 +144,21 @@ def test_bad_pins():
         iarap.parameterize(V, F, pins=[0, 1000], pin_uv=np.eye(2))
 
 
-def test_anderson_mixing_of_the_plain_iteration():
-    """Fewer iterations to the same energy (1e-4 relative: both stop at a 1e-9 decrease); refused flip-free."""
+def test_every_accelerator_of_the_engine():
+    """The plain iteration's minimum (1e-4 relative: all stop at a 1e-9 decrease), flip-free; L-BFGS and Newton
+    in fewer iterations (Anderson's mixed maps are often refused next to the injectivity bound: 71 against
+    48 plain iterations here)."""
     V, F = spherical_cap(8, 24, 0.9 * np.pi)
-    run = dict(allow_flips=True, tolerance=1e-9, iterations=2000)
-    _, plain = iarap.parameterize(V, F, **run)
-    _, mixed = iarap.parameterize(V, F, accel="anderson", **run)
-    assert mixed["accelerator"] == "anderson" and mixed["accepted_mixings"] > 0
-    assert mixed["iterations"] < plain["iterations"]
-    assert mixed["energy"] == pytest.approx(plain["energy"], rel=1e-4)
-    with pytest.raises(iarap.InputError, match="plain iteration"):
-        iarap.parameterize(V, F, accel="anderson")
-    with pytest.raises(iarap.InputError, match="unknown accelerator"):
-        iarap.parameterize(V, F, accel="newton", allow_flips=True)
+    run = dict(tolerance=1e-9, iterations=3000)
+    _, plain = iarap.parameterize(V, F, accelerator="none", **run)
+    for accelerator in ("anderson", "lbfgs", "newton"):
+        UV, report = iarap.parameterize(V, F, accelerator=accelerator, **run)
+        assert report["accelerator"] == accelerator and report["converged"]
+        if accelerator != "anderson":
+            assert report["iterations"] < plain["iterations"]
+        assert report["energy"] == pytest.approx(plain["energy"], rel=1e-4)
+        assert report["flipped"] == 0 and np.all(det_J_signs(V, F, UV) > 0)
+    _, budget = iarap.parameterize(V, F, accelerator="none", tolerance=-1, time_budget_ms=1e-3)
+    assert budget["stop_reason"] == "time_budget" and budget["iterations"] == 1
+    with pytest.raises(iarap.InputError, match="unknown ARAP accelerator 'adam'"):
+        iarap.parameterize(V, F, accelerator="adam")

@@ -59,13 +59,10 @@ ParamEnergy parse_param_energy(const std::string& name) {
                      "energy", "triangle, arap or iarap");
 }
 
-std::string param_accelerator_name(ParamAccelerator accelerator) {
-  return accelerator == ParamAccelerator::Anderson ? "anderson" : "none";
-}
-
-ParamAccelerator parse_param_accelerator(const std::string& name) {
-  return parse_named(name, {ParamAccelerator::None, ParamAccelerator::Anderson}, param_accelerator_name,
-                     "accelerator", "none or anderson");
+ArapSolveOptions default_param_solve_options() {
+  ArapSolveOptions options;
+  options.max_iterations = 100;
+  return options;
 }
 
 ParamInit default_param_init(ParamBoundary boundary) {

@@ -74,26 +74,37 @@ PlanarCells planar_cells(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, Ara
   return cells;
 }
 
-double planar_cell_energy(const PlanarCells& cells, const Eigen::MatrixXd& UV, Eigen::MatrixXd& R) {
+void planar_cell_covariances(const PlanarCells& cells, const Eigen::MatrixXd& UV, Eigen::MatrixXd& S) {
   const ArapElements& el = cells.elements;
-  Eigen::MatrixXd covariance = Eigen::MatrixXd::Zero(el.num_cells, 4);
+  S.setZero(el.num_cells, 4);
   for (Eigen::Index e = 0; e < el.size(); ++e) {
     const Eigen::Vector2d x = deformed(el, e, UV);
     for (int k = el.cell_start[static_cast<std::size_t>(e)];
          k < el.cell_start[static_cast<std::size_t>(e) + 1]; ++k) {
       const double half_w = 0.5 * el.w(e), s0 = cells.s(k, 0), s1 = cells.s(k, 1);
-      auto S = covariance.row(el.cell[static_cast<std::size_t>(k)]);
-      S(0) += half_w * x(0) * s0;
-      S(1) += half_w * x(0) * s1;
-      S(2) += half_w * x(1) * s0;
-      S(3) += half_w * x(1) * s1;
+      auto Sc = S.row(el.cell[static_cast<std::size_t>(k)]);
+      Sc(0) += half_w * x(0) * s0;
+      Sc(1) += half_w * x(0) * s1;
+      Sc(2) += half_w * x(1) * s0;
+      Sc(3) += half_w * x(1) * s1;
     }
   }
+}
+
+double planar_cell_energy(const PlanarCells& cells, const Eigen::MatrixXd& UV, Eigen::MatrixXd& R) {
+  const ArapElements& el = cells.elements;
+  Eigen::MatrixXd covariance;
+  planar_cell_covariances(cells, UV, covariance);
   R.resize(el.num_cells, 4);
   for (Eigen::Index c = 0; c < el.num_cells; ++c) {
     const Eigen::Matrix2d Rc = closest_rotation_2d(row_matrix(covariance, c));
     R.row(c) << Rc(0, 0), Rc(0, 1), Rc(1, 0), Rc(1, 1);
   }
+  return planar_cell_energy_at(cells, UV, R);
+}
+
+double planar_cell_energy_at(const PlanarCells& cells, const Eigen::MatrixXd& UV, const Eigen::MatrixXd& R) {
+  const ArapElements& el = cells.elements;
   double energy = 0;
   for (Eigen::Index e = 0; e < el.size(); ++e) {
     const Eigen::Vector2d x = deformed(el, e, UV);

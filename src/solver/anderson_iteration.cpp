@@ -9,10 +9,10 @@ namespace iarap::detail {
 // The accelerated iterate is kept only when its energy is not above the last accepted one; otherwise the
 // plain iterate G(x_k) (whose energy is not above it either, by block descent) replaces it and the history
 // restarts from there.
-void run_anderson(LocalGlobalProblem& problem, const ArapSolveOptions& options, double energy,
-                  ArapReport& report, Progress& progress) {
-  AndersonAcceleration anderson(options.window, problem.free_count() * 3);
-  Eigen::MatrixXd x = problem.positions(), next(problem.free_count(), 3);
+void run_anderson(Problem& problem, const ArapSolveOptions& options, double energy, ArapReport& report,
+                  Progress& progress) {
+  AndersonAcceleration anderson(options.window, problem.free_count() * problem.dimension());
+  Eigen::MatrixXd x = problem.positions(), next(problem.free_count(), problem.dimension());
   for (int k = 0; k < options.max_iterations; ++k) {
     double local_ms = 0, global_ms = 0;
     Eigen::MatrixXd G = timed(global_ms, [&]() -> Eigen::MatrixXd { return problem.plain_step(); });

@@ -3,14 +3,14 @@
 #pragma once
 #include "iarap/solver/arap_types.h"
 
-#include "local_global_problem.h"
+#include "problem.h"
 #include "stopping.h"
 
 namespace iarap::detail {
 
 // Up to options.max_iterations iterations (history options.window) from the problem's current point,
 // whose energy is `energy` and whose right-hand side is assembled.
-void run_anderson(LocalGlobalProblem& problem, const ArapSolveOptions& options, double energy,
-                  ArapReport& report, Progress& progress);
+void run_anderson(Problem& problem, const ArapSolveOptions& options, double energy, ArapReport& report,
+                  Progress& progress);
 
 } // namespace iarap::detail

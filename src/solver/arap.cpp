@@ -308,24 +308,7 @@ ArapReport arap_solve(ArapData& data, const Eigen::MatrixXd& targets, Eigen::Mat
 ArapReport arap_solve(ArapData& data, const Eigen::MatrixXd& targets, const Eigen::MatrixXd& soft_targets,
                       Eigen::MatrixXd& U, const ArapSolveOptions& options) {
   const auto start = Clock::now();
-  if (options.max_iterations < 0)
-    throw InputError("ARAP: max_iterations must be >= 0, got " + std::to_string(options.max_iterations));
-  if (std::isnan(options.tolerance)) throw InputError("ARAP: tolerance is NaN");
-  if (!(options.gradient_tolerance >= 0))
-    throw InputError("ARAP: gradient_tolerance must be >= 0, got " +
-                     std::to_string(options.gradient_tolerance));
-  if (options.window < 0)
-    throw InputError("ARAP: window must be >= 0, got " + std::to_string(options.window));
-  if (!(options.time_budget_ms >= 0) || !std::isfinite(options.time_budget_ms))
-    throw InputError("ARAP: time_budget_ms must be a finite number >= 0, got " +
-                     std::to_string(options.time_budget_ms));
-  for (const auto& [name, value] :
-       {std::pair<const char*, double>{"newton_trust_radius", options.newton_trust_radius},
-        {"newton_reference_gradient", options.newton_reference_gradient}}) {
-    if (!(value >= 0) || !std::isfinite(value))
-      throw InputError(std::string("ARAP: ") + name + " must be a finite number >= 0, got " +
-                       std::to_string(value));
-  }
+  detail::check_solve_options(options);
   check_solver_positions(data, targets, data.fixed.size(), "targets");
   check_solver_positions(data, soft_targets, data.soft.size(), "soft targets");
   check_solver_positions(data, U, data.V.rows(), "initial guess U");

@@ -2,6 +2,7 @@
 
 #include "iarap/core/stopwatch.h"
 
+#include "inner.h"
 #include "lbfgs_direction.h"
 #include "line_search.h"
 
@@ -9,7 +10,7 @@ namespace iarap::detail {
 
 // The energy is not convex, so each step is checked by Armijo backtracking; when that fails, the plain
 // local/global step (with no history the L-BFGS step itself) is taken and the history restarts.
-void run_lbfgs(LocalGlobalProblem& problem, const ArapSolveOptions& options, double energy, Eigen::MatrixXd g,
+void run_lbfgs(Problem& problem, const ArapSolveOptions& options, double energy, Eigen::MatrixXd g,
                ArapReport& report, Progress& progress) {
   LbfgsDirection lbfgs(options.window);
   const auto H0 = [&](const Eigen::MatrixXd& r) { return problem.solve(r); };

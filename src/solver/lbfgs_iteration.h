@@ -3,7 +3,7 @@
 #pragma once
 #include "iarap/solver/arap_types.h"
 
-#include "local_global_problem.h"
+#include "problem.h"
 #include "stopping.h"
 
 #include <Eigen/Core>
@@ -12,7 +12,7 @@ namespace iarap::detail {
 
 // Up to options.max_iterations steps (history options.window pairs) from the problem's current point,
 // whose energy is `energy` and gradient g.
-void run_lbfgs(LocalGlobalProblem& problem, const ArapSolveOptions& options, double energy, Eigen::MatrixXd g,
+void run_lbfgs(Problem& problem, const ArapSolveOptions& options, double energy, Eigen::MatrixXd g,
                ArapReport& report, Progress& progress);
 
 } // namespace iarap::detail

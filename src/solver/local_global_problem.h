@@ -14,6 +14,7 @@
 
 #include "hard_points.h"
 #include "inner.h"
+#include "problem.h"
 #include "soft_terms.h"
 
 #include <Eigen/Core>
@@ -23,7 +24,7 @@
 
 namespace iarap::detail {
 
-class LocalGlobalProblem {
+class LocalGlobalProblem final : public Problem {
 public:
   // Sets U's constrained rows (targets at data.fixed, U's own rows at data.pinned) and precomputes
   // L_fc U_c and the free rows of L. data and U must outlive the problem. While it lives the positions and
@@ -36,44 +37,45 @@ public:
   LocalGlobalProblem(ArapData& data, const Eigen::MatrixXd& targets, Eigen::MatrixXd& U,
                      const Eigen::MatrixXd& soft_targets = Eigen::MatrixXd(0, 3),
                      const Eigen::MatrixXd& forces = Eigen::MatrixXd(0, 3));
-  ~LocalGlobalProblem();
+  ~LocalGlobalProblem() override;
   LocalGlobalProblem(const LocalGlobalProblem&) = delete;
   LocalGlobalProblem& operator=(const LocalGlobalProblem&) = delete;
 
-  Eigen::Index free_count() const { return data_.free.size(); }
+  Eigen::Index free_count() const override { return data_.free.size(); }
+  Eigen::Index dimension() const override { return 3; }
   // x = U's free rows (in visit order).
-  Eigen::MatrixXd positions() const;
-  void set_positions(const Eigen::MatrixXd& x);
+  Eigen::MatrixXd positions() const override;
+  void set_positions(const Eigen::MatrixXd& x) override;
 
   // Local step at U: fits data.R and returns E(U) + P(U) - f . (U - V) (P = 0 without soft constraints, f
   // = 0 without forces).
-  double local_step();
+  double local_step() override;
   // P(U) at the last local step.
   double penalty() const { return penalty_; }
   // -f . (U - V) at the last local step.
   double potential() const { return potential_; }
   // B(U) from data.R (the rotations of the last local step), kept for plain_step, and the gradient there
   // (gradient()), in one pass over the free vertices.
-  void assemble_rhs();
+  void assemble_rhs() override;
   // G = L_ff^{-1} B: the plain local/global iterate from the point assemble_rhs last saw (kept in this
   // object until the next call: the solve reuses its workspaces and allocates nothing).
-  const Eigen::MatrixXd& plain_step();
+  const Eigen::MatrixXd& plain_step() override;
   // g = L_ff x - B at the point assemble_rhs last saw, computed there (kept until its next call).
-  const Eigen::MatrixXd& gradient() const { return g_; }
+  const Eigen::MatrixXd& gradient() const override { return g_; }
   // L_ff^{-1} r (r #free x 3), projected onto the hard points' tangent space when there are any.
-  Eigen::MatrixXd solve(const Eigen::MatrixXd& r) const;
+  Eigen::MatrixXd solve(const Eigen::MatrixXd& r) const override;
 
   // The Hessian of E(x) = min_R energy at the point of the last local step, for Newton-type steps:
   // prepare_hessian() keeps per cell M_c^{-1} = (tr(P_c) I - P_c)^{-1} with P_c = R_c^T S_c (what the
   // derivative of the polar rotation needs); hessian_product(v) then returns H v (v #free x 3).
-  void prepare_hessian();
+  void prepare_hessian() override;
   // From now on each local step keeps its covariances for prepare_hessian, which then need not sweep the
   // elements again (for loops that prepare the Hessian at most local steps).
-  void keep_covariances() { keep_covariances_ = true; }
-  Eigen::MatrixXd hessian_product(const Eigen::MatrixXd& v);
+  void keep_covariances() override { keep_covariances_ = true; }
+  Eigen::MatrixXd hessian_product(const Eigen::MatrixXd& v) override;
 
   // Back-substitutions with the factor so far (plain_step and solve).
-  int solves() const { return solves_; }
+  int solves() const override { return solves_; }
 
 private:
   void solve_into(const Eigen::MatrixXd& b, Eigen::MatrixXd& x) const;

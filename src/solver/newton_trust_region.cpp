@@ -2,6 +2,7 @@
 
 #include "iarap/core/stopwatch.h"
 
+#include "inner.h"
 #include "line_search.h"
 
 #include <algorithm>
@@ -26,7 +27,7 @@ struct SteihaugStep {
   bool boundary = false;
 };
 
-SteihaugStep steihaug_cg(LocalGlobalProblem& problem, const Eigen::MatrixXd& g, double g0, double& radius,
+SteihaugStep steihaug_cg(Problem& problem, const Eigen::MatrixXd& g, double g0, double& radius,
                          int cg_limit) {
   const double g_norm = g.norm();
   const double eta = std::min(0.5, std::sqrt(g_norm / g0));
@@ -35,7 +36,7 @@ SteihaugStep steihaug_cg(LocalGlobalProblem& problem, const Eigen::MatrixXd& g, 
   double rz = inner(r, p);
   if (radius == 0) radius = std::sqrt(rz); // ||L^-1 g||_L
   SteihaugStep step;
-  step.d = Eigen::MatrixXd::Zero(g.rows(), 3);
+  step.d = Eigen::MatrixXd::Zero(g.rows(), g.cols());
   Eigen::MatrixXd& d = step.d;
   // ||d||_L^2, d.L p, p.L p by the preconditioned CG recurrences (no product with L); the model value.
   double dLd = 0, dLp = 0, pLp = rz, model = 0;
@@ -69,10 +70,25 @@ SteihaugStep steihaug_cg(LocalGlobalProblem& problem, const Eigen::MatrixXd& g, 
   return step;
 }
 
+// The step shortened to t = problem.step_limit(x, d) when that is below 1 (injective UV maps), with its
+// model m(t d) = t g.d + t^2 (m(d) - g.d) (the quadratic part of m(d) is m(d) - g.d) and the L norm scaled;
+// it no longer ends on the trust region's boundary. Unchanged without a bound. Returns whether it shortened.
+bool shorten_to_feasible(const Problem& problem, const Eigen::MatrixXd& x, const Eigen::MatrixXd& g,
+                         SteihaugStep& step) {
+  const double t = problem.step_limit(x, step.d);
+  if (!(t < 1)) return false;
+  const double slope = inner(g, step.d);
+  step.d *= t;
+  step.model = t * slope + t * t * (step.model - slope);
+  step.dLd *= t * t;
+  step.boundary = false;
+  return true;
+}
+
 } // namespace
 
 // Truncated Newton in a trust region (Steihaug-Toint CG, Nocedal & Wright Algorithm 7.2 and Section 4.1) on
-// E(x) = min_R energy with the exact Hessian (LocalGlobalProblem::hessian_product). The model
+// E(x) = min_R energy with the exact Hessian (Problem::hessian_product). The model
 // m(d) = g.d + d.H d / 2 is minimized by conjugate gradients preconditioned by L_ff (the factorization at
 // hand) inside ||d||_L <= radius, stopped at ||r|| <= eta ||g|| with eta = min(0.5, sqrt(||g|| / ||g_0||))
 // (superlinear convergence near a minimum), after `cg_limit` steps, at the boundary, or at a direction of
@@ -82,8 +98,8 @@ SteihaugStep steihaug_cg(LocalGlobalProblem& problem, const Eigen::MatrixXd& g, 
 // the plain step's length and doubles while the model predicts the energy well, which walks out of such
 // regions at a growing pace. A step that achieves less than kAccept of the predicted decrease is replaced by
 // the plain local/global step (never an energy increase), and the radius shrinks.
-void run_newton(LocalGlobalProblem& problem, const ArapSolveOptions& options, double energy,
-                Eigen::MatrixXd g, ArapReport& report, Progress& progress) {
+void run_newton(Problem& problem, const ArapSolveOptions& options, double energy, Eigen::MatrixXd g,
+                ArapReport& report, Progress& progress) {
   constexpr double kAccept = 0.1;                // rho above this: the step is taken
   constexpr double kShrink = 0.25, kGrow = 0.75; // rho below / above: radius shrinks / grows (N&W Alg. 4.1)
   const double g0 = options.newton_reference_gradient > 0 ? options.newton_reference_gradient : g.norm();
@@ -91,9 +107,12 @@ void run_newton(LocalGlobalProblem& problem, const ArapSolveOptions& options, do
   // In the L_ff norm; 0: set from the first plain step's length.
   double radius = options.newton_trust_radius > 0 ? options.newton_trust_radius : 0;
   for (int k = 0; k < options.max_iterations; ++k) {
-    const SteihaugStep cg = timed(report.accelerator_ms, [&] {
+    bool shortened = false;
+    SteihaugStep cg = timed(report.accelerator_ms, [&] {
       problem.prepare_hessian();
-      return steihaug_cg(problem, g, g0, radius, options.window);
+      SteihaugStep d = steihaug_cg(problem, g, g0, radius, options.window);
+      shortened = shorten_to_feasible(problem, x, g, d);
+      return d;
     });
     LineStep step;
     {
@@ -111,6 +130,8 @@ void run_newton(LocalGlobalProblem& problem, const ArapSolveOptions& options, do
     if (!step.accepted) {
       ++report.rejected;
       take_plain_step(problem, step);
+    } else if (shortened) {
+      lower_of_step_and_plain(problem, step);
     }
     energy = step.energy;
     timed(step.global_ms, [&] {

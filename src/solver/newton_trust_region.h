@@ -1,10 +1,10 @@
 // Truncated Newton in a trust region (Steihaug-Toint CG) on E(x) = min_R energy with the exact Hessian
-// (LocalGlobalProblem::hessian_product), preconditioned by L_ff. Internal to the solver (run_local_global
-// picks it for ArapAccelerator::Newton).
+// (Problem::hessian_product), preconditioned by the factorized system matrix. Internal to the solver
+// (run_local_global picks it for ArapAccelerator::Newton).
 #pragma once
 #include "iarap/solver/arap_types.h"
 
-#include "local_global_problem.h"
+#include "problem.h"
 #include "stopping.h"
 
 #include <Eigen/Core>
@@ -13,7 +13,7 @@ namespace iarap::detail {
 
 // Up to options.max_iterations Newton steps (at most options.window CG steps each) from the problem's
 // current point, whose energy is `energy` and gradient g.
-void run_newton(LocalGlobalProblem& problem, const ArapSolveOptions& options, double energy,
-                Eigen::MatrixXd g, ArapReport& report, Progress& progress);
+void run_newton(Problem& problem, const ArapSolveOptions& options, double energy, Eigen::MatrixXd g,
+                ArapReport& report, Progress& progress);
 
 } // namespace iarap::detail

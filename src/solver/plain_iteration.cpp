@@ -4,7 +4,7 @@
 
 namespace iarap::detail {
 
-void run_plain(LocalGlobalProblem& problem, const ArapSolveOptions& options, Progress& progress) {
+void run_plain(Problem& problem, const ArapSolveOptions& options, Progress& progress) {
   for (int k = 0; k < options.max_iterations; ++k) {
     double local_ms = 0, global_ms = 0;
     timed(global_ms, [&] { problem.set_positions(problem.plain_step()); });

@@ -3,13 +3,13 @@
 #pragma once
 #include "iarap/solver/arap_types.h"
 
-#include "local_global_problem.h"
+#include "problem.h"
 #include "stopping.h"
 
 namespace iarap::detail {
 
 // Up to options.max_iterations plain iterations from the problem's current point, whose local step and
 // right-hand side are done.
-void run_plain(LocalGlobalProblem& problem, const ArapSolveOptions& options, Progress& progress);
+void run_plain(Problem& problem, const ArapSolveOptions& options, Progress& progress);
 
 } // namespace iarap::detail

@@ -4,7 +4,7 @@
 #include "iarap/core/stopwatch.h"
 #include "iarap/solver/arap_types.h"
 
-#include "local_global_problem.h"
+#include "problem.h"
 
 namespace iarap::detail {
 
@@ -32,8 +32,8 @@ private:
 };
 
 // The global step's tail shared by all loops: the right-hand side at the new iterate and the norm of the
-// gradient there (LocalGlobalProblem::assemble_rhs).
-inline double rhs_and_gradient_norm(LocalGlobalProblem& problem) {
+// gradient there (Problem::assemble_rhs).
+inline double rhs_and_gradient_norm(Problem& problem) {
   problem.assemble_rhs();
   return problem.gradient().norm();
 }

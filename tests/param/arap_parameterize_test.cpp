@@ -34,7 +34,7 @@ TEST(ArapParameterize, RolledUpSheetFlattensExactly) {
   const double area = 0.5 * M_PI; // the rectangles' total area is a bit less; an upper bound suffices
   EXPECT_LT(result.report.distortion.energy, 1e-12 * area);
   EXPECT_EQ(result.report.distortion.flipped, 0);
-  EXPECT_TRUE(result.report.converged);
+  EXPECT_TRUE(result.report.solve.converged);
   // The flattening keeps every edge length.
   for (Eigen::Index f = 0; f < sheet.F.rows(); ++f)
     for (int k = 0; k < 3; ++k) {
@@ -71,9 +71,10 @@ TEST(ArapParameterize, PlainIterationNeverIncreasesTheEnergy) {
   const test::TestMesh sphere = nearly_closed_sphere();
   ParamOptions plain;
   plain.allow_flips = true;
-  plain.tolerance = 0;
-  plain.max_iterations = 30;
-  const ParamReport report = arap_parameterize(sphere.V, sphere.F, plain).report;
+  plain.solve.accelerator = ArapAccelerator::None;
+  plain.solve.tolerance = 0;
+  plain.solve.max_iterations = 30;
+  const ArapReport report = arap_parameterize(sphere.V, sphere.F, plain).report.solve;
   ASSERT_EQ(report.energies.size(), 30u);
   double previous = report.initial_energy;
   for (double e : report.energies) {
@@ -82,31 +83,57 @@ TEST(ArapParameterize, PlainIterationNeverIncreasesTheEnergy) {
   }
 }
 
-TEST(ArapParameterize, AndersonMixingOfThePlainIteration) {
-  // Each kept mixing lowers the energy below the previous iterate's, so the energies still never increase;
-  // the limit is the plain iteration's (a local minimum of the same energy: equal to 1e-4 relative, the
-  // spread two runs stopped by a 1e-9 relative decrease leave), in fewer iterations.
+// Each accelerator of the engine, with and without flips: the energies never increase (every accepted
+// iterate lowers the minimized energy: Anderson's safeguard, the line search, the trust region), and the
+// limit is the plain iteration's (a local minimum of the same energy: equal to 1e-4 relative, the spread
+// runs stopped by a 1e-9 relative decrease leave), in fewer iterations. Flip-free, every one stays so.
+TEST(ArapParameterize, EveryAcceleratorReachesThePlainIterationsMinimum) {
   const test::TestMesh sphere = nearly_closed_sphere();
-  ParamOptions plain;
-  plain.allow_flips = true;
-  plain.tolerance = 1e-9;
-  plain.max_iterations = 2000;
-  ParamOptions mixed = plain;
-  mixed.accelerator = ParamAccelerator::Anderson;
-  const ParamReport a = arap_parameterize(sphere.V, sphere.F, plain).report;
-  const ParamReport b = arap_parameterize(sphere.V, sphere.F, mixed).report;
-  ASSERT_TRUE(a.converged && b.converged);
-  EXPECT_GT(b.accepted_mixings, 0);
-  EXPECT_LT(b.iterations, a.iterations);
-  EXPECT_NEAR(b.distortion.energy, a.distortion.energy, 1e-4 * a.distortion.energy);
-  double previous = b.initial_energy;
-  for (double e : b.energies) {
-    EXPECT_LE(e, previous * (1 + 1e-12));
-    previous = e;
+  for (bool allow_flips : {true, false}) {
+    ParamOptions plain;
+    plain.allow_flips = allow_flips;
+    plain.solve.accelerator = ArapAccelerator::None;
+    plain.solve.tolerance = 1e-9;
+    plain.solve.max_iterations = 3000;
+    const ParamReport a = arap_parameterize(sphere.V, sphere.F, plain).report;
+    ASSERT_TRUE(a.solve.converged) << allow_flips;
+    for (ArapAccelerator accelerator :
+         {ArapAccelerator::Anderson, ArapAccelerator::Lbfgs, ArapAccelerator::Newton}) {
+      const std::string what =
+          arap_accelerator_name(accelerator) + (allow_flips ? " with flips" : " flip-free");
+      ParamOptions options = plain;
+      options.solve.accelerator = accelerator;
+      const ParamReport b = arap_parameterize(sphere.V, sphere.F, options).report;
+      ASSERT_TRUE(b.solve.converged) << what;
+      EXPECT_EQ(b.solve.accelerator, accelerator) << what;
+      EXPECT_LT(b.solve.iterations, a.solve.iterations) << what;
+      EXPECT_NEAR(b.distortion.energy, a.distortion.energy, 1e-4 * a.distortion.energy) << what;
+      double previous = b.solve.initial_energy;
+      for (double e : b.solve.energies) {
+        EXPECT_LE(e, previous * (1 + 1e-12)) << what;
+        previous = e;
+      }
+      if (!allow_flips) EXPECT_EQ(b.distortion.flipped, 0) << what;
+    }
   }
-  // Flip-free steps are bounded by the nearest degenerate triangle; the mixing is refused there.
-  mixed.allow_flips = false;
-  EXPECT_THROW(arap_parameterize(sphere.V, sphere.F, mixed), InputError);
+}
+
+TEST(ArapParameterize, StopsOnTheEnginesRules) {
+  const test::TestMesh sphere = nearly_closed_sphere();
+  ParamOptions options;
+  options.solve.tolerance = -1; // the energy rule off: only the gradient rule can stop it
+  options.solve.gradient_tolerance = 1e-6;
+  options.solve.max_iterations = 1000;
+  const ArapReport gradient = arap_parameterize(sphere.V, sphere.F, options).report.solve;
+  EXPECT_EQ(gradient.stop_reason, ArapStopReason::GradientTolerance);
+  EXPECT_LE(gradient.gradient_norms.back(), 1e-6 * gradient.initial_gradient_norm);
+
+  options.solve.gradient_tolerance = 0;
+  options.solve.accelerator = ArapAccelerator::None;
+  options.solve.time_budget_ms = 1e-3; // the first iteration ends past it
+  const ArapReport budget = arap_parameterize(sphere.V, sphere.F, options).report.solve;
+  EXPECT_EQ(budget.stop_reason, ArapStopReason::TimeBudget);
+  EXPECT_EQ(budget.iterations, 1);
 }
 
 TEST(ArapParameterize, FlippedInitialMapFallsBackToTutte) {
@@ -128,8 +155,8 @@ TEST(ArapParameterize, PlanarMeshMapsIsometrically) {
   for (ParamInit init : {ParamInit::Lscm, ParamInit::Tutte, ParamInit::Harmonic}) {
     ParamOptions options;
     options.init = init;
-    options.tolerance = 0;
-    options.max_iterations = 300;
+    options.solve.tolerance = 0;
+    options.solve.max_iterations = 300;
     const ParamResult result = arap_parameterize(disk.V, disk.F, options);
     EXPECT_LT(result.report.distortion.energy, 1e-12) << param_init_name(init);
     const Eigen::Index a = 0, b = disk.V.rows() - 1;
@@ -149,7 +176,7 @@ TEST(ArapParameterize, CircularBoundaryStaysOnTheCircle) {
     EXPECT_LT((result.UV.row(disk.boundary[p]) - circle.row(static_cast<Eigen::Index>(p))).norm(), 1e-15);
   EXPECT_EQ(result.report.pinned, static_cast<int>(disk.boundary.size()));
   EXPECT_EQ(result.report.distortion.flipped, 0);
-  EXPECT_LT(result.report.distortion.energy, result.report.initial_energy);
+  EXPECT_LT(result.report.distortion.energy, result.report.solve.initial_energy);
 }
 
 TEST(ArapParameterize, AnyScaleGivesTheSameMapInItsUnits) {
@@ -170,13 +197,16 @@ TEST(ArapParameterize, RefusesBadOptions) {
   options.boundary = ParamBoundary::Circle; // with the LSCM start
   EXPECT_THROW(arap_parameterize(disk.V, disk.F, options), InputError);
   options = {};
-  options.max_iterations = -1;
+  options.solve.max_iterations = -1;
   EXPECT_THROW(arap_parameterize(disk.V, disk.F, options), InputError);
   options = {};
   options.step_fraction = 1;
   EXPECT_THROW(arap_parameterize(disk.V, disk.F, options), InputError);
   options = {};
-  options.tolerance = std::nan("");
+  options.solve.tolerance = std::nan("");
+  EXPECT_THROW(arap_parameterize(disk.V, disk.F, options), InputError);
+  options = {};
+  options.solve.forces = Eigen::MatrixXd::Ones(disk.V.rows(), 2);
   EXPECT_THROW(arap_parameterize(disk.V, disk.F, options), InputError);
   EXPECT_THROW(parse_param_init("spectral"), InputError);
 }

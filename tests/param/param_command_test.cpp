@@ -51,6 +51,25 @@ TEST(ParamCommand, WritesTextureCoordinatesAndReport) {
   fs::remove_all(dir);
 }
 
+// The engine's options reach param: every accelerator flip-free, the gradient rule and its stop reason.
+TEST(ParamCommand, EngineOptions) {
+  const auto dir = iarap::test::temp_dir("param_cli_engine");
+  const iarap::test::TestMesh cap = iarap::test::spherical_cap(8, 24, 0.9 * M_PI);
+  iarap::write_mesh((dir / "cap.off").string(), cap.V, cap.F);
+  for (const char* accel : {"none", "anderson", "lbfgs", "newton"}) {
+    const CliRun run = iarap_cli("param " + quoted(dir / "cap.off") + " --out " + quoted(dir / "uv.txt") +
+                                 " --accel " + accel + " --window 6 --tolerance 0 --grad-tol 1e-5 " +
+                                 "--iterations 5000 --time-budget 600000 --json --quiet");
+    ASSERT_EQ(run.code, 0) << run.out;
+    const nlohmann::json j = parse_json(run);
+    EXPECT_EQ(j["accelerator"], accel);
+    EXPECT_EQ(j["stop_reason"], "gradient_tolerance") << accel;
+    EXPECT_LE(j["gradient_norms"].back().get<double>(), 1e-5 * j["initial_gradient_norm"].get<double>());
+    EXPECT_EQ(j["flipped"], 0) << accel;
+  }
+  fs::remove_all(dir);
+}
+
 TEST(ParamCommand, PictureOfTheMap) {
   const auto dir = iarap::test::temp_dir("param_cli_picture");
   const iarap::test::TestMesh cap = iarap::test::spherical_cap(5, 16, 0.5 * M_PI);
@@ -98,8 +117,10 @@ TEST(ParamCommand, UsageErrors) {
       {mesh + out + " --picture " + quoted(dir / "uv.jpg"), "the picture is written as .png"},
       {mesh + out + " --picture " + quoted(dir / "disk.obj"), "is the input mesh, the output or the report"},
       {mesh + out + " --tolerance nan", "finite"},
-      {mesh + out + " --accel anderson", "add --allow-flips"},
-      {mesh + out + " --accel newton", "--accel"},
+      {mesh + out + " --accel adam", "--accel"},
+      {mesh + out + " --grad-tol -1", "--grad-tol"},
+      {mesh + out + " --time-budget nan", "--time-budget"},
+      {mesh + out + " --window -1", "--window"},
       {mesh, "--out"},
   };
   for (const auto& c : cases) {

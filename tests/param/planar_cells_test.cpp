@@ -88,13 +88,14 @@ TEST(PlanarCells, PerVertexParameterizationsAreFlipFree) {
   for (ParamEnergy energy : {ParamEnergy::Arap, ParamEnergy::Iarap}) {
     ParamOptions options;
     options.energy = energy;
-    options.max_iterations = 300;
+    options.solve.max_iterations = 300;
     const ParamResult result = arap_parameterize(sphere.V, sphere.F, options);
     EXPECT_EQ(result.report.energy, energy);
     EXPECT_EQ(result.report.distortion.flipped, 0) << param_energy_name(energy);
     EXPECT_GT(result.report.distortion.min_det_J, 0) << param_energy_name(energy);
-    ASSERT_FALSE(result.report.energies.empty());
-    EXPECT_LT(result.report.energies.back(), result.report.initial_energy) << param_energy_name(energy);
+    ASSERT_FALSE(result.report.solve.energies.empty());
+    EXPECT_LT(result.report.solve.energies.back(), result.report.solve.initial_energy)
+        << param_energy_name(energy);
   }
 }
 
@@ -104,10 +105,10 @@ TEST(PlanarCells, IarapFlattensAPlanarNonDelaunayMeshExactly) {
   const PlanarCase c = planar_case(25);
   ParamOptions options;
   options.energy = ParamEnergy::Iarap;
-  options.tolerance = 0;
-  options.max_iterations = 200;
+  options.solve.tolerance = 0;
+  options.solve.max_iterations = 200;
   const ParamResult result = arap_parameterize(c.mesh.V, c.mesh.F, options);
-  EXPECT_LT(result.report.energies.back(), 1e-20);
+  EXPECT_LT(result.report.solve.energies.back(), 1e-20);
   EXPECT_LT(result.report.distortion.energy, 1e-20);
 }
 

@@ -46,8 +46,8 @@ TEST(UvPins, TwoPinsOnARigidMotionGiveThatMotion) {
   const int a = 0, b = static_cast<int>(disk.V.rows()) - 1;
   ParamOptions options;
   options.pins = make_pins({a, b}, {moved(disk.V.row(a)), moved(disk.V.row(b))});
-  options.tolerance = 0;
-  options.max_iterations = 200;
+  options.solve.tolerance = 0;
+  options.solve.max_iterations = 200;
   const ParamResult result = arap_parameterize(disk.V, disk.F, options);
   expect_pins_held(result, options.pins);
   EXPECT_EQ(result.report.pinned, 2);
@@ -87,7 +87,7 @@ TEST(UvPins, ThreePinsStretchAFlatSquare) {
   EXPECT_EQ(result.report.distortion.flipped, 0);
   EXPECT_GT(result.report.distortion.energy,
             0.1); // a stretch by 2 costs: per unit area ||diag(2,1)-I||^2 = 1
-  EXPECT_LT(result.report.distortion.energy, result.report.initial_energy);
+  EXPECT_LT(result.report.distortion.energy, result.report.solve.initial_energy);
 }
 
 TEST(UvPins, MirroredPinsFoldAndAreRefusedFlipFree) {

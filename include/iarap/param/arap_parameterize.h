@@ -14,13 +14,12 @@
 // (det J < 0), as libigl's and CGAL's do.
 //
 // Flip-free (the default) starts from an injective map and minimizes W = E + sum_f area_f mu psi(det J_f)
-// (param_options.h: a barrier only triangles shrunk below eps of their area feel) by the same
-// Laplacian-preconditioned step, without the barrier exactly the global step. Each step goes from U to
-// U + t d with t = min(1, step_fraction * t_max), t_max the first step at which some triangle degenerates
-// (injective_step.h), halved until W decreases by Armijo's rule: every iterate keeps every det J_f > 0 and W
-// decreases monotonically. A step bound alone (no barrier) is not enough: the global step keeps pointing
-// into the same nearly degenerate triangles and the steps shrink geometrically (measured on camelhead:
-// t = 6e-7 after 9 iterations, stopped at E = 1.06 against 0.80).
+// (param_options.h: a barrier only triangles shrunk below eps of their area feel). The iteration is the
+// local/global engine of deformation (src/solver: plain, Anderson, L-BFGS or Newton, the same stopping
+// rules, time budget and report) on the UV problem of src/param/uv_problem.h: its plain step is the
+// Laplacian-preconditioned step, without the barrier exactly the global step, and every step of every
+// accelerator goes at most step_fraction of the way to the first map at which some triangle degenerates
+// (injective_step.h), so that every iterate keeps every det J_f > 0 while W decreases monotonically.
 #pragma once
 #include "iarap/param/map_distortion.h"
 #include "iarap/param/param_options.h"
@@ -37,13 +36,12 @@ struct ParamReport {
   ParamInit init = ParamInit::Lscm; // the initial map the iteration started from
   int init_flipped = 0;             // flipped triangles of the requested initial map
   bool init_fallback = false;       // it flipped, so the flip-free iteration started from Tutte's map
-  ParamAccelerator accelerator = ParamAccelerator::None;
-  int accepted_mixings = 0; // Anderson: iterations whose mixed map was kept
-  int iterations = 0;
-  bool converged = false;       // stopped by the tolerance, not by the iteration limit
-  double initial_energy = 0;    // the minimized energy of the initial map (squared mesh units)
-  std::vector<double> energies; // the minimized energy after each iteration
-  std::vector<double> steps;    // t of each iteration (1 = the full global step)
+  // The engine's report (arap_types.h): iterations, converged, stop_reason, accelerator, the minimized
+  // energy W of the initial map and after each iteration (initial_energy, energies; W = E + the barrier
+  // term when flip-free, E with allow_flips; squared mesh units), gradient norms (mesh units), rejected
+  // accelerated steps, solves and times.
+  ArapReport solve;
+  double barrier = 0; // the barrier term of the final map (W - E; 0 with allow_flips)
   // Of the final map, whatever energy was minimized: distortion.energy is the per-triangle energy (the
   // figure libigl and CGAL report), so that maps minimizing different energies compare.
   MapDistortion distortion;
@@ -58,9 +56,9 @@ struct ParamResult {
 
 // The ARAP parameterization of (V #V x 3, F #F x 3). Runs on V divided by normalizing_scale(V) (exact),
 // so any scale works; UV and energies come back in V's units. Throws what prepare_disk throws (InputError,
-// TopologyError), InputError for options out of range (iterations < 0, tolerance < 0 or NaN,
-// step_fraction outside (0, 1), a barrier weight or threshold <= 0, a circular boundary with the LSCM
-// start) and SolverError when a system cannot be factorized.
+// TopologyError), InputError for options out of range (the solve options as arap_solve checks them,
+// forces or a Newton warm start, step_fraction outside (0, 1), a barrier weight or threshold <= 0, a
+// circular boundary with the LSCM start) and SolverError when a system cannot be factorized.
 ParamResult arap_parameterize(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
                               const ParamOptions& options = {});
 

@@ -1,5 +1,7 @@
-// The choices of arap_parameterize: initial map, boundary, iteration limits, and their names.
+// The choices of arap_parameterize: initial map, boundary, the engine's solve options, and their names.
 #pragma once
+#include "iarap/solver/arap_types.h"
+
 #include <Eigen/Core>
 #include <optional>
 #include <string>
@@ -23,10 +25,8 @@ enum class ParamBoundary {
   Circle, // every boundary vertex stays where circle_boundary puts it
 };
 
-enum class ParamAccelerator {
-  None,     // the iteration as it is
-  Anderson, // safeguarded Anderson mixing of the plain iteration's steps (allow_flips only)
-};
+// ArapSolveOptions with the parameterization's defaults: 100 iterations, the rest as for deformation.
+ArapSolveOptions default_param_solve_options();
 
 // Vertices held at given UV positions (in the units of V): LSCM's two default pins, or a user's.
 struct UvPins {
@@ -47,11 +47,11 @@ struct ParamOptions {
   // triangle, else Tutte's) and shortens each step so that no triangle's det J reaches 0. true: the plain
   // local/global iteration from the requested initial map, as in libigl and CGAL.
   bool allow_flips = false;
-  int max_iterations = 100;
-  ParamAccelerator accelerator = ParamAccelerator::None;
-  int anderson_window = 5; // differences the Anderson mixing keeps, >= 1
-  // Stop when an iteration lowers the energy by at most this fraction of it (CGAL's relative rule).
-  double tolerance = 1e-6;
+  // The local/global engine's options, as for deformation (arap_types.h): max_iterations (100 here),
+  // tolerance (relative energy decrease, CGAL's rule), gradient_tolerance, accelerator (Newton by
+  // default; every accelerator keeps a flip-free map flip-free), window, time_budget_ms (counted from the
+  // start of arap_parameterize), on_iteration. forces and the Newton warm start do not apply to UV maps.
+  ArapSolveOptions solve = default_param_solve_options();
   // The flip-free step is this fraction of the largest step that keeps every det J > 0 (Smith and
   // Schaefer 2015 take 0.8 to 0.9); in (0, 1).
   double step_fraction = 0.8;
@@ -92,9 +92,6 @@ ParamEnergy parse_param_energy(const std::string& name);
 std::string param_init_name(ParamInit init);
 // The inverse; throws InputError naming the name and the valid ones.
 ParamInit parse_param_init(const std::string& name);
-// "none", "anderson".
-std::string param_accelerator_name(ParamAccelerator accelerator);
-ParamAccelerator parse_param_accelerator(const std::string& name);
 // "free", "circle".
 std::string param_boundary_name(ParamBoundary boundary);
 ParamBoundary parse_param_boundary(const std::string& name);

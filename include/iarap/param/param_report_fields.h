@@ -5,24 +5,31 @@
 
 namespace iarap {
 
-// Calls visit(name, value) for each field of `report` in a fixed order. Values are std::string (init
-// names), int, bool, double, std::vector<double> (energies, steps: one per iteration) or DistortionRange
-// (area_distortion, angle_distortion). Energies in squared mesh units, times in milliseconds.
+// Calls visit(name, value) for each field of `report` in a fixed order. Values are std::string (names),
+// int, bool, double, std::vector<double> (energies, gradient_norms, elapsed_ms: one per iteration) or
+// DistortionRange (area_distortion, angle_distortion). Energies in squared mesh units, gradient norms in
+// mesh units, times in milliseconds.
 template <typename Visitor> void visit_param_report(const ParamReport& report, Visitor&& visit) {
   const MapDistortion& d = report.distortion;
+  const ArapReport& solve = report.solve;
   visit("energy_kind", param_energy_name(report.energy));
   visit("requested_init", param_init_name(report.requested_init));
   visit("init", param_init_name(report.init));
   visit("init_flipped", report.init_flipped);
   visit("init_fallback", report.init_fallback);
   visit("pinned", report.pinned);
-  visit("accelerator", param_accelerator_name(report.accelerator));
-  visit("accepted_mixings", report.accepted_mixings);
-  visit("iterations", report.iterations);
-  visit("converged", report.converged);
-  visit("initial_energy", report.initial_energy);
-  visit("energies", report.energies);
-  visit("steps", report.steps);
+  visit("accelerator", arap_accelerator_name(solve.accelerator));
+  visit("iterations", solve.iterations);
+  visit("converged", solve.converged);
+  visit("stop_reason", arap_stop_reason_name(solve.stop_reason));
+  visit("initial_energy", solve.initial_energy);
+  visit("energies", solve.energies);
+  visit("barrier", report.barrier);
+  visit("initial_gradient_norm", solve.initial_gradient_norm);
+  visit("gradient_norms", solve.gradient_norms);
+  visit("rejected", solve.rejected);
+  visit("solves", solve.solves);
+  visit("elapsed_ms", solve.elapsed_ms);
   visit("energy", d.energy);
   visit("scaled_energy", d.scaled_energy);
   visit("best_scale", d.best_scale);

@@ -30,6 +30,11 @@ PlanarCells planar_cells(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, Ara
 // cell's covariance sum_e (w_e / 2) (UV^T b_e) s_ec^T).
 double planar_cell_energy(const PlanarCells& cells, const Eigen::MatrixXd& UV, Eigen::MatrixXd& R);
 double planar_cell_energy(const PlanarCells& cells, const Eigen::MatrixXd& UV);
+// The energy with the rotations R (#V x 4, row by row) held instead of fitted.
+double planar_cell_energy_at(const PlanarCells& cells, const Eigen::MatrixXd& UV, const Eigen::MatrixXd& R);
+// S (#V x 4, row by row): each cell's covariance sum_e (w_e / 2) (UV^T b_e) s_ec^T, linear in UV (the
+// rotations are closest_rotation_2d of its rows; Newton's Hessian products take it of a direction).
+void planar_cell_covariances(const PlanarCells& cells, const Eigen::MatrixXd& UV, Eigen::MatrixXd& S);
 
 // r (#V x 2) = sum_e sum_{c in cells(e)} (w_e / 2) b_e (R_c s_ec)^T, so that grad E = 2 (M UV - r) with
 // M = element_system_matrix(elements) / 2: the global step solves M UV = r.

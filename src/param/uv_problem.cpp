@@ -1,0 +1,172 @@
+#include "uv_problem.h"
+
+#include "iarap/core/errors.h"
+#include "iarap/param/triangle_frames.h"
+#include "iarap/solver/closest_rotation_2d.h"
+
+#include "../solver/inner.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <utility>
+
+namespace iarap::param_detail {
+namespace {
+
+// M's rows and columns at `keep` (sorted).
+Eigen::SparseMatrix<double> submatrix(const Eigen::SparseMatrix<double>& M, const std::vector<int>& keep) {
+  std::vector<int> slot(static_cast<std::size_t>(M.rows()), -1);
+  for (std::size_t p = 0; p < keep.size(); ++p) slot[static_cast<std::size_t>(keep[p])] = static_cast<int>(p);
+  std::vector<Eigen::Triplet<double>> entries;
+  entries.reserve(static_cast<std::size_t>(M.nonZeros()));
+  for (int col = 0; col < M.outerSize(); ++col) {
+    const int c = slot[static_cast<std::size_t>(col)];
+    if (c < 0) continue;
+    for (Eigen::SparseMatrix<double>::InnerIterator it(M, col); it; ++it) {
+      const int r = slot[static_cast<std::size_t>(it.row())];
+      if (r >= 0) entries.emplace_back(r, c, it.value());
+    }
+  }
+  const auto n = static_cast<Eigen::Index>(keep.size());
+  Eigen::SparseMatrix<double> sub(n, n);
+  sub.setFromTriplets(entries.begin(), entries.end());
+  return sub;
+}
+
+} // namespace
+
+UvProblem::UvProblem(const DiskMesh& disk, std::unique_ptr<UvElasticEnergy> energy,
+                     const std::vector<int>& pinned, std::optional<InjectivityBarrier> barrier,
+                     Eigen::MatrixXd& U)
+    : disk_(disk), energy_(std::move(energy)), barrier_(std::move(barrier)), U_(U) {
+  std::vector<unsigned char> held(static_cast<std::size_t>(U.rows()), 0);
+  for (int v : pinned) held[static_cast<std::size_t>(v)] = 1;
+  for (Eigen::Index v = 0; v < U.rows(); ++v)
+    if (!held[static_cast<std::size_t>(v)]) free_.push_back(static_cast<int>(v));
+  try {
+    cholesky_.factorize(submatrix(energy_->system(), free_));
+  } catch (const SolverError& e) {
+    throw SolverError("the ARAP parameterization system (" + std::to_string(free_.size()) +
+                      " free vertices) cannot be factorized: " + e.what());
+  }
+}
+
+Eigen::MatrixXd UvProblem::free_rows(const Eigen::MatrixXd& all) const {
+  Eigen::MatrixXd x(free_count(), 2);
+  for (std::size_t p = 0; p < free_.size(); ++p) x.row(static_cast<Eigen::Index>(p)) = all.row(free_[p]);
+  return x;
+}
+
+Eigen::MatrixXd UvProblem::full(const Eigen::MatrixXd& x) const {
+  Eigen::MatrixXd all = Eigen::MatrixXd::Zero(U_.rows(), 2);
+  for (std::size_t p = 0; p < free_.size(); ++p) all.row(free_[p]) = x.row(static_cast<Eigen::Index>(p));
+  return all;
+}
+
+Eigen::MatrixXd UvProblem::positions() const {
+  return free_rows(U_);
+}
+
+void UvProblem::set_positions(const Eigen::MatrixXd& x) {
+  // The plain step evaluates the map it returns, which the loops then set again: keep that evaluation.
+  if (evaluated_ && x == positions()) return;
+  for (std::size_t p = 0; p < free_.size(); ++p) U_.row(free_[p]) = x.row(static_cast<Eigen::Index>(p));
+  evaluated_ = false;
+}
+
+double UvProblem::local_step() {
+  if (evaluated_) return W_;
+  face_jacobians(disk_.frames, disk_.F, U_, J_);
+  energy_->covariances(U_, J_, S_);
+  R_.resize(S_.rows(), 4);
+  for (Eigen::Index c = 0; c < S_.rows(); ++c) {
+    Eigen::Matrix2d S;
+    S << S_(c, 0), S_(c, 1), S_(c, 2), S_(c, 3);
+    const Eigen::Matrix2d R = closest_rotation_2d(S);
+    R_.row(c) << R(0, 0), R(0, 1), R(1, 0), R(1, 1);
+  }
+  E_ = energy_->energy(U_, J_, R_);
+  W_ = E_ + (barrier_ ? barrier_->value(J_) : 0.0);
+  evaluated_ = true;
+  return W_;
+}
+
+void UvProblem::assemble_rhs() {
+  Eigen::MatrixXd r;
+  energy_->scatter(R_, r);
+  Eigen::MatrixXd grad = 2.0 * (energy_->system() * U_ - r);
+  if (barrier_) barrier_->add_gradient(J_, grad);
+  g_ = free_rows(grad);
+  x_rhs_ = positions();
+  W_rhs_ = W_;
+}
+
+const Eigen::MatrixXd& UvProblem::plain_step() {
+  constexpr double kArmijo = 1e-4;
+  constexpr int kMaxHalvings = 40; // t down to 1e-12 of the bound: a step that short is no progress
+  const Eigen::MatrixXd d = -solve(g_);
+  if (!barrier_) {
+    plain_ = x_rhs_ + d;
+    return plain_;
+  }
+  const double slope = detail::inner(g_, d);
+  double t = std::min(1.0, step_limit(x_rhs_, d));
+  for (int halving = 0; halving < kMaxHalvings; ++halving, t *= 0.5) {
+    plain_ = x_rhs_ + t * d;
+    set_positions(plain_);
+    if (local_step() <= W_rhs_ + kArmijo * t * slope) return plain_; // false for NaN and +inf
+  }
+  plain_ = x_rhs_; // no decrease found: stay (the energy rule then stops the solve)
+  return plain_;
+}
+
+Eigen::MatrixXd UvProblem::solve(const Eigen::MatrixXd& r) const {
+  ++solves_;
+  return 0.5 * cholesky_.solve(r);
+}
+
+void UvProblem::prepare_hessian() {
+  R_perp_.resize(R_.rows(), 4);
+  inverse_norm_.resize(R_.rows());
+  Eigen::VectorXd norm(R_.rows());
+  for (Eigen::Index c = 0; c < S_.rows(); ++c) norm(c) = std::hypot(S_(c, 0) + S_(c, 3), S_(c, 2) - S_(c, 1));
+  // A cell whose covariance vanishes is at the kink of -2 |S|_sim: its curvature is unbounded there, so it
+  // is left out of the model (the trust region's energy check still sees it).
+  const double floor = 1e-12 * (norm.size() > 0 ? norm.maxCoeff() : 0.0);
+  for (Eigen::Index c = 0; c < R_.rows(); ++c) {
+    // R = (cos, -sin; sin, cos) turned a quarter further: (-sin, -cos; cos, -sin).
+    R_perp_.row(c) << R_(c, 1), -R_(c, 0), R_(c, 0), R_(c, 1);
+    inverse_norm_(c) = norm(c) > floor ? 1 / norm(c) : 0.0;
+  }
+}
+
+// E = const + tr(U^T M U) - 2 sum_c n_c with n_c = |(a_c, b_c)|, a = S00 + S11, b = S10 - S01 linear in U:
+// the Hessian of n_c is w_c w_c^T / n_c with w_c = d/dU tr(R_perp_c^T S_c(U)), so that
+// H v = 2 M v - 2 sum_c (tr(R_perp_c^T S_c(v)) / n_c) w_c, and the sum is the scatter of those multiples
+// of R_perp_c (UvElasticEnergy::scatter is linear in its matrices).
+Eigen::MatrixXd UvProblem::hessian_product(const Eigen::MatrixXd& v) {
+  const Eigen::MatrixXd direction = full(v);
+  Eigen::MatrixXd dJ, dS, h;
+  face_jacobians(disk_.frames, disk_.F, direction, dJ);
+  energy_->covariances(direction, dJ, dS);
+  Eigen::MatrixXd A(R_perp_.rows(), 4);
+  for (Eigen::Index c = 0; c < A.rows(); ++c)
+    A.row(c) = (inverse_norm_(c) * R_perp_.row(c).dot(dS.row(c))) * R_perp_.row(c);
+  energy_->scatter(A, h);
+  Eigen::MatrixXd product = 2.0 * (energy_->system() * direction - h);
+  if (barrier_) barrier_->add_hessian_product(J_, dJ, product);
+  return free_rows(product);
+}
+
+double UvProblem::step_limit(const Eigen::MatrixXd& x, const Eigen::MatrixXd& d) const {
+  if (!barrier_) return std::numeric_limits<double>::infinity();
+  Eigen::MatrixXd at = U_, J, dJ;
+  for (std::size_t p = 0; p < free_.size(); ++p) at.row(free_[p]) = x.row(static_cast<Eigen::Index>(p));
+  face_jacobians(disk_.frames, disk_.F, at, J);
+  face_jacobians(disk_.frames, disk_.F, full(d), dJ);
+  return barrier_->step_limit(J, dJ);
+}
+
+} // namespace iarap::param_detail
