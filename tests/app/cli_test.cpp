@@ -26,7 +26,8 @@ using nlohmann::json;
 const std::string bunny = iarap::test::data_path("bunny.off");
 
 TEST(Cli, HelpOnEachCommandExitsZero) {
-  for (const char* command : {"--help", "info --help", "deform --help", "bench --help", "param --help"}) {
+  for (const char* command :
+       {"--help", "info --help", "deform --help", "bench --help", "param --help", "repair --help"}) {
     const CliRun run = iarap_cli(command);
     EXPECT_EQ(run.code, 0) << command;
     EXPECT_NE(run.out.find("Usage"), std::string::npos) << command << ":\n" << run.out;
