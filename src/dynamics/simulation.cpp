@@ -56,8 +56,9 @@ void check_time_step(double dt, const Eigen::VectorXd& masses, const Eigen::Vect
   std::ostringstream message;
   message.precision(3);
   message << "simulation: dt = " << dt << " is too " << (dt < h_min ? "small" : "large")
-          << ": the inertia weights m_i / (2 dt^2) of the free vertices (masses " << m_min << " to " << m_max
-          << ", mesh size " << D << ") would " << (dt < h_min ? "overflow" : "underflow")
+          << ": the inertia weights m_i / (2 dt^2) of the free vertices (masses " << m_min << " to " << m_max;
+  if (D > 1) message << ", mesh size " << D; // below 1 the size does not enter the bound
+  message << ") would " << (dt < h_min ? "overflow" : "underflow")
           << " in double precision; on this mesh dt must be in [" << h_min << ", " << h_max << "]";
   throw InputError(message.str());
 }
