@@ -2,6 +2,7 @@
 // repair `deform --repair` runs before its solve, written out so that constraints can be given on the
 // repaired mesh (soft constraints and hard points cannot be carried over a repair).
 #include "command_registry.h"
+#include "explain_error.h"
 #include "json_text.h"
 #include "same_file.h"
 #include "write_text_file.h"
@@ -80,6 +81,7 @@ void print_text(const nlohmann::json& j) {
   if (j["actions"].empty()) std::cout << "nothing to repair: the mesh is written unchanged\n";
   for (const auto& action : j["actions"]) std::cout << "  " << action.get<std::string>() << "\n";
   for (const auto& warning : j["warnings"]) std::cout << "warning: " << warning.get<std::string>() << "\n";
+  for (const auto& note : j["notes"]) std::cout << "note: " << note.get<std::string>() << "\n";
   std::cout << "wrote " << j["output"].get<std::string>()
             << (j.contains("map") ? " and " + j["map"].get<std::string>() : std::string()) << "\n";
 }
@@ -95,7 +97,7 @@ void run_repair(const RepairArguments& args) {
   if (!check.usable()) { // what repair cannot fix (a Moebius strip, non-finite coordinates): write nothing
     std::string message = args.mesh + ": still not usable for ARAP after the repair (numbers refer to the "
                                       "repaired mesh); nothing written:";
-    for (const auto& error : check.errors) message += "\n  " + error;
+    for (const auto& error : check.errors) message += "\n  " + name_repair(error, "`iarap repair`");
     throw TopologyError(message);
   }
   write_mesh(args.out, repaired.V, repaired.F);
@@ -111,7 +113,14 @@ void run_repair(const RepairArguments& args) {
   j["faces"] = repaired.F.rows();
   j["actions"] = repaired.actions;
   j["counts"] = counts_json(repaired.counts);
-  j["warnings"] = check.warnings;
+  j["warnings"] = name_repair(check.warnings, "`iarap repair`");
+  j["notes"] = nlohmann::json::array();
+  if (const int copies = repaired.counts.vertex_copies; copies > 0) // check_mesh cannot tell them from seams
+    j["notes"].push_back(
+        (copies == 1 ? std::string("the copy of a split vertex sits")
+                     : std::to_string(copies) + " copies of split vertices sit") +
+        " exactly at its vertex's position, by design: `info` and `deform` report coincident "
+        "vertices there, and welding them (`deform --repair`) splits them again");
   if (args.json)
     std::cout << json_text(j);
   else
