@@ -225,9 +225,8 @@ nlohmann::json error_entry(const std::string& path, const MeshData& mesh, const 
           {"error", e.what()}};
 }
 
-void run_bench(const BenchArguments& args) {
-  if (!args.report.empty()) check_output_path(args.report); // before the runs, which can take minutes
-  set_thread_count(args.threads);
+// What every result shares: the machine, the settings and the scene.
+nlohmann::json bench_header(const BenchArguments& args) {
   nlohmann::json j;
   j["cpu"] = cpu_name();
   j["threads"] = thread_count();
@@ -245,82 +244,86 @@ void run_bench(const BenchArguments& args) {
           : "bottom 10% along y fixed; top 10% along y moved by 10% of the bbox diagonal along +x";
   if (args.converge > 0) j["converge"] = args.converge;
   j["results"] = nlohmann::json::array();
+  return j;
+}
+
+// Reads the mesh at `path` into mesh, subdivided as asked; throws when it cannot be read or is not usable
+// for ARAP (mesh then holds what was read: the error entries give its vertex count).
+void load_bench_mesh(const std::string& path, int subdivide, MeshData& mesh) {
+  mesh = read_mesh(path);
+  subdivide_midpoint(mesh.V, mesh.F, subdivide);
+  const MeshReport check = check_mesh(mesh.V, mesh.F);
+  if (!check.usable())
+    throw TopologyError(path + ": mesh not usable for ARAP: " + check.errors.front() + " (see `iarap info`)");
+}
+
+// The convergence bench of one mesh, a result per method appended to results; returns the failed runs.
+int converge_mesh(const BenchArguments& args, const std::string& path, const MeshData& mesh,
+                  nlohmann::json& results) {
+  const ConvergeSettings settings{args.converge, args.accelerators, args.window, args.max_iterations};
   int failed = 0;
-  for (const auto& path : args.meshes) {
-    // A mesh that cannot be benchmarked gets an error entry and the others still run: results are printed
-    // and the exit status is 1 at the end.
-    MeshData mesh;
-    ConstraintSet constraints;
+  for (const std::string& method : args.methods) {
+    if (!args.json)
+      std::cerr << "bench --converge: " << path << " (" << mesh.V.rows() << " vertices), " << method << "\n";
     try {
-      mesh = read_mesh(path);
-      subdivide_midpoint(mesh.V, mesh.F, args.subdivide);
-      const MeshReport check = check_mesh(mesh.V, mesh.F);
-      if (!check.usable())
-        throw TopologyError(path + ": mesh not usable for ARAP: " + check.errors.front() +
-                            " (see `iarap info`)");
-      constraints = resolve_scenario(bench_scenario(), mesh.V);
-    } catch (const Error& e) {
-      if (!args.json) std::cerr << "bench: " << path << ": skipped: " << e.what() << "\n";
-      for (const auto& method : args.methods) j["results"].push_back(error_entry(path, mesh, method, e));
+      results.push_back(converge_one(path, mesh.V, mesh.F, method, settings));
+    } catch (const Error& e) { // as in time_mesh: report it, run the others
+      results.push_back(error_entry(path, mesh, method, e));
       ++failed;
-      continue;
     }
-    if (args.converge > 0) {
-      const ConvergeSettings settings{args.converge, args.accelerators, args.window, args.max_iterations};
-      for (const std::string& method : args.methods) {
-        if (!args.json)
-          std::cerr << "bench --converge: " << path << " (" << mesh.V.rows() << " vertices), " << method
-                    << "\n";
-        try {
-          j["results"].push_back(converge_one(path, mesh.V, mesh.F, method, settings));
-        } catch (const Error& e) { // as below: report it, run the others
-          j["results"].push_back(error_entry(path, mesh, method, e));
-          ++failed;
-        }
-      }
-      continue;
-    }
-    // Rounds go round-robin over the methods, so that a burst of other load on a shared machine hits every
-    // method alike instead of one method's block of rounds; each method keeps its fastest round.
-    std::vector<nlohmann::json> best(args.methods.size());
-    for (int round = 0; round < args.rounds; ++round)
-      for (std::size_t m = 0; m < args.methods.size(); ++m) {
-        const std::string& method = args.methods[m];
-        if (best[m].contains("error")) continue;
-        if (!args.json && round == 0) {
-          std::cerr << "bench: " << path << " (" << mesh.V.rows() << " vertices), " << method << "\n";
-        }
-        try {
-          nlohmann::json r = bench_one(path, mesh.V, mesh.F, constraints, method, args.iterations);
-          r["rounds"] = args.rounds;
-          if (best[m].is_null()) {
-            best[m] = r;
-            best[m]["precompute_ms_rounds"] = nlohmann::json::array({r["precompute_ms"]});
-            best[m]["iteration_ms_rounds"] = nlohmann::json::array({r["iteration_ms"]});
-            continue;
-          }
-          best[m]["precompute_ms_rounds"].push_back(r["precompute_ms"]);
-          best[m]["iteration_ms_rounds"].push_back(r["iteration_ms"]);
-          if (r["precompute_ms"].get<double>() < best[m]["precompute_ms"].get<double>())
-            for (const char* key :
-                 {"precompute_ms", "intrinsic_ms", "assembly_ms", "factor_ms", "analyze_ms"})
-              best[m][key] = r[key];
-          if (r["iteration_ms"].get<double>() < best[m]["iteration_ms"].get<double>())
-            for (const char* key :
-                 {"iteration_ms", "local_ms", "global_ms", "solve_floor_ms", "solve_ms", "element_pass_ms"})
-              best[m][key] = r[key];
-        } catch (const Error& e) { // e.g. original ARAP on zero-area faces: report it, time the others
-          best[m] = error_entry(path, mesh, method, e);
-          ++failed;
-        }
-      }
-    for (const auto& r : best) j["results"].push_back(r);
   }
-  const std::string text = json_text(j);
-  if (!args.report.empty()) write_text_file(args.report, text);
-  if (args.json) {
-    std::cout << text;
-  } else if (args.converge > 0) {
+  return failed;
+}
+
+// Adds round r of a method to its best result so far: every round's precompute and iteration times, and
+// the timings of the fastest round of each.
+void keep_fastest(nlohmann::json& best, const nlohmann::json& r) {
+  if (best.is_null()) {
+    best = r;
+    best["precompute_ms_rounds"] = nlohmann::json::array({r["precompute_ms"]});
+    best["iteration_ms_rounds"] = nlohmann::json::array({r["iteration_ms"]});
+    return;
+  }
+  best["precompute_ms_rounds"].push_back(r["precompute_ms"]);
+  best["iteration_ms_rounds"].push_back(r["iteration_ms"]);
+  if (r["precompute_ms"].get<double>() < best["precompute_ms"].get<double>())
+    for (const char* key : {"precompute_ms", "intrinsic_ms", "assembly_ms", "factor_ms", "analyze_ms"})
+      best[key] = r[key];
+  if (r["iteration_ms"].get<double>() < best["iteration_ms"].get<double>())
+    for (const char* key :
+         {"iteration_ms", "local_ms", "global_ms", "solve_floor_ms", "solve_ms", "element_pass_ms"})
+      best[key] = r[key];
+}
+
+// The timing bench of one mesh, a result per method appended to results; returns the failed runs. Rounds go
+// round-robin over the methods, so that a burst of other load on a shared machine hits every method alike
+// instead of one method's block of rounds; each method keeps its fastest round.
+int time_mesh(const BenchArguments& args, const std::string& path, const MeshData& mesh,
+              const ConstraintSet& constraints, nlohmann::json& results) {
+  int failed = 0;
+  std::vector<nlohmann::json> best(args.methods.size());
+  for (int round = 0; round < args.rounds; ++round)
+    for (std::size_t m = 0; m < args.methods.size(); ++m) {
+      const std::string& method = args.methods[m];
+      if (best[m].contains("error")) continue;
+      if (!args.json && round == 0) {
+        std::cerr << "bench: " << path << " (" << mesh.V.rows() << " vertices), " << method << "\n";
+      }
+      try {
+        nlohmann::json r = bench_one(path, mesh.V, mesh.F, constraints, method, args.iterations);
+        r["rounds"] = args.rounds;
+        keep_fastest(best[m], r);
+      } catch (const Error& e) { // e.g. original ARAP on zero-area faces: report it, time the others
+        best[m] = error_entry(path, mesh, method, e);
+        ++failed;
+      }
+    }
+  for (const auto& r : best) results.push_back(r);
+  return failed;
+}
+
+void print_results(const BenchArguments& args, const nlohmann::json& j) {
+  if (args.converge > 0) {
     std::printf("cpu: %s, threads: %d\n", j["cpu"].get<std::string>().c_str(), thread_count());
     print_converge_table(j["results"], args.converge);
   } else {
@@ -328,6 +331,36 @@ void run_bench(const BenchArguments& args) {
                 j["cpu"].get<std::string>().c_str(), thread_count(), args.iterations);
     print_table(j["results"]);
   }
+}
+
+void run_bench(const BenchArguments& args) {
+  if (!args.report.empty()) check_output_path(args.report); // before the runs, which can take minutes
+  set_thread_count(args.threads);
+  nlohmann::json j = bench_header(args);
+  int failed = 0;
+  for (const auto& path : args.meshes) {
+    // A mesh that cannot be benchmarked gets an error entry and the others still run: results are printed
+    // and the exit status is 1 at the end.
+    MeshData mesh;
+    ConstraintSet constraints;
+    try {
+      load_bench_mesh(path, args.subdivide, mesh);
+      constraints = resolve_scenario(bench_scenario(), mesh.V);
+    } catch (const Error& e) {
+      if (!args.json) std::cerr << "bench: " << path << ": skipped: " << e.what() << "\n";
+      for (const auto& method : args.methods) j["results"].push_back(error_entry(path, mesh, method, e));
+      ++failed;
+      continue;
+    }
+    failed += args.converge > 0 ? converge_mesh(args, path, mesh, j["results"])
+                                : time_mesh(args, path, mesh, constraints, j["results"]);
+  }
+  const std::string text = json_text(j);
+  if (!args.report.empty()) write_text_file(args.report, text);
+  if (args.json)
+    std::cout << text;
+  else
+    print_results(args, j);
   if (failed > 0)
     throw Error(std::to_string(failed) + " benchmark run(s) failed (see \"error\" in the results)");
 }

@@ -10,3 +10,4 @@ list(APPEND IARAP_APP_SOURCES serve_command.cpp serve/api_routes.cpp serve/serve
   serve/route_table.cpp serve/frame_board.cpp)
 list(APPEND IARAP_APP_SOURCES param_command.cpp param_report_json.cpp serve/param_route.cpp)
 list(APPEND IARAP_APP_SOURCES batch_command.cpp)
+list(APPEND IARAP_APP_SOURCES repair_command.cpp)

@@ -14,8 +14,9 @@ A manifest is a JSON list of jobs (or {"jobs": [...]}) or a CSV file with a head
 Relative paths are relative to the manifest's folder. Each job runs the `iarap` command line tool in a
 worker process with one thread (`--threads 1`), so its output is bitwise the output of the same
 `iarap deform` run by hand; the tool writes it atomically. Dask does the scheduling (no job system of our
-own): a job whose worker dies is resubmitted by the scheduler, a job that fails is retried once
-(`retries`), and the others go on. A finished job leaves `OUTPUT.batch.json` (its command line and
+own): a job whose worker dies is resubmitted by the scheduler, a job whose tool process is killed or
+crashes is retried once (`retries`), a job the tool refuses (exit code 1 or 2: a missing input, a mesh
+param cannot flatten) fails at once with the tool's message, and the others go on. A finished job leaves `OUTPUT.batch.json` (its command line and
 report) beside its output; a rerun skips jobs whose record matches the job, so an interrupted batch
 resumes where it stopped.
 """
@@ -37,7 +38,7 @@ from pathlib import Path
 import collections.abc as _abc
 from typing import Any
 
-__all__ = ["Job", "ManifestError", "main", "read_manifest", "run_batch", "run_job"]
+__all__ = ["Job", "JobCrashed", "ManifestError", "main", "read_manifest", "run_batch", "run_job"]
 
 _FIELDS = {"mesh", "output", "command", "scenario", "constraints", "method", "args", "name"}
 _COMMANDS = ("deform", "param")
@@ -159,19 +160,41 @@ def _finished(job: Job) -> bool:
     return record.get("key") == job.key() and os.path.isfile(job.output)
 
 
+# The tool's exit codes that say the job itself is wrong (app/command_registry.h): 1, an input or runtime
+# error (a missing or unusable mesh, a closed mesh given to param); 2, a usage error. Running it again
+# gives the same answer, so such a job fails at once. Any other end (killed by a signal, out of memory, a
+# crash) may pass on another try or another worker, and is retried.
+_PERMANENT_EXIT_CODES = (1, 2)
+
+
+class JobCrashed(RuntimeError):
+    """A job whose tool process ended without the tool's own verdict (a signal, a crash): Dask retries it."""
+
+
+def _tool_message(run: subprocess.CompletedProcess[str]) -> str:
+    """The tool's error line (its first line that says "error"), else its first line, else how it ended."""
+    lines = run.stderr.strip().splitlines()
+    errors = [line for line in lines if "error" in line]
+    if errors or lines:
+        return (errors or lines)[0]
+    return f"killed by signal {-run.returncode}" if run.returncode < 0 else f"exit code {run.returncode}"
+
+
 def run_job(job: Job, cli: str) -> dict[str, Any]:
-    """Runs one job in this process (a Dask task); raises RuntimeError with the tool's message on failure."""
+    """Runs one job in this process (a Dask task). A job the tool refuses (exit 1 or 2) comes back as
+    {"status": "failed", "error": "NAME: the tool's message"} without raising, so Dask does not retry it;
+    JobCrashed is raised when the tool process ended otherwise (a signal, a crash), for Dask to retry."""
     if _finished(job):
         return {"name": job.name, "status": "skipped", "output": job.output}
     os.makedirs(os.path.dirname(os.path.abspath(job.output)), exist_ok=True)
     started = time.perf_counter()
     run = subprocess.run(job.argv(cli) + ["--json"], capture_output=True, text=True)
     seconds = time.perf_counter() - started
+    if run.returncode in _PERMANENT_EXIT_CODES:
+        return {"name": job.name, "status": "failed", "output": job.output,
+                "error": f"{job.name}: {_tool_message(run)}"}
     if run.returncode != 0:
-        lines = run.stderr.strip().splitlines()
-        errors = [line for line in lines if "error" in line]
-        message = (errors or lines or [f"exit code {run.returncode}"])[0]
-        raise RuntimeError(f"{job.name}: {message}")
+        raise JobCrashed(f"{job.name}: {_tool_message(run)}")
     try:
         report = json.loads(run.stdout)
     except ValueError:

@@ -1,10 +1,12 @@
 """iarap.batch on a local Dask cluster of 2 workers: outputs bitwise those of sequential `iarap deform`
 runs, a failing job reported while the others finish, a rerun skipping finished jobs, a worker killed
-mid-run, and manifest errors naming the file and job."""
+mid-run, jobs the tool refuses failing once (one line, no traceback) while killed ones are retried, and
+manifest errors naming the file and job."""
 import json
 import os
 import signal
 import subprocess
+import sys
 import threading
 import time
 from pathlib import Path
@@ -109,6 +111,58 @@ def test_a_worker_killed_mid_run(cli, tmp_path, client):
     reference = sequential_outputs(cli, jobs, tmp_path)
     for job in jobs:
         assert Path(job.output).read_bytes() == reference[job.output], job.name
+
+
+def counting_cli(tmp_path, cli):
+    """A stand-in for the tool that logs each command line it gets, and dies by SIGKILL (as a crash or the
+    out-of-memory killer would end it) when its arguments name "crash"; otherwise it runs the tool."""
+    script = tmp_path / "iarap-counting"
+    script.write_text(f"""#!/bin/sh
+echo "$*" >> '{tmp_path / "calls.log"}'
+case "$*" in *crash*) kill -9 $$ ;; esac
+exec '{cli}' "$@"
+""")
+    script.chmod(0o755)
+    return script
+
+
+def calls(tmp_path, output):
+    """How many times the tool was started for the job writing `output`."""
+    return sum(f"--out {output} " in line for line in (tmp_path / "calls.log").read_text().splitlines())
+
+
+def doomed_jobs(tmp_path):
+    """A missing mesh (the tool's exit 2) and a closed mesh given to param (exit 1), beside a job that works."""
+    return [{"mesh": str(tmp_path / "missing.off"), "scenario": str(DATA / "bunny_scenario.json"),
+             "output": str(tmp_path / "out" / "missing.obj")},
+            {"command": "param", "mesh": str(DATA / "bunny.off"), "output": str(tmp_path / "out" / "closed.obj")},
+            deform_jobs(tmp_path, 1)[0]]
+
+
+def test_jobs_the_tool_refuses_fail_once_and_crashes_are_retried(cli, tmp_path, client):
+    entries = doomed_jobs(tmp_path) + [dict(deform_jobs(tmp_path, 1)[0], output=str(tmp_path / "out" / "crash.obj"))]
+    results = batch.run_batch(write_manifest(tmp_path, entries), cli=counting_cli(tmp_path, cli), client=client,
+                              progress=None, retries=1)
+    assert [r["status"] for r in results] == ["failed", "failed", "done", "failed"], results
+    assert results[0]["error"].startswith("missing.obj: ") and "missing.off" in results[0]["error"]
+    assert results[1]["error"].startswith("closed.obj: ") and "0 boundary loops" in results[1]["error"]
+    assert results[3]["error"] == "crash.obj: killed by signal 9"
+    # Refused: tried once, whatever `retries` says. Killed: tried again (1 + retries).
+    assert [calls(tmp_path, e["output"]) for e in entries] == [1, 1, 1, 2]
+
+
+def test_a_refused_job_is_one_line_without_traceback(cli, tmp_path):
+    manifest = write_manifest(tmp_path, doomed_jobs(tmp_path))
+    run = subprocess.run([sys.executable, "-m", "iarap.batch", str(manifest), "--workers", "1", "--cli",
+                          str(counting_cli(tmp_path, cli))], capture_output=True, text=True, timeout=300,
+                         env=dict(os.environ, PYTHONPATH=os.path.dirname(os.path.dirname(batch.__file__))))
+    assert run.returncode == 1
+    assert "Traceback" not in run.stderr, run.stderr
+    failed = [line for line in run.stderr.splitlines() if "failed:" in line]
+    assert len(failed) == 2, run.stderr
+    assert failed[0].startswith("iarap batch: failed: missing.obj: ") and "missing.off" in failed[0]
+    assert failed[1].startswith("iarap batch: failed: closed.obj: iarap: error: ")
+    assert "1 done, 0 skipped, 2 failed" in run.stderr
 
 
 @pytest.mark.parametrize("entry, says", [

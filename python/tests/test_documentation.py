@@ -65,6 +65,44 @@ def test_version_flag(cli):
     assert run.returncode == 0 and run.stdout.strip() == f"iarap {VERSION}"
 
 
+NUMBER_WORDS = {8: "eight", 9: "nine", 10: "ten", 11: "eleven", 12: "twelve", 13: "thirteen", 14: "fourteen"}
+
+
+def registered_commands(cli):
+    """The subcommands the tool registers, from the list `iarap --help` prints (CLI11: "Subcommands:")."""
+    help_text = subprocess.run([cli, "--help"], capture_output=True, text=True, check=True).stdout
+    listed = help_text.split("Subcommands:", 1)[1]
+    return sorted(re.findall(r"^  ([a-z]+)\b", listed, re.M))
+
+
+def test_documented_commands_are_the_registered_ones(cli):
+    """The README and docs/cli.md count the subcommands in words and name each; docs/cli.md has a table row
+    and a section per subcommand, the README a task section; all as the tool's own list."""
+    commands = registered_commands(cli)
+    assert len(commands) >= 9 and "param" in commands and "batch" in commands, commands
+    count = NUMBER_WORDS[len(commands)]
+    tool = section(README, "The `iarap` tool, by task")
+    assert re.match(rf"{count.capitalize()} subcommands \(([^)]*)\)", tool.strip()), \
+        f"the README should open its tool section with '{count.capitalize()} subcommands (...)'"
+    assert sorted(re.findall(r"`([a-z]+)`", re.match(r"[^(]*\(([^)]*)\)", tool.strip()).group(1))) == commands
+    assert f"the {count} subcommands" in CLI_DOC.lower().replace("\n", " ")
+    for wrong in set(NUMBER_WORDS.values()) - {count}:
+        for text, where in ((README, "README"), (CLI_DOC, "docs/cli.md")):
+            assert not re.search(rf"\b{wrong} subcommands", text, re.I), f"{where} says {wrong} subcommands"
+    table = set(re.findall(r"^\| \[`iarap ([a-z]+)", CLI_DOC, re.M))
+    headings = set(re.findall(r"^## `iarap ([a-z]+)`", CLI_DOC, re.M))
+    tasks = set(re.findall(r"`iarap ([a-z]+)`", "\n".join(re.findall(r"^### .*", README, re.M))))
+    for name, documented in (("docs/cli.md's table", table), ("docs/cli.md's sections", headings),
+                             ("the README's task headings", tasks)):
+        assert documented == set(commands), f"{name}: missing {sorted(set(commands) - documented)}, " \
+                                            f"not a command {sorted(documented - set(commands))}"
+
+
+def test_readme_length():
+    """The README stays a front page (issue 43: at most 350 lines); detail goes to docs/."""
+    assert len(README.splitlines()) <= 350
+
+
 def documented_defaults(table):
     """{option: default} from the rows of a Markdown option table that give a default."""
     return dict(re.findall(r"^\| `(--[a-z-]+)[^`]*` \| `?([^|`]+?)`? \|", table, re.M))

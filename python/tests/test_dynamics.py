@@ -94,6 +94,8 @@ def test_handles_follow_targets(bunny):
     (dict(dt=0.0), "dt must be finite and > 0"),
     (dict(dt=-1.0), "dt must be finite and > 0"),
     (dict(dt=float("nan")), "dt must be finite and > 0"),
+    (dict(dt=1e-300), "dt = 1e-300 is too small"),  # m / (2 dt^2) overflows: not "soft vertex [0] has weight inf"
+    (dict(dt=1e300), "dt = 1e+300 is too large"),
     (dict(dt=0.1, damping=1.0), "damping must be in [0, 1)"),
     (dict(dt=0.1, density=0.0), "density must be finite and > 0"),
     (dict(dt=0.1, gravity=(0.0, float("nan"), 0.0)), "gravity"),

@@ -3,7 +3,10 @@
 #include "iarap/core/errors.h"
 #include "iarap/solver/arap.h"
 
+#include <algorithm>
+#include <cfloat>
 #include <cmath>
+#include <sstream>
 #include <string>
 
 namespace iarap {
@@ -25,6 +28,39 @@ void check_options(const SimulationOptions& options, Eigen::Index n) {
   for (Eigen::Index r = 0; r < n; ++r)
     if (!options.forces.row(r).allFinite())
       throw InputError("simulation: forces row " + std::to_string(r) + " is not finite");
+}
+
+// The range of time steps that double precision can carry. The inertia term weighs the free vertices with
+// W_i = m_i / (2 h^2): the solver needs every W_i to be a normal number (a weight that underflows to 0 or to
+// a subnormal leaves a free body without inertia), and the system's diagonal 2 W_i = m_i / h^2, its
+// right-hand side 2 W_i x_pred,i and the inertia energy W_i |x_i - x_pred,i|^2 to stay finite for positions
+// and moves up to D = max(bounding-box diagonal, largest |V_i|). With m_min, m_max the extreme masses of
+// the free vertices that holds for
+//   h_min = sqrt(m_max) max(1, D) / sqrt(DBL_MAX) <= h <= h_max = sqrt(m_min / 2) / sqrt(DBL_MIN),
+// computed through square roots so that neither bound over- or underflows on the way. Outside it the
+// solver would refuse "soft vertex [0] has weight inf", naming a constraint the caller never gave.
+void check_time_step(double dt, const Eigen::VectorXd& masses, const Eigen::VectorXi& inertial,
+                     const Eigen::MatrixXd& V) {
+  if (inertial.size() == 0) return; // no free vertex with mass: dt weighs nothing
+  const double D =
+      std::max((V.colwise().maxCoeff() - V.colwise().minCoeff()).norm(), V.rowwise().norm().maxCoeff());
+  if (!std::isfinite(D)) return; // arap_precompute names the vertex
+  double m_min = masses(inertial(0)), m_max = m_min;
+  for (Eigen::Index i = 1; i < inertial.size(); ++i) {
+    m_min = std::min(m_min, masses(inertial(i)));
+    m_max = std::max(m_max, masses(inertial(i)));
+  }
+  const double h_min = std::sqrt(m_max) * std::max(1.0, D) / std::sqrt(DBL_MAX);
+  const double h_max = std::sqrt(m_min / 2) / std::sqrt(DBL_MIN);
+  if (dt >= h_min && dt <= h_max) return;
+  std::ostringstream message;
+  message.precision(3);
+  message << "simulation: dt = " << dt << " is too " << (dt < h_min ? "small" : "large")
+          << ": the inertia weights m_i / (2 dt^2) of the free vertices (masses " << m_min << " to " << m_max;
+  if (D > 1) message << ", mesh size " << D; // below 1 the size does not enter the bound
+  message << ") would " << (dt < h_min ? "overflow" : "underflow")
+          << " in double precision; on this mesh dt must be in [" << h_min << ", " << h_max << "]";
+  throw InputError(message.str());
 }
 
 // The inertia term as soft vertices (W_i = m_i / (2 h^2) at every free vertex with mass) ahead of the
@@ -63,6 +99,7 @@ Simulation::Simulation(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const
   for (Eigen::Index v = 0; v < V.rows(); ++v)
     if (!is_fixed_[static_cast<size_t>(v)] && masses_(v) > 0) inertial.push_back(static_cast<int>(v));
   inertial_ = Eigen::Map<const Eigen::VectorXi>(inertial.data(), static_cast<Eigen::Index>(inertial.size()));
+  check_time_step(options.dt, masses_, inertial_, V);
   data_ = arap_precompute(V, F, fixed, with_inertia(soft, inertial_, masses_, options.dt), options.arap);
   X_ = V;
   velocity_ = Eigen::MatrixXd::Zero(V.rows(), 3);

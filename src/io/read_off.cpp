@@ -5,6 +5,7 @@
 #include "text_reader.h"
 
 #include <algorithm>
+#include <utility>
 
 namespace iarap {
 
@@ -25,16 +26,12 @@ bool next_content_line(io_detail::LineReader& lines, std::vector<std::string_vie
   return false;
 }
 
-} // namespace
-
-MeshData read_off(const std::string& path) {
-  const std::string text = io_detail::read_whole_file(path);
-  io_detail::LineReader lines(text, io_detail::utf8_bom_length(text));
-  std::vector<std::string_view> tokens;
+// The keyword [ST][C][N][4][n]OFF, optionally followed on the same line by the counts of vertices, faces
+// and edges (the edge count is ignored), which may continue on following lines. Returns {#V, #F}.
+std::pair<std::int64_t, std::int64_t> read_off_header(const std::string& path, io_detail::LineReader& lines,
+                                                      std::vector<std::string_view>& tokens) {
   if (!next_content_line(lines, tokens))
     fail_at_line(path, lines.line(), "empty file; expected an OFF header");
-
-  // Keyword [ST][C][N][4][n]OFF, optionally followed on the same line by the counts.
   const std::string_view keyword = tokens[0];
   if (keyword.size() < 3 || keyword.substr(keyword.size() - 3) != "OFF")
     fail_at_line(path, lines.line(), "expected the keyword OFF, found " + quote_token(keyword));
@@ -46,7 +43,6 @@ MeshData read_off(const std::string& path) {
   if (tokens.size() > 1 && tokens[1] == "BINARY")
     fail_at_line(path, lines.line(), "binary OFF is not supported; convert it to ASCII OFF or PLY");
 
-  // Counts: vertices, faces, edges (the edge count is ignored); they may continue on following lines.
   std::int64_t counts[3];
   int have = 0;
   while (have < 3) {
@@ -64,12 +60,13 @@ MeshData read_off(const std::string& path) {
   if (next_token < tokens.size())
     fail_at_line(path, lines.line(),
                  "unexpected " + quote_token(tokens[next_token]) + " after the header counts");
-  const std::int64_t nv = counts[0], nf = counts[1];
+  return {counts[0], counts[1]};
+}
 
-  // Each record takes at least 2 bytes ("x\n"), so the remaining size caps any honest count; reserve no more.
-  const std::int64_t cap = static_cast<std::int64_t>(lines.remaining_bytes() / 2);
-  std::vector<double> positions;
-  positions.reserve(static_cast<std::size_t>(3 * std::min(nv, cap)));
+// nv vertex records, x y z each (further values, such as colors, are ignored), appended to positions.
+void read_off_vertices(const std::string& path, io_detail::LineReader& lines,
+                       std::vector<std::string_view>& tokens, std::int64_t nv,
+                       std::vector<double>& positions) {
   for (std::int64_t v = 0; v < nv; ++v) {
     if (!next_content_line(lines, tokens))
       fail_at_line(path, lines.line(),
@@ -87,6 +84,53 @@ MeshData read_off(const std::string& path) {
       positions.push_back(x);
     }
   }
+}
+
+// The corner indices of face f, whose record starts in tokens (its corner count first). A record may
+// continue on the following lines (valid OFF; libigl's test data has such files); values past the n indices
+// on its last line are a per-face color, which is allowed and ignored.
+void read_off_face(const std::string& path, io_detail::LineReader& lines,
+                   std::vector<std::string_view>& tokens, std::int64_t f,
+                   std::vector<std::int64_t>& corners) {
+  std::int64_t n;
+  if (!io_detail::parse_int(tokens[0], n) || n < 0)
+    fail_at_line(path, lines.line(),
+                 "face " + std::to_string(f) + ": bad corner count " + quote_token(tokens[0]));
+  const std::int64_t face_line = lines.line();
+  corners.clear();
+  std::size_t next = 1;
+  while (static_cast<std::int64_t>(corners.size()) < n) {
+    if (next >= tokens.size()) {
+      if (!next_content_line(lines, tokens))
+        fail_at_line(path, face_line,
+                     "face " + std::to_string(f) + " declares " + std::to_string(n) +
+                         " corners but the file ends after " + std::to_string(corners.size()));
+      next = 0;
+    }
+    const std::string_view token = tokens[next++];
+    std::int64_t index;
+    if (!io_detail::parse_int(token, index))
+      fail_at_line(path, lines.line(),
+                   "face " + std::to_string(f) + ": bad vertex index " + quote_token(token) + " (face " +
+                       std::to_string(f) + " declares " + std::to_string(n) + " corners and starts on line " +
+                       std::to_string(face_line) + ")");
+    corners.push_back(index);
+  }
+}
+
+} // namespace
+
+MeshData read_off(const std::string& path) {
+  const std::string text = io_detail::read_whole_file(path);
+  io_detail::LineReader lines(text, io_detail::utf8_bom_length(text));
+  std::vector<std::string_view> tokens;
+  const auto [nv, nf] = read_off_header(path, lines, tokens);
+
+  // Each record takes at least 2 bytes ("x\n"), so the remaining size caps any honest count; reserve no more.
+  const std::int64_t cap = static_cast<std::int64_t>(lines.remaining_bytes() / 2);
+  std::vector<double> positions;
+  positions.reserve(static_cast<std::size_t>(3 * std::min(nv, cap)));
+  read_off_vertices(path, lines, tokens, nv, positions);
 
   io_detail::FaceBuilder faces(path, io_detail::Location::line);
   faces.reserve_triangles(static_cast<std::size_t>(std::min(nf, cap)));
@@ -95,32 +139,8 @@ MeshData read_off(const std::string& path) {
     if (!next_content_line(lines, tokens))
       fail_at_line(path, lines.line(),
                    "file ends after " + std::to_string(f) + " of " + std::to_string(nf) + " faces");
-    std::int64_t n;
-    if (!io_detail::parse_int(tokens[0], n) || n < 0)
-      fail_at_line(path, lines.line(),
-                   "face " + std::to_string(f) + ": bad corner count " + quote_token(tokens[0]));
-    // A record may continue on the following lines (valid OFF; libigl's test data has such files); values
-    // past the n indices on its last line are a per-face color, which is allowed and ignored.
     const std::int64_t face_line = lines.line();
-    corners.clear();
-    std::size_t next = 1;
-    while (static_cast<std::int64_t>(corners.size()) < n) {
-      if (next >= tokens.size()) {
-        if (!next_content_line(lines, tokens))
-          fail_at_line(path, face_line,
-                       "face " + std::to_string(f) + " declares " + std::to_string(n) +
-                           " corners but the file ends after " + std::to_string(corners.size()));
-        next = 0;
-      }
-      const std::string_view token = tokens[next++];
-      std::int64_t index;
-      if (!io_detail::parse_int(token, index))
-        fail_at_line(path, lines.line(),
-                     "face " + std::to_string(f) + ": bad vertex index " + quote_token(token) + " (face " +
-                         std::to_string(f) + " declares " + std::to_string(n) +
-                         " corners and starts on line " + std::to_string(face_line) + ")");
-      corners.push_back(index);
-    }
+    read_off_face(path, lines, tokens, f, corners);
     faces.add_polygon(corners, face_line);
   }
   if (next_content_line(lines, tokens))

@@ -8,9 +8,11 @@ namespace iarap {
 
 ConstraintSet remap_constraints(const ConstraintSet& constraints, const Eigen::VectorXi& old_to_new) {
   if (constraints.soft.size() > 0)
-    throw InputError("soft constraints (" + constraints.soft.origins.front() +
-                     ") cannot be carried over a mesh repair yet; repair the mesh first (iarap repair) and "
-                     "give constraints on the repaired mesh");
+    throw InputError(
+        "soft constraints (" + constraints.soft.origins.front() +
+        ") cannot be carried over a mesh repair yet; repair the mesh first (`iarap repair MESH --out "
+        "REPAIRED --map MAP.txt`: MAP.txt says where each vertex went) and give constraints on the "
+        "repaired mesh");
   ConstraintSet result;
   result.warnings = constraints.warnings;
   std::vector<int> fixed;

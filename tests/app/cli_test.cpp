@@ -14,6 +14,7 @@
 #include <fstream>
 #include <sstream>
 #include <sys/wait.h>
+#include <utility>
 #include <vector>
 
 namespace {
@@ -25,7 +26,8 @@ using nlohmann::json;
 const std::string bunny = iarap::test::data_path("bunny.off");
 
 TEST(Cli, HelpOnEachCommandExitsZero) {
-  for (const char* command : {"--help", "info --help", "deform --help", "bench --help", "param --help"}) {
+  for (const char* command :
+       {"--help", "info --help", "deform --help", "bench --help", "param --help", "repair --help"}) {
     const CliRun run = iarap_cli(command);
     EXPECT_EQ(run.code, 0) << command;
     EXPECT_NE(run.out.find("Usage"), std::string::npos) << command << ":\n" << run.out;
@@ -34,7 +36,18 @@ TEST(Cli, HelpOnEachCommandExitsZero) {
 
 TEST(Cli, NoOrUnknownCommandIsUsageError) {
   EXPECT_EQ(iarap_cli("").code, 2);
-  EXPECT_EQ(iarap_cli("reticulate").code, 2);
+  // An unknown word is named, with the commands there are (not CLI11's "A subcommand is required").
+  const std::pair<std::string, std::string> cases[] = {
+      {"reticulate", "reticulate"}, {"frobnicate x.off", "frobnicate"}, {"--help frobnicate", "frobnicate"}};
+  for (const auto& [args, word] : cases) {
+    const CliRun run = iarap_cli(args, true);
+    EXPECT_EQ(run.code, 2) << args;
+    EXPECT_NE(
+        run.out.find("unknown subcommand '" + word + "'; expected one of: batch, bench, deform, info, "),
+        std::string::npos)
+        << run.out;
+    EXPECT_EQ(run.out.find("A subcommand is required"), std::string::npos) << run.out;
+  }
 }
 
 TEST(Cli, InfoJsonOnBunny) {

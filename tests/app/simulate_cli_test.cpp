@@ -106,6 +106,21 @@ TEST(SimulateCli, BadNumbersAreUsageErrors) {
   }
 }
 
+// A time step whose inertia weights m / (2 dt^2) overflow or underflow is refused by the library, naming
+// dt and the range, not "soft vertex [0] has weight inf" (issue 43); nothing is written.
+TEST(SimulateCli, TimeStepsOutOfRangeNameDt) {
+  const Scene s = scene("dt_range");
+  const fs::path out = s.dir / "frames";
+  for (const std::string dt : {"1e-300", "1e+300"}) {
+    const CliRun run = iarap_cli(simulate(s, out.string(), "--dt " + dt + " --steps 2"), true);
+    EXPECT_EQ(run.code, 1) << run.out;
+    EXPECT_NE(run.out.find("dt = " + dt + " is too"), std::string::npos) << run.out;
+    EXPECT_NE(run.out.find("dt must be in ["), std::string::npos) << run.out;
+    EXPECT_EQ(run.out.find("soft vertex"), std::string::npos) << run.out;
+    EXPECT_TRUE(empty_folder(out)) << dt;
+  }
+}
+
 TEST(SimulateCli, BadForcesFilesNameTheLine) {
   const Scene s = scene("forces");
   const fs::path out = s.dir / "frames", forces = s.dir / "forces.txt";

@@ -7,7 +7,10 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <random>
+#include <string>
+#include <utility>
 
 namespace iarap::test {
 namespace {
@@ -105,6 +108,44 @@ TEST_F(SimulationTest, BadOptionsAreRefused) {
   EXPECT_THROW(build([](SimulationOptions& o) { o.gravity.x() = INFINITY; }), InputError);
   EXPECT_THROW(build([](SimulationOptions& o) { o.forces = Eigen::MatrixXd::Zero(3, 3); }), InputError);
   EXPECT_NO_THROW(build([](SimulationOptions&) {}));
+}
+
+// dt = 1e-300 made the inertia weights m / (2 dt^2) infinite, and the solver answered "soft vertex [0] has
+// weight inf" to a caller who gave no soft constraint (issue 43); dt = 1e300 made them 0. Both are refused
+// naming dt and the range, and the range works: just inside either end a step runs and stays finite, just
+// outside is refused.
+TEST_F(SimulationTest, TimeStepsDoublesCannotCarryAreRefusedNamingTheRange) {
+  const HeldPatch p = held_patch(6);
+  auto simulate = [&](double dt) {
+    SimulationOptions options;
+    options.dt = dt;
+    options.gravity = Eigen::Vector3d(0, 0, -1);
+    Simulation sim(p.mesh.V, p.mesh.F, p.fixed, options);
+    sim.step(p.targets, Eigen::MatrixXd(0, 3));
+    return sim.positions();
+  };
+  double range[2] = {0, 0};
+  const std::pair<double, const char*> cases[] = {{1e-300, "dt = 1e-300 is too small"},
+                                                  {1e300, "dt = 1e+300 is too large"}};
+  for (const auto& [dt, says] : cases) {
+    try {
+      simulate(dt);
+      ADD_FAILURE() << "dt = " << dt << " accepted";
+    } catch (const InputError& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find(says), std::string::npos) << what;
+      EXPECT_EQ(what.find("soft vertex"), std::string::npos) << what;
+      const std::size_t at = what.find("dt must be in [");
+      ASSERT_NE(at, std::string::npos) << what;
+      ASSERT_EQ(std::sscanf(what.c_str() + at, "dt must be in [%lf, %lf]", &range[0], &range[1]), 2) << what;
+    }
+  }
+  ASSERT_LT(range[0], 1e-100);
+  ASSERT_GT(range[1], 1e100);
+  // The bounds are printed to 3 digits: 1% inside is inside.
+  for (double dt : {1.01 * range[0], 0.99 * range[1]}) EXPECT_TRUE(simulate(dt).allFinite()) << dt;
+  EXPECT_THROW(simulate(0.98 * range[0]), InputError);
+  EXPECT_THROW(simulate(1.02 * range[1]), InputError);
 }
 
 TEST_F(SimulationTest, BadTargetsLeaveTheStateUnchanged) {

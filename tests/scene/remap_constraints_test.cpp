@@ -63,6 +63,7 @@ TEST(RemapConstraints, SoftConstraintsAreRefusedNotDropped) {
   } catch (const iarap::InputError& e) {
     EXPECT_NE(std::string(e.what()).find("c.txt:4"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("mesh repair"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("`iarap repair MESH --out REPAIRED"), std::string::npos) << e.what();
   }
 }
 

@@ -32,8 +32,12 @@ Eigen::VectorXd arap_vertex_masses(const Eigen::MatrixXd& V, const Eigen::Matrix
 Eigen::MatrixXd gravity_forces(const Eigen::VectorXd& masses, const Eigen::Vector3d& gravity);
 
 struct SimulationOptions {
-  ArapOptions arap;     // the energy (planar is not supported: a simulation moves in 3D)
-  double dt = 0.01;     // h > 0, finite
+  ArapOptions arap; // the energy (planar is not supported: a simulation moves in 3D)
+  // h > 0, finite, and within the range where the inertia weights m_i / (2 h^2) are normal doubles whose
+  // terms stay finite: sqrt(m_max) max(1, D) / sqrt(DBL_MAX) <= h <= sqrt(m_min / 2) / sqrt(DBL_MIN), over
+  // the free vertices' masses, D the larger of the bounding-box diagonal and the largest |V_i| (about
+  // 1e-154 to 1e+153 for masses and sizes near 1). The constructor's InputError names dt and the range.
+  double dt = 0.01;
   double density = 1.0; // surface density, > 0
   double damping = 0.0; // in [0, 1): v_{n+1} = (1 - damping) (x_{n+1} - x_n) / h at the free vertices
   Eigen::Vector3d gravity = Eigen::Vector3d::Zero();
