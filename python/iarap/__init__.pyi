@@ -41,6 +41,8 @@ class ARAP:
         soft_faces: npt.ArrayLike | None = None,
         soft_barycentric: npt.ArrayLike | None = None,
         soft_face_weights: npt.ArrayLike | None = None,
+        hard_faces: npt.ArrayLike | None = None,
+        hard_barycentric: npt.ArrayLike | None = None,
     ) -> None: ...
     def solve(
         self,
