@@ -100,6 +100,7 @@ void UvProblem::assemble_rhs() {
   if (barrier_) barrier_->add_gradient(J_, grad);
   g_ = free_rows(grad);
   x_rhs_ = positions();
+  if (barrier_) J_rhs_ = J_;
   W_rhs_ = W_;
 }
 
@@ -112,7 +113,7 @@ const Eigen::MatrixXd& UvProblem::plain_step() {
     return plain_;
   }
   const double slope = detail::inner(g_, d);
-  double t = std::min(1.0, step_limit(x_rhs_, d));
+  double t = std::min(1.0, step_limit_from(J_rhs_, d));
   for (int halving = 0; halving < kMaxHalvings; ++halving, t *= 0.5) {
     plain_ = x_rhs_ + t * d;
     set_positions(plain_);
@@ -162,9 +163,14 @@ Eigen::MatrixXd UvProblem::hessian_product(const Eigen::MatrixXd& v) {
 
 double UvProblem::step_limit(const Eigen::MatrixXd& x, const Eigen::MatrixXd& d) const {
   if (!barrier_) return std::numeric_limits<double>::infinity();
-  Eigen::MatrixXd at = U_, J, dJ;
+  Eigen::MatrixXd at = U_, J;
   for (std::size_t p = 0; p < free_.size(); ++p) at.row(free_[p]) = x.row(static_cast<Eigen::Index>(p));
   face_jacobians(disk_.frames, disk_.F, at, J);
+  return step_limit_from(J, d);
+}
+
+double UvProblem::step_limit_from(const Eigen::MatrixXd& J, const Eigen::MatrixXd& d) const {
+  Eigen::MatrixXd dJ;
   face_jacobians(disk_.frames, disk_.F, full(d), dJ);
   return barrier_->step_limit(J, dJ);
 }

@@ -51,6 +51,8 @@ public:
 private:
   Eigen::MatrixXd full(const Eigen::MatrixXd& x) const; // #V x 2, zero at the pinned rows
   Eigen::MatrixXd free_rows(const Eigen::MatrixXd& full) const;
+  // step_limit from the point whose face Jacobians are J.
+  double step_limit_from(const Eigen::MatrixXd& J, const Eigen::MatrixXd& d) const;
 
   const DiskMesh& disk_;
   std::unique_ptr<UvElasticEnergy> energy_;
@@ -62,8 +64,8 @@ private:
   Eigen::MatrixXd J_, S_, R_;
   double E_ = 0, W_ = 0;
   bool evaluated_ = false;
-  // At the last assemble_rhs: the point, its W and the gradient; the plain step from there.
-  Eigen::MatrixXd x_rhs_, g_, plain_;
+  // At the last assemble_rhs: the point, its Jacobians, W and the gradient; the plain step from there.
+  Eigen::MatrixXd x_rhs_, J_rhs_, g_, plain_;
   double W_rhs_ = 0;
   // The Hessian at the last local step: per cell the quarter-turned rotation R_perp and 1 / |S_c|_sim.
   Eigen::MatrixXd R_perp_;
