@@ -16,6 +16,7 @@ _StrPath = str | bytes | os.PathLike[str] | os.PathLike[bytes]
 ARAP_METHODS: tuple[str, ...]
 LAPLACIAN_KINDS: tuple[str, ...]
 MASS_KINDS: tuple[str, ...]
+SOLVE_OPTIONS: tuple[dict[str, Any], ...]
 
 class Error(Exception): ...
 class InputError(Error, ValueError): ...
@@ -41,6 +42,8 @@ class ARAP:
         soft_faces: npt.ArrayLike | None = None,
         soft_barycentric: npt.ArrayLike | None = None,
         soft_face_weights: npt.ArrayLike | None = None,
+        hard_faces: npt.ArrayLike | None = None,
+        hard_barycentric: npt.ArrayLike | None = None,
     ) -> None: ...
     def solve(
         self,
@@ -149,6 +152,8 @@ class Simulation:
         tolerance: float = 1e-10,
         accelerator: str = "newton",
         window: int = 8,
+        gradient_tolerance: float = 0.0,
+        time_budget_ms: float = 0.0,
     ) -> None: ...
     def step(self, targets: npt.ArrayLike | None = None) -> dict[str, Any]: ...
     @property

@@ -70,8 +70,8 @@ CASES = {
     "targets None": (lambda: solver().solve(None), r"targets must hold real coordinates, got dtype object"),
     "U0 shape": (lambda: solver().solve(V[FIXED], U0=V[:3]), r"U0 must be a #V x 3 = 4 x 3 array, got shape \(3, 3\)"),
     "U0 NaN": (lambda: solver().solve(V[FIXED], U0=with_value(V, (3, 2), np.nan)), r"U0 row 3 column 2 is nan"),
-    "iterations negative": (lambda: solver().solve(V[FIXED], iterations=-1), r"max_iterations must be >= 0, got -1"),
-    "tolerance NaN": (lambda: solver().solve(V[FIXED], tolerance=np.nan), r"tolerance is NaN"),
+    "iterations negative": (lambda: solver().solve(V[FIXED], iterations=-1), r"^iterations must be an integer in \[0, 1000000\]; got -1$"),
+    "tolerance NaN": (lambda: solver().solve(V[FIXED], tolerance=np.nan), r"^tolerance must be a finite number; got nan$"),
     "energy U shape": (lambda: solver().energy(V[:2]), r"U must be a #V x 3 = 4 x 3 array"),
     # choices and files
     "method": (lambda: iarap.ARAP(V, F, FIXED, method="bogus"), r"unknown ARAP method 'bogus'"),

@@ -1,0 +1,38 @@
+// A Python signature assembled at run time, for bindings whose keywords come from a schema (the solve
+// options): pybind11 fixes a function's parameters at compile time, one C++ argument per keyword, so such
+// a binding takes (*args, **kwargs), binds them here as Python would, and shows this signature as the first
+// line of its docstring (written with py::options().disable_function_signatures()).
+#pragma once
+#include "bindings.h"
+
+#include <string>
+#include <vector>
+
+namespace iarap::python {
+
+struct Parameter {
+  std::string name;
+  std::string annotation;   // Python type text for the signature line: "float", "npt.ArrayLike | None"
+  py::object default_value; // a null handle: required
+  bool keyword_only = false;
+};
+
+class KeywordSignature {
+public:
+  KeywordSignature(std::string function, std::vector<Parameter> parameters, std::string returns);
+
+  // "solve(self, targets: object, U0: object = None, iterations: int = 50, *, ...) -> numpy.ndarray"
+  std::string text() const;
+
+  // The value of every parameter, in order (defaults filled in). Raises TypeError in Python's words for
+  // too many positional arguments, an unknown keyword, a value given twice or a missing required one.
+  std::vector<py::object> bind(const py::args& args, const py::kwargs& kwargs) const;
+
+  const std::vector<Parameter>& parameters() const { return parameters_; }
+
+private:
+  std::string function_, returns_;
+  std::vector<Parameter> parameters_;
+};
+
+} // namespace iarap::python
