@@ -7,6 +7,6 @@ list(APPEND IARAP_APP_SOURCES intrinsic_command.cpp)
 list(APPEND IARAP_APP_SOURCES laplacian_command.cpp)
 list(APPEND IARAP_APP_SOURCES serve_command.cpp serve/api_routes.cpp serve/serve_state.cpp serve/json_input.cpp
   serve/binary_frame.cpp serve/static_files.cpp serve/private_temp_dir.cpp serve/scenario_files.cpp
-  serve/route_table.cpp serve/frame_board.cpp)
+  serve/route_table.cpp serve/frame_board.cpp serve/solve_option_json.cpp)
 list(APPEND IARAP_APP_SOURCES param_command.cpp param_report_json.cpp serve/param_route.cpp)
 list(APPEND IARAP_APP_SOURCES batch_command.cpp)

@@ -2,6 +2,7 @@
 
 #include "http_error.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -69,16 +70,17 @@ nlohmann::json parse_json_object(const std::string& body, std::size_t max_bytes)
   return object;
 }
 
-void require_known_fields(const nlohmann::json& object, std::initializer_list<const char*> allowed) {
+void require_known_fields(const nlohmann::json& object, const std::vector<std::string>& allowed) {
   for (const auto& item : object.items()) {
-    bool known = false;
-    for (const char* name : allowed) known = known || item.key() == name;
-    if (!known) {
-      std::string names;
-      for (const char* name : allowed) names += (names.empty() ? "" : ", ") + std::string(name);
-      throw HttpError(400, "unknown field " + short_description(item.key()) + "; expected " + names);
-    }
+    if (std::find(allowed.begin(), allowed.end(), item.key()) != allowed.end()) continue;
+    std::string names;
+    for (const std::string& name : allowed) names += (names.empty() ? "" : ", ") + name;
+    throw HttpError(400, "unknown field " + short_description(item.key()) + "; expected " + names);
   }
+}
+
+void require_known_fields(const nlohmann::json& object, std::initializer_list<const char*> allowed) {
+  require_known_fields(object, std::vector<std::string>(allowed.begin(), allowed.end()));
 }
 
 namespace {
