@@ -223,55 +223,17 @@ template <typename Function> auto on_positions(const ArapSolver& solver, const p
   return without_gil(solver, [&](const ArapData& d) { return f(d, positions); });
 }
 
-} // namespace
-
-void bind_arap(py::module_& m) {
-  py::class_<ArapSolver> arap(m, "ARAP", R"(As-rigid-as-possible deformation of a triangle mesh.
-
-Set up once per constrained set, solve for many targets:
-
-    solver = iarap.ARAP(V, F, fixed=handles, method="iarap")
-    U = solver.solve(targets)            # targets[k] is where vertex fixed[k] goes
-    solver.report["energies"]            # energy after each iteration
-
-Methods: "iarap" (intrinsic ARAP, paper Eq. 9), "spokes-rims" (Chao et al. 2010, Eq. 2), "arap" (Sorkine
-and Alexa 2007, Eq. 1). New targets reuse the factorization of L_ff; assigning `fixed` refactorizes.
-Energies are in squared mesh units. Methods release the GIL; one solver serves one thread at a time.)");
-  arap.def(py::init(&make_solver), py::arg("V"), py::arg("F"), py::arg("fixed"), py::arg("method") = "iarap",
-           py::kw_only(), py::arg("pin_unconstrained_components") = false, py::arg("refine_boundary") = true,
-           py::arg("soft_vertices") = py::none(), py::arg("soft_weights") = py::none(),
-           py::arg("soft_faces") = py::none(), py::arg("soft_barycentric") = py::none(),
-           py::arg("soft_face_weights") = py::none(), py::arg("hard_faces") = py::none(),
-           py::arg("hard_barycentric") = py::none(),
-           R"(Precomputes the elements of `method`, the system matrix L and the factorization of L_ff.
-
-V: (#V, 3) rest positions, or (#V, 2) for a planar mesh, deformed in its plane with rotations about z
-(targets, U0, results, energy and gradient arguments then have 2 columns). F: (#F, 3) faces of a manifold, consistently oriented triangle mesh (boundary
-allowed). fixed: (#fixed,) distinct constrained vertex indices. pin_unconstrained_components: pin the first
-vertex of every connected component without a constrained vertex (else such a component raises SolverError).
-refine_boundary ("iarap" only, not in the paper): split boundary edges opposite an obtuse intrinsic angle, so
-that no weight is negative; the inserted points get rotation cells of their own (rows #V.. of `rotations`).
-Soft constraints (issue 32): soft_vertices (#sv,) with soft_weights (#sv,) W > 0, and points on faces:
-soft_faces (#sb,), soft_barycentric (#sb, 3) rows summing to 1, soft_face_weights (#sb,). The solve then
-minimizes E_ARAP + sum_k W_k |c_k^T U - t_k|^2 (c_k: the vertex, or B0, B1, B2 at the face's corners); the
-soft vertices stay free, and `fixed` may be empty when every component has a soft point.
-Hard points on faces: hard_faces (#hb,) and hard_barycentric (#hb, 3): the solve keeps each point exactly on
-its target (the last #hb rows of soft_targets), by a Schur complement on the factorized system; a point that
-contradicts others (the same point, or one whose corners are all fixed, sent elsewhere) raises ValueError
-naming both.
-Raises ValueError (InputError, TopologyError) for bad arrays, indices, weights or meshes; SolverError (a
-RuntimeError) for an unconstrained component or a failed factorization.)");
-  // Its keywords come from the schema of the solve options: signature and docs are assembled here.
+// ARAP.solve, its keywords from the schema of the solve options: signature and docs are assembled here.
+void def_solve(py::class_<ArapSolver>& arap) {
   const auto signature = std::make_shared<const KeywordSignature>(solve_signature());
-  {
-    py::options options;
-    options.disable_function_signatures();
-    arap.def(
-        "solve",
-        [signature](ArapSolver& s, const py::args& args, const py::kwargs& kwargs) {
-          return solve_py(s, signature->bind(args, kwargs));
-        },
-        (signature->text() + R"(
+  py::options options; // the docstring's first line is the signature, from the schema
+  options.disable_function_signatures();
+  arap.def(
+      "solve",
+      [signature](ArapSolver& s, const py::args& args, const py::kwargs& kwargs) {
+        return solve_py(s, signature->bind(args, kwargs));
+      },
+      (signature->text() + R"(
 
 Deforms the mesh: returns U, float64 (#V, 3), with U[fixed] == targets.
 
@@ -279,14 +241,17 @@ targets: (#fixed, 3) positions of the constrained vertices, in the order of `fix
 U0: (#V, 3) initial guess (None: the rest positions); its constrained rows are replaced by the targets.
 Warm start: pass the previous solution as U0.
 )" + solve_option_docs() +
-         R"(report["stop_reason"] says which rule stopped the solve.
+       R"(report["stop_reason"] says which rule stopped the solve.
 soft_targets: (#soft, 3) targets of the soft constraints (vertices first, then soft face points, then hard
 face points), required when there are any; new soft targets reuse the factorization.
 forces: (#V, 3) external forces f (None: none): minimizes E_ARAP + penalty - f . (U - V), the statics of
 constant forces (gravity: vertex_masses(V, F)[:, None] * g); report["potential"] is -f . (U - V).
 The run is described by `report`; rotations of U by `rotations`.)")
-            .c_str());
-  }
+          .c_str());
+}
+
+// The constrained set and the soft constraints: fixed, set_soft_weights, penalty.
+void def_constraints(py::class_<ArapSolver>& arap) {
   arap.def_property(
           "fixed",
           [](const ArapSolver& s) {
@@ -320,8 +285,12 @@ The run is described by `report`; rotations of U by `rotations`.)")
           py::arg("U"), py::arg("soft_targets"),
           "sum_k W_k |c_k^T U - t_k|^2: the soft constraints' penalty at U (#V, 3); energy(U) + penalty is "
           "the "
-          "total the solve minimizes.")
-      .def_property_readonly("report", &report_py,
+          "total the solve minimizes.");
+}
+
+// What the last solve and the precomputation left: report, rotations and the factorization's state.
+void def_results(py::class_<ArapSolver>& arap) {
+  arap.def_property_readonly("report", &report_py,
                              R"(The last solve as a dict (None before the first solve): iterations, converged,
 initial_energy, penalty and arap_energy (the two parts of the last energy; penalty 0 without soft
 constraints), energies (float64 (iterations,), energy after each iteration), local_ms, global_ms,
@@ -360,8 +329,12 @@ intrinsic_ms + assembly_ms when threads > 1). Times in milliseconds.)")
           "intrinsic", &intrinsic_py,
           "Summary of the intrinsic Delaunay triangulation (iarap only; zeros otherwise): "
           "flips, non_delaunay_before, non_delaunay_after, mollify_delta, intrinsic_edges, "
-          "segments.")
-      .def(
+          "segments.");
+}
+
+// Evaluations at given positions: energy, cell_energy, gradient, the system matrix.
+void def_evaluations(py::class_<ArapSolver>& arap) {
+  arap.def(
           "energy",
           [](const ArapSolver& s, const py::object& U) {
             return on_positions(
@@ -398,6 +371,50 @@ intrinsic_ms + assembly_ms when threads > 1). Times in milliseconds.)")
                  " fixed>";
         });
       });
+}
+
+} // namespace
+
+void bind_arap(py::module_& m) {
+  py::class_<ArapSolver> arap(m, "ARAP", R"(As-rigid-as-possible deformation of a triangle mesh.
+
+Set up once per constrained set, solve for many targets:
+
+    solver = iarap.ARAP(V, F, fixed=handles, method="iarap")
+    U = solver.solve(targets)            # targets[k] is where vertex fixed[k] goes
+    solver.report["energies"]            # energy after each iteration
+
+Methods: "iarap" (intrinsic ARAP, paper Eq. 9), "spokes-rims" (Chao et al. 2010, Eq. 2), "arap" (Sorkine
+and Alexa 2007, Eq. 1). New targets reuse the factorization of L_ff; assigning `fixed` refactorizes.
+Energies are in squared mesh units. Methods release the GIL; one solver serves one thread at a time.)");
+  arap.def(py::init(&make_solver), py::arg("V"), py::arg("F"), py::arg("fixed"), py::arg("method") = "iarap",
+           py::kw_only(), py::arg("pin_unconstrained_components") = false, py::arg("refine_boundary") = true,
+           py::arg("soft_vertices") = py::none(), py::arg("soft_weights") = py::none(),
+           py::arg("soft_faces") = py::none(), py::arg("soft_barycentric") = py::none(),
+           py::arg("soft_face_weights") = py::none(), py::arg("hard_faces") = py::none(),
+           py::arg("hard_barycentric") = py::none(),
+           R"(Precomputes the elements of `method`, the system matrix L and the factorization of L_ff.
+
+V: (#V, 3) rest positions, or (#V, 2) for a planar mesh, deformed in its plane with rotations about z
+(targets, U0, results, energy and gradient arguments then have 2 columns). F: (#F, 3) faces of a manifold, consistently oriented triangle mesh (boundary
+allowed). fixed: (#fixed,) distinct constrained vertex indices. pin_unconstrained_components: pin the first
+vertex of every connected component without a constrained vertex (else such a component raises SolverError).
+refine_boundary ("iarap" only, not in the paper): split boundary edges opposite an obtuse intrinsic angle, so
+that no weight is negative; the inserted points get rotation cells of their own (rows #V.. of `rotations`).
+Soft constraints (issue 32): soft_vertices (#sv,) with soft_weights (#sv,) W > 0, and points on faces:
+soft_faces (#sb,), soft_barycentric (#sb, 3) rows summing to 1, soft_face_weights (#sb,). The solve then
+minimizes E_ARAP + sum_k W_k |c_k^T U - t_k|^2 (c_k: the vertex, or B0, B1, B2 at the face's corners); the
+soft vertices stay free, and `fixed` may be empty when every component has a soft point.
+Hard points on faces: hard_faces (#hb,) and hard_barycentric (#hb, 3): the solve keeps each point exactly on
+its target (the last #hb rows of soft_targets), by a Schur complement on the factorized system; a point that
+contradicts others (the same point, or one whose corners are all fixed, sent elsewhere) raises ValueError
+naming both.
+Raises ValueError (InputError, TopologyError) for bad arrays, indices, weights or meshes; SolverError (a
+RuntimeError) for an unconstrained component or a failed factorization.)");
+  def_solve(arap);
+  def_constraints(arap);
+  def_results(arap);
+  def_evaluations(arap);
   m.attr("ARAP_METHODS") = py::make_tuple("iarap", "spokes-rims", "arap");
   m.attr("SOLVE_OPTIONS") = solve_option_table();
 }
