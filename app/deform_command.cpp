@@ -23,6 +23,7 @@
 #include "iarap/scene/remap_constraints.h"
 #include "iarap/scene/remap_scenario.h"
 #include "iarap/solver/arap.h"
+#include "iarap/solver/solve_option_fields.h"
 
 #include <nlohmann/json.hpp>
 
@@ -301,6 +302,7 @@ void run_deform(const DeformArguments& args) {
 
   Eigen::MatrixXd U = V;
   ArapSolveOptions solve_options = args.solve;
+  scale_length_options(solve_options, s);
   solve_options.forces = forces;
   ArapReport report;
   try {

@@ -20,6 +20,7 @@
 #include "iarap/scene/read_constraints.h"
 #include "iarap/scene/read_scenario.h"
 #include "iarap/solver/arap.h"
+#include "iarap/solver/solve_option_fields.h"
 
 #include <nlohmann/json.hpp>
 
@@ -152,6 +153,7 @@ SimulationOptions simulation_options(const SimulateArguments& args, double s, co
   const Eigen::MatrixXd f = file_forces(args.forces, static_cast<int>(mesh.V.rows()));
   if (f.rows() > 0) options.forces = f / s;
   options.solve = args.solve;
+  scale_length_options(options.solve, s);
   return options;
 }
 

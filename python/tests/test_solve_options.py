@@ -147,3 +147,13 @@ def test_a_bad_tolerance_gets_one_message_everywhere(cli, server, tmp_path):
     (tmp_path / "jobs.json").write_text(json.dumps([job]))
     with pytest.raises(RuntimeError, match=re.escape(f"--tolerance: {BAD_TOLERANCE}")):
         batch.run_job(batch.read_manifest(tmp_path / "jobs.json")[0], str(cli))
+
+
+def test_the_python_report_has_every_documented_field():
+    """ARAP.report is written by visit_arap_report: every field docs/options.md names is in it."""
+    text = (REPO / "docs" / "options.md").read_text()
+    fields = re.findall(r"`([a-z_]+)`", text[text.index("Its fields are"):text.index("; `iarap deform` adds")])
+    V, F = iarap.read_mesh(REPO / "data" / "bunny.off")
+    solver = iarap.ARAP(V, F, fixed=[0, 1, 2])
+    solver.solve(V[[0, 1, 2]], iterations=2)
+    assert len(fields) > 20 and set(fields) <= set(solver.report), sorted(set(fields) - set(solver.report))

@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <iomanip>
 #include <sstream>
+#include <string_view>
 #include <type_traits>
 
 namespace iarap {
@@ -88,6 +89,14 @@ std::string solve_option_value_text(int value) {
 
 std::string solve_option_value_text(ArapAccelerator value) {
   return arap_accelerator_name(value);
+}
+
+void scale_length_options(ArapSolveOptions& options, double scale) {
+  visit_solve_option_fields(options, [scale](const SolveOptionField& field, auto& value) {
+    if constexpr (std::is_same_v<std::decay_t<decltype(value)>, double>) {
+      if (std::string_view(field.unit) == solve_option::mesh_units) value /= scale;
+    }
+  });
 }
 
 void check_solve_options(const ArapSolveOptions& options) {

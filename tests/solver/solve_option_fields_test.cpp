@@ -120,6 +120,31 @@ TEST(SolveOptionFields, RangesIncludeTheirEnds) {
   });
 }
 
+// A front-end solving on the mesh divided by s divides the options measured in mesh units by s, and only
+// those.
+TEST(SolveOptionFields, ScaleLengthOptionsDividesOnlyLengths) {
+  ArapSolveOptions options;
+  for (const char* name : {"tolerance", "gradient_tolerance", "time_budget_ms"})
+    set_solve_option(options, name, "0.5");
+  ArapSolveOptions scaled = options;
+  scale_length_options(scaled, 8.0);
+  visit_solve_option_fields(options, [&](const SolveOptionField& field, const auto& value) {
+    visit_solve_option_fields(scaled, [&](const SolveOptionField& other, const auto& after) {
+      using Value = std::decay_t<decltype(value)>;
+      if constexpr (std::is_same_v<Value, std::decay_t<decltype(after)>>) {
+        if (&field != &other) return;
+        const bool length = std::string(field.unit) == solve_option::mesh_units;
+        if constexpr (std::is_same_v<Value, double>) {
+          EXPECT_EQ(after, length ? value / 8.0 : value) << field.name;
+        } else {
+          EXPECT_FALSE(length) << field.name << ": only numbers can be lengths";
+          EXPECT_EQ(after, value) << field.name;
+        }
+      }
+    });
+  });
+}
+
 // Each field of a report whose values all differ comes back once, under its own name.
 TEST(SolveReportFields, EveryFieldOnceByName) {
   ArapReport report;

@@ -30,6 +30,8 @@ struct SolveOptionField {
 
 namespace solve_option {
 inline constexpr double unbounded = std::numeric_limits<double>::infinity();
+// The unit of options measured like the mesh's coordinates (see scale_length_options).
+inline constexpr const char* mesh_units = "mesh units";
 inline constexpr SolveOptionField iterations{"iterations",
                                              "--iterations",
                                              SolveOptionKind::Integer,
@@ -110,6 +112,11 @@ std::string solve_option_error(const SolveOptionField& field, const std::string&
 std::string solve_option_value_text(double value);
 std::string solve_option_value_text(int value);
 std::string solve_option_value_text(ArapAccelerator value);
+
+// Divides every option measured in mesh units by `scale` (> 0): for a front-end that takes the options in
+// the file's units and solves on the mesh divided by scale (`iarap deform`, `iarap simulate`:
+// normalize_scale.h).
+void scale_length_options(ArapSolveOptions& options, double scale);
 
 // Throws InputError (solve_option_error) for the first field of `options` out of its range.
 void check_solve_options(const ArapSolveOptions& options);
