@@ -145,9 +145,9 @@ KeywordSignature solve_signature() {
   return KeywordSignature("solve", std::move(parameters), "numpy.ndarray");
 }
 
-py::array_t<double> solve_py(ArapSolver& solver, const std::vector<py::object>& arguments) {
-  const py::object &targets = arguments.front(), &U0 = arguments[1];
-  const py::object &soft_targets = arguments[arguments.size() - 2], &forces = arguments.back();
+py::array_t<double> solve_py(ArapSolver& solver, const BoundArguments& arguments) {
+  const py::object &targets = arguments["targets"], &U0 = arguments["U0"];
+  const py::object &soft_targets = arguments["soft_targets"], &forces = arguments["forces"];
   const auto [n, fixed_count] =
       without_gil(solver, [](const ArapData& d) { return std::make_pair(d.V.rows(), d.fixed.size()); });
   const Eigen::Index soft_count = without_gil(solver, [](const ArapData& d) { return d.soft.size(); });
@@ -165,7 +165,7 @@ py::array_t<double> solve_py(ArapSolver& solver, const std::vector<py::object>& 
                                                  })
                                    : to_points(U0, "U0", true, n, "#V", planar);
   ArapSolveOptions options;
-  set_solve_options(options, arguments, 2);
+  set_solve_options(options, arguments);
   if (!forces.is_none()) options.forces = to_points(forces, "forces", true, n, "#V", planar);
   {
     py::gil_scoped_release release;

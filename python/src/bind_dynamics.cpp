@@ -56,13 +56,13 @@ KeywordSignature simulation_signature() {
   return KeywordSignature("__init__", std::move(parameters), "None");
 }
 
-std::unique_ptr<PySimulation> make_simulation(const std::vector<py::object>& arguments) {
-  const py::object &V = arguments[0], &F = arguments[1], &fixed = arguments[2], &gravity = arguments[5],
-                   &forces = arguments[8];
-  const double dt = arguments[3].cast<double>(), damping = arguments[6].cast<double>(),
-               density = arguments[7].cast<double>();
-  const std::string method = arguments[4].cast<std::string>();
-  const bool refine_boundary = arguments[9].cast<bool>();
+std::unique_ptr<PySimulation> make_simulation(const BoundArguments& arguments) {
+  const py::object &V = arguments["V"], &F = arguments["F"], &fixed = arguments["fixed"],
+                   &gravity = arguments["gravity"], &forces = arguments["forces"];
+  const auto dt = arguments.as<double>("dt"), damping = arguments.as<double>("damping"),
+             density = arguments.as<double>("density");
+  const auto method = arguments.as<std::string>("method");
+  const auto refine_boundary = arguments.as<bool>("refine_boundary");
   const Eigen::MatrixXd positions = to_points(V, "V");
   const Eigen::MatrixXi faces = to_faces(F, "F", positions.rows());
   const Eigen::VectorXi constrained =
@@ -75,7 +75,7 @@ std::unique_ptr<PySimulation> make_simulation(const std::vector<py::object>& arg
   options.density = density;
   options.gravity = to_vector3(gravity, "gravity");
   if (!forces.is_none()) options.forces = to_points(forces, "forces", true, positions.rows(), "#V");
-  set_solve_options(options.solve, arguments, 10);
+  set_solve_options(options.solve, arguments);
   py::gil_scoped_release release;
   return std::make_unique<PySimulation>(positions, faces, constrained, options);
 }

@@ -1,5 +1,6 @@
 #include "keyword_signature.h"
 
+#include <stdexcept>
 #include <utility>
 
 namespace iarap::python {
@@ -22,7 +23,22 @@ std::string KeywordSignature::text() const {
   return line + ") -> " + returns_;
 }
 
-std::vector<py::object> KeywordSignature::bind(const py::args& args, const py::kwargs& kwargs) const {
+const py::object& BoundArguments::operator[](const std::string& name) const {
+  const std::vector<Parameter>& parameters = signature_.parameters();
+  for (std::size_t k = 0; k < parameters.size(); ++k)
+    if (parameters[k].name == name) return values_[k];
+  throw std::logic_error(signature_.function() + "() has no parameter '" + name + "'");
+}
+
+void BoundArguments::throw_type_error(const std::string& name, const py::object& value) const {
+  std::string annotation;
+  for (const Parameter& p : signature_.parameters())
+    if (p.name == name) annotation = p.annotation;
+  throw py::type_error(signature_.function() + "() argument '" + name + "' must be " + annotation + ", got " +
+                       py::str(value.get_type().attr("__name__")).cast<std::string>());
+}
+
+BoundArguments KeywordSignature::bind(const py::args& args, const py::kwargs& kwargs) const {
   std::size_t positional = 0;
   while (positional < parameters_.size() && !parameters_[positional].keyword_only) ++positional;
   if (args.size() > positional)
@@ -45,7 +61,7 @@ std::vector<py::object> KeywordSignature::bind(const py::args& args, const py::k
       throw py::type_error(function_ + "() missing required argument '" + parameters_[k].name + "'");
     values[k] = parameters_[k].default_value;
   }
-  return values;
+  return BoundArguments(*this, std::move(values));
 }
 
 } // namespace iarap::python

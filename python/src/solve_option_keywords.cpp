@@ -53,10 +53,9 @@ std::string solve_option_docs() {
   return text;
 }
 
-void set_solve_options(ArapSolveOptions& options, const std::vector<py::object>& values, std::size_t first) {
-  std::size_t k = first;
+void set_solve_options(ArapSolveOptions& options, const BoundArguments& arguments) {
   visit_solve_option_fields(options, [&](const SolveOptionField& field, const auto&) {
-    const py::object& value = values.at(k++);
+    const py::object& value = arguments[field.name];
     // Numbers go through their text (Python's repr round-trips a float): one parser and one message for
     // the command line, the manifests and Python. A string is a choice's name, never a number.
     if (py::isinstance<py::str>(value) != (field.kind == SolveOptionKind::Choice))

@@ -18,10 +18,10 @@ std::vector<Parameter> solve_option_parameters(const ArapSolveOptions& defaults,
 // One docstring line per option: "tolerance: <doc> (<range>)".
 std::string solve_option_docs();
 
-// Sets every option of `options` from values[first], values[first + 1], ... (bound to the parameters of
+// Sets every option of `options` from the arguments of the same names (a signature holding
 // solve_option_parameters). Raises InputError (ValueError) with solve_option_error's message for a value of
 // the wrong type or out of range.
-void set_solve_options(ArapSolveOptions& options, const std::vector<py::object>& values, std::size_t first);
+void set_solve_options(ArapSolveOptions& options, const BoundArguments& arguments);
 
 // iarap.SOLVE_OPTIONS: a dict per option (name, flag, kind, range, unit, doc, default of ARAP.solve), for
 // iarap.batch's manifests and the parity test of docs/options.md.

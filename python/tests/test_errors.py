@@ -146,3 +146,21 @@ def test_solver_still_works_after_errors():
             s.solve(bad)
     U = s.solve(V[FIXED], iterations=3)
     np.testing.assert_allclose(U, V, atol=1e-12)
+
+
+def test_arguments_are_bound_as_python_binds_them():
+    """ARAP.solve and Simulation take keywords assembled from the solve options' schema; wrong calls are
+    TypeErrors in Python's words, naming the argument."""
+    s = solver()
+    for call, message in [
+        (lambda: s.solve(V[FIXED], bogus=1), r"solve\(\) got an unexpected keyword argument 'bogus'"),
+        (lambda: s.solve(V[FIXED], None, 3, -1, "newton"), r"solve\(\) takes at most 4 positional arguments"),
+        (lambda: s.solve(V[FIXED], None, 3, iterations=4), r"solve\(\) got multiple values for argument 'iterations'"),
+        (lambda: s.solve(), r"solve\(\) missing required argument 'targets'"),
+        (lambda: iarap.Simulation(V, F, FIXED), r"__init__\(\) missing required argument 'dt'"),
+        (lambda: iarap.Simulation(V, F, FIXED, dt="0.1"), r"__init__\(\) argument 'dt' must be float, got str"),
+    ]:
+        with pytest.raises(TypeError, match=message):
+            call()
+    U = s.solve(V[FIXED], None, 3, -1)  # iterations and tolerance still by position
+    assert s.report["iterations"] == 3 and U.shape == V.shape
