@@ -56,6 +56,7 @@ class ARAP:
         window: int = 8,
         gradient_tolerance: float = 0.0,
         time_budget_ms: float = 0.0,
+        newton_trust_radius: float = 0.0,
         soft_targets: npt.ArrayLike | None = None,
         forces: npt.ArrayLike | None = None,
     ) -> _FloatArray: ...
@@ -154,6 +155,7 @@ class Simulation:
         window: int = 8,
         gradient_tolerance: float = 0.0,
         time_budget_ms: float = 0.0,
+        newton_trust_radius: float = 0.0,
     ) -> None: ...
     def step(self, targets: npt.ArrayLike | None = None) -> dict[str, Any]: ...
     @property

@@ -16,7 +16,7 @@ import pytest
 import iarap
 from iarap import batch
 
-from conftest import REPO
+from conftest import REPO, handle_scene
 
 OPTIONS = {option["name"]: option for option in iarap.SOLVE_OPTIONS}
 BAD_TOLERANCE = "tolerance must be a finite number; got nan"
@@ -157,3 +157,15 @@ def test_the_python_report_has_every_documented_field():
     solver = iarap.ARAP(V, F, fixed=[0, 1, 2])
     solver.solve(V[[0, 1, 2]], iterations=2)
     assert len(fields) > 20 and set(fields) <= set(solver.report), sorted(set(fields) - set(solver.report))
+
+
+def test_newton_trust_radius_bounds_the_first_newton_step():
+    """A trust radius far below the first step's length holds Newton to a sliver of its free decrease."""
+    V, F = iarap.read_mesh(REPO / "data" / "bunny.off")
+    fixed, targets = handle_scene(V)
+    solver = iarap.ARAP(V, F, fixed=fixed)
+    decrease = {}
+    for radius in (0.0, 1e-9):
+        solver.solve(targets, iterations=1, tolerance=-1, accelerator="newton", newton_trust_radius=radius)
+        decrease[radius] = solver.report["initial_energy"] - solver.report["energies"][0]
+    assert 0 < decrease[1e-9] < 1e-3 * decrease[0.0], decrease

@@ -81,6 +81,17 @@ inline constexpr SolveOptionField time_budget_ms{
     unbounded,
     "ms",
     "Stop after the iteration that ends past this many milliseconds of solving (0: none)"};
+// Newton's trust radius is state a solve hands on (ArapReport::newton_trust_radius): as an option it starts
+// a solve that continues another where that one ended; its reference gradient stays internal.
+inline constexpr SolveOptionField newton_trust_radius{
+    "newton_trust_radius",
+    "--trust-radius",
+    SolveOptionKind::Number,
+    0,
+    unbounded,
+    mesh_units,
+    "Newton's initial trust radius, the L_ff norm of a step (0: the first plain step's length; a report's "
+    "newton_trust_radius continues that solve)"};
 } // namespace solve_option
 
 // Calls visit(field, value) for each user-facing option of `options`, in a fixed order; value is an int&,
@@ -94,6 +105,7 @@ void visit_solve_option_fields(Options& options, Visitor&& visit) {
   visit(solve_option::window, options.window);
   visit(solve_option::gradient_tolerance, options.gradient_tolerance);
   visit(solve_option::time_budget_ms, options.time_budget_ms);
+  visit(solve_option::newton_trust_radius, options.newton_trust_radius);
 }
 
 // The names a Choice field accepts, comma-separated ("newton, lbfgs, anderson, none").
