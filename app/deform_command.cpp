@@ -2,11 +2,11 @@
 #include "command_registry.h"
 #include "explain_error.h"
 #include "external_force_options.h"
-#include "iteration_options.h"
 #include "json_text.h"
-#include "number_validators.h"
 #include "same_file.h"
 #include "soft_constraint_sets.h"
+#include "solve_option_flags.h"
+#include "solve_report_json.h"
 #include "write_text_file.h"
 
 #include "iarap/core/errors.h"
@@ -23,12 +23,12 @@
 #include "iarap/scene/remap_constraints.h"
 #include "iarap/scene/remap_scenario.h"
 #include "iarap/solver/arap.h"
+#include "iarap/solver/solve_option_fields.h"
 
 #include <nlohmann/json.hpp>
 
 #include <cmath>
 #include <iostream>
-#include <optional>
 #include <sstream>
 #include <utility>
 #include <vector>
@@ -38,12 +38,7 @@ namespace {
 
 struct DeformArguments {
   std::string mesh, constraints, scenario, method = "iarap", boundary = "refine", out, report;
-  int iterations = 50;
-  double tolerance = 1e-6;
-  std::string accel = arap_accelerator_name(ArapSolveOptions{}.accelerator);
-  int window = ArapSolveOptions{}.window;
-  double grad_tol = ArapSolveOptions{}.gradient_tolerance;
-  double time_budget = 0; // ms; 0 = none
+  ArapSolveOptions solve; // the flags of solve_option_flags.h; forces are set from `forces` below
   int threads = 0;
   bool json = false, repair = false, pin_unconstrained = false, quiet = false;
   ExternalForceArguments forces; // statics under gravity / per-vertex forces (none: the plain deformation)
@@ -174,13 +169,14 @@ Eigen::MatrixXd statics_forces(const DeformArguments& args, const MeshData& mesh
 // The statics' report keys: energy = arap_energy + penalty + potential, potential = -f . (U - V).
 void add_statics_keys(const ExternalForceArguments& forces, const ArapReport& report, nlohmann::json& j) {
   j["energy"] = report.arap_energy + report.penalty + report.potential;
-  j["potential"] = report.potential;
   j["gravity"] = forces.gravity.empty() ? std::vector<double>{0.0, 0.0, 0.0} : forces.gravity;
   j["density"] = forces.density;
   j["forces"] = forces.forces;
 }
 
-void run_deform(const DeformArguments& args) {
+// Before the solve, which can take seconds: exactly one constraints source, and output paths that can be
+// written and overwrite no input.
+void check_arguments(const DeformArguments& args) {
   if (args.constraints.empty() == args.scenario.empty()) {
     throw CLI::ValidationError("give exactly one of --constraints FILE and --scenario FILE");
   }
@@ -190,9 +186,79 @@ void run_deform(const DeformArguments& args) {
   if (!args.report.empty() && (same_file(args.report, args.mesh) || same_file(args.report, args.out))) {
     throw CLI::ValidationError("--report " + args.report + " is the input or output mesh");
   }
-  // Before the solve, which can take seconds: a bad output path fails now.
   check_mesh_output_path(args.out);
   if (!args.report.empty()) check_output_path(args.report);
+}
+
+void require_usable(const DeformArguments& args, const MeshReport& check) {
+  if (check.usable()) return;
+  std::string message = args.mesh + (args.repair ? ": mesh not usable for ARAP after --repair:"
+                                                 : ": mesh not usable for ARAP:");
+  for (const auto& error : check.errors) message += "\n  " + name_repair(error, deform_repair_flag);
+  throw TopologyError(message + (args.repair ? "\n(numbers refer to the repaired mesh; `iarap info " +
+                                                   args.mesh + "` reports the file as it is)"
+                                             : "\n(run `iarap info " + args.mesh + "` for the full report)"));
+}
+
+ArapData precompute_explained(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
+                              const Eigen::VectorXi& fixed, const ArapSoftConstraints& soft,
+                              const ArapOptions& options, const ErrorContext& context) {
+  try {
+    return arap_precompute(V, F, fixed, soft, options);
+  } catch (const SolverError& e) {
+    throw SolverError(explain_solver_error(e.what(), context));
+  } catch (const TopologyError& e) {
+    throw TopologyError(explain_solver_error(e.what(), context));
+  }
+}
+
+// The report of a solve on the mesh divided by s, in the file's units: energies scale with length^2,
+// gradients (L U - rhs) and Newton's trust radius (the L_ff norm of a displacement) with length.
+void to_file_units(ArapReport& report, double s) {
+  const double energy_unit = s * s;
+  report.initial_energy *= energy_unit;
+  for (double& e : report.energies) e *= energy_unit;
+  report.penalty *= energy_unit;
+  report.arap_energy *= energy_unit;
+  report.potential *= energy_unit;
+  report.initial_gradient_norm *= s;
+  for (double& g : report.gradient_norms) g *= s;
+  report.newton_trust_radius *= s;
+  report.newton_reference_gradient *= s;
+}
+
+void print_progress(const DeformArguments& args, ArapMethod method, const MeshData& mesh,
+                    const ConstraintSet& constraints, const ArapReport& report) {
+  const Eigen::Index soft = constraints.soft.size();
+  std::cerr << "deform: " << arap_method_name(method) << ", " << mesh.V.rows() << " vertices, "
+            << constraints.fixed.size() << " constrained"
+            << (soft > 0 ? ", " + std::to_string(soft) + " soft" : std::string()) << ", initial energy "
+            << report.initial_energy << "\n";
+  for (int k = 0; k < report.iterations; ++k) {
+    std::cerr << "deform: iteration " << k + 1 << "/" << args.solve.max_iterations << " energy "
+              << report.energies[k] << " gradient " << report.gradient_norms[k]
+              << (report.accepted[k] ? " accelerated" : "") << " (local " << report.local_ms_per_iteration[k]
+              << " ms, global " << report.global_ms_per_iteration[k] << " ms)\n";
+  }
+  std::cerr << "deform: " << (report.converged ? "converged" : "stopped") << " ("
+            << arap_stop_reason_name(report.stop_reason) << ")\n";
+}
+
+nlohmann::json intrinsic_json(const ArapIntrinsicSummary& intrinsic, const std::string& boundary) {
+  return {{"flips", intrinsic.flips},
+          {"non_delaunay_before", intrinsic.non_delaunay_before},
+          {"non_delaunay_after", intrinsic.non_delaunay_after},
+          {"mollify_delta", intrinsic.mollify_delta},
+          {"intrinsic_edges", intrinsic.intrinsic_edges},
+          {"segments", intrinsic.segments},
+          {"boundary", boundary},
+          {"obtuse_boundary_before", intrinsic.obtuse_boundary_before},
+          {"obtuse_boundary_after", intrinsic.obtuse_boundary_after},
+          {"inserted_points", intrinsic.inserted_points}};
+}
+
+void run_deform(const DeformArguments& args) {
+  check_arguments(args);
   const auto total_start = Clock::now();
   nlohmann::json j;
   j["input"] = args.mesh;
@@ -201,15 +267,7 @@ void run_deform(const DeformArguments& args) {
   Eigen::MatrixXd forces_in_file; // 0 x 0 without --forces
   load_mesh_and_constraints(args, mesh, constraints, forces_in_file, j);
   const MeshReport check = check_mesh(mesh.V, mesh.F);
-  if (!check.usable()) {
-    std::string message = args.mesh + (args.repair ? ": mesh not usable for ARAP after --repair:"
-                                                   : ": mesh not usable for ARAP:");
-    for (const auto& error : check.errors) message += "\n  " + name_repair(error, deform_repair_flag);
-    throw TopologyError(message + (args.repair
-                                       ? "\n(numbers refer to the repaired mesh; `iarap info " + args.mesh +
-                                             "` reports the file as it is)"
-                                       : "\n(run `iarap info " + args.mesh + "` for the full report)"));
-  }
+  require_usable(args, check);
   for (const auto& warning : constraints.warnings) std::cerr << "deform: warning: " << warning << "\n";
   if (!args.quiet) {
     for (const auto& warning : check.warnings)
@@ -239,28 +297,16 @@ void run_deform(const DeformArguments& args) {
                    (forces.rows() == 0 || (forces.col(2).array() == 0.0).all());
   const ErrorContext context{args.mesh, args.repair};
   const auto precompute_start = Clock::now();
-  std::optional<ArapData> data;
-  try {
-    data.emplace(arap_precompute(V, mesh.F, constraints.fixed, soft, options));
-  } catch (const SolverError& e) {
-    throw SolverError(explain_solver_error(e.what(), context));
-  } catch (const TopologyError& e) {
-    throw TopologyError(explain_solver_error(e.what(), context));
-  }
+  ArapData arap = precompute_explained(V, mesh.F, constraints.fixed, soft, options, context);
   const double precompute_ms = ms_since(precompute_start);
 
   Eigen::MatrixXd U = V;
-  ArapSolveOptions solve_options;
-  solve_options.max_iterations = args.iterations;
-  solve_options.tolerance = args.tolerance;
-  solve_options.accelerator = parse_arap_accelerator(args.accel);
-  solve_options.window = args.window;
-  solve_options.gradient_tolerance = args.grad_tol;
-  solve_options.time_budget_ms = args.time_budget;
+  ArapSolveOptions solve_options = args.solve;
+  scale_length_options(solve_options, s);
   solve_options.forces = forces;
   ArapReport report;
   try {
-    report = arap_solve(*data, targets, soft_targets, U, solve_options);
+    report = arap_solve(arap, targets, soft_targets, U, solve_options);
   } catch (const HardPointConflict& e) {
     throw InputError(hard_point_conflict_message(e, constraints.soft));
   } catch (const SolverError& e) {
@@ -273,31 +319,10 @@ void run_deform(const DeformArguments& args) {
   }
   const double max_displacement = (U - V).rowwise().norm().maxCoeff() * s; // no overflow at 1e300
   U *= s;
-  const double energy_unit = s * s; // energies scale with length^2, gradients (L U - rhs) with length
-  report.initial_energy *= energy_unit;
-  for (double& e : report.energies) e *= energy_unit;
-  report.penalty *= energy_unit;
-  report.arap_energy *= energy_unit;
-  report.potential *= energy_unit;
-  report.initial_gradient_norm *= s;
-  for (double& g : report.gradient_norms) g *= s;
-  if (!args.quiet) {
-    std::cerr << "deform: " << arap_method_name(options.method) << ", " << mesh.V.rows() << " vertices, "
-              << constraints.fixed.size() << " constrained"
-              << (soft.size() > 0 ? ", " + std::to_string(soft.size()) + " soft" : std::string())
-              << ", initial energy " << report.initial_energy << "\n";
-    for (int k = 0; k < report.iterations; ++k) {
-      std::cerr << "deform: iteration " << k + 1 << "/" << args.iterations << " energy " << report.energies[k]
-                << " gradient " << report.gradient_norms[k] << (report.accepted[k] ? " accelerated" : "")
-                << " (local " << report.local_ms_per_iteration[k] << " ms, global "
-                << report.global_ms_per_iteration[k] << " ms)\n";
-    }
-    std::cerr << "deform: " << (report.converged ? "converged" : "stopped") << " ("
-              << arap_stop_reason_name(report.stop_reason) << ")\n";
-  }
+  to_file_units(report, s);
+  if (!args.quiet) print_progress(args, options.method, mesh, constraints, report);
   if (options.method == ArapMethod::Arap) warn_about_original_energy(report, check);
   write_mesh(args.out, U, mesh.F);
-  const ArapData& arap = *data;
 
   j["method"] = arap_method_name(options.method);
   j["planar"] = options.planar;
@@ -306,49 +331,24 @@ void run_deform(const DeformArguments& args) {
   j["constrained"] = constraints.fixed.size();
   j["pinned"] = arap.pinned.size();
   j["threads"] = thread_count();
-  j["iterations"] = report.iterations;
-  j["converged"] = report.converged;
-  j["stop_reason"] = arap_stop_reason_name(report.stop_reason);
-  j["initial_energy"] = report.initial_energy;
-  j["energies"] = report.energies;
+  j["options"] = solve_options_json(args.solve);
+  add_arap_report_json(report, j);
   // The energy of the result = arap_energy + penalty, penalty = sum_k W_k |c_k^T U - t_k|^2 (file units).
   j["energy"] = report.arap_energy + report.penalty;
-  j["arap_energy"] = report.arap_energy;
-  j["penalty"] = report.penalty;
   j["soft"] = soft.size();
   if (args.forces.any()) add_statics_keys(args.forces, report, j);
-  j["accelerator"] = arap_accelerator_name(report.accelerator);
-  j["window"] = args.window;
-  j["initial_gradient_norm"] = report.initial_gradient_norm;
-  j["gradient_norms"] = report.gradient_norms; // per iteration, like energies
-  j["accepted"] = report.accepted;             // 1: the accelerated iterate was kept
-  j["rejected"] = report.rejected;
-  j["solves"] = report.solves;
-  j["elapsed_ms"] = report.elapsed_ms; // per iteration, since the solve began
+  j["window"] = args.solve.window; // as before "options" held it
   j["precompute_ms"] = precompute_ms;
   j["intrinsic_ms"] = arap.timings.intrinsic_ms;
   j["assembly_ms"] = arap.timings.assembly_ms;
   j["factor_ms"] = arap.timings.factor_ms;
   j["analyze_ms"] = arap.timings.analyze_ms; // overlapped with intrinsic + assembly when threads > 1
   j["factorization"] = factorization_name(arap_factorization(arap));
-  j["local_ms"] = report.local_ms;
-  j["global_ms"] = report.global_ms;
   j["max_displacement"] = max_displacement;
   j["bbox_diagonal"] = check.bbox_diagonal;
   j["output"] = args.out;
   j["total_ms"] = ms_since(total_start);
-  if (options.method == ArapMethod::Iarap) {
-    j["intrinsic"] = {{"flips", arap.intrinsic.flips},
-                      {"non_delaunay_before", arap.intrinsic.non_delaunay_before},
-                      {"non_delaunay_after", arap.intrinsic.non_delaunay_after},
-                      {"mollify_delta", arap.intrinsic.mollify_delta},
-                      {"intrinsic_edges", arap.intrinsic.intrinsic_edges},
-                      {"segments", arap.intrinsic.segments},
-                      {"boundary", args.boundary},
-                      {"obtuse_boundary_before", arap.intrinsic.obtuse_boundary_before},
-                      {"obtuse_boundary_after", arap.intrinsic.obtuse_boundary_after},
-                      {"inserted_points", arap.intrinsic.inserted_points}};
-  }
+  if (options.method == ArapMethod::Iarap) j["intrinsic"] = intrinsic_json(arap.intrinsic, args.boundary);
   const std::string text = json_text(j);
   if (!args.report.empty()) write_text_file(args.report, text);
   if (args.json) std::cout << text;
@@ -380,26 +380,7 @@ const bool registered = register_command(
               "(non-negative weights, stays at rest); 'paper' is the paper's exact discretization")
            ->check(CLI::IsMember({"paper", "refine"}))
            ->capture_default_str();
-       add_iteration_options(*sub, args->iterations, args->tolerance);
-       sub->add_option("--accel", args->accel,
-                       "Accelerator of the local/global iteration: lbfgs, newton, anderson or none")
-           ->check(CLI::IsMember({"anderson", "lbfgs", "newton", "none"}))
-           ->capture_default_str();
-       sub->add_option("--window", args->window,
-                       "History length of the accelerator (newton: conjugate-gradient steps per Newton step; "
-                       "0 = plain iteration)")
-           ->check(CLI::Range(0, 1000))
-           ->capture_default_str();
-       sub->add_option(
-              "--grad-tol", args->grad_tol,
-              "Also stop when the gradient norm at the free vertices falls to this fraction of its initial "
-              "value (0 = off)")
-           ->check(finite_non_negative)
-           ->capture_default_str();
-       sub->add_option("--time-budget", args->time_budget,
-                       "Stop after the iteration that ends past this many milliseconds of solving (0 = off)")
-           ->check(finite_non_negative)
-           ->capture_default_str();
+       add_solve_option_flags(*sub, args->solve);
        sub->add_option("--threads", args->threads, "Threads for the parallel loops; 0 = all hardware threads")
            ->check(CLI::Range(0, 4096))
            ->capture_default_str();

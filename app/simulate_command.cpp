@@ -3,10 +3,11 @@
 #include "command_registry.h"
 #include "explain_error.h"
 #include "external_force_options.h"
-#include "iteration_options.h"
 #include "json_text.h"
 #include "number_validators.h"
 #include "soft_constraint_sets.h"
+#include "solve_option_flags.h"
+#include "solve_report_json.h"
 #include "write_text_file.h"
 
 #include "iarap/core/errors.h"
@@ -19,6 +20,7 @@
 #include "iarap/scene/read_constraints.h"
 #include "iarap/scene/read_scenario.h"
 #include "iarap/solver/arap.h"
+#include "iarap/solver/solve_option_fields.h"
 
 #include <nlohmann/json.hpp>
 
@@ -36,10 +38,7 @@ struct SimulateArguments {
   std::string mesh, constraints, scenario, method = "iarap", boundary = "refine", out_dir, format = "obj";
   double dt = 0, damping = 0;
   int steps = 0, every = 1, ramp = 0, threads = 0;
-  int iterations = SimulationOptions::default_step_options().max_iterations;
-  double tolerance = SimulationOptions::default_step_options().tolerance;
-  std::string accel = arap_accelerator_name(ArapSolveOptions{}.accelerator);
-  int window = ArapSolveOptions{}.window;
+  ArapSolveOptions solve = SimulationOptions::default_step_options(); // each step's solve
   bool json = false, quiet = false;
   ExternalForceArguments forces;
 };
@@ -153,10 +152,8 @@ SimulationOptions simulation_options(const SimulateArguments& args, double s, co
   options.gravity = args.forces.gravity_vector() / s;
   const Eigen::MatrixXd f = file_forces(args.forces, static_cast<int>(mesh.V.rows()));
   if (f.rows() > 0) options.forces = f / s;
-  options.solve.max_iterations = args.iterations;
-  options.solve.tolerance = args.tolerance;
-  options.solve.accelerator = parse_arap_accelerator(args.accel);
-  options.solve.window = args.window;
+  options.solve = args.solve;
+  scale_length_options(options.solve, s);
   return options;
 }
 
@@ -222,6 +219,7 @@ void run_simulate(const SimulateArguments& args) {
   j["steps"] = args.steps;
   j["ramp_steps"] = ramp;
   j["damping"] = args.damping;
+  j["options"] = solve_options_json(args.solve);
   j["density"] = args.forces.density;
   j["gravity"] = args.forces.gravity.empty() ? std::vector<double>{0.0, 0.0, 0.0} : args.forces.gravity;
   j["forces"] = args.forces.forces;
@@ -254,13 +252,7 @@ void add_solver_options(CLI::App& sub, SimulateArguments& args) {
                  "iARAP on meshes with boundary: 'refine' or 'paper' (see deform)")
       ->check(CLI::IsMember({"paper", "refine"}))
       ->capture_default_str();
-  add_iteration_options(sub, args.iterations, args.tolerance);
-  sub.add_option("--accel", args.accel, "Accelerator of each step's solve: lbfgs, newton, anderson or none")
-      ->check(CLI::IsMember({"anderson", "lbfgs", "newton", "none"}))
-      ->capture_default_str();
-  sub.add_option("--window", args.window, "History length of the accelerator (0 = plain iteration)")
-      ->check(CLI::Range(0, 1000))
-      ->capture_default_str();
+  add_solve_option_flags(sub, args.solve);
   sub.add_option("--threads", args.threads, "Threads for the parallel loops; 0 = all hardware threads")
       ->check(CLI::Range(0, 4096))
       ->capture_default_str();

@@ -6,6 +6,7 @@
 #include "param_route.h"
 #include "route_table.h"
 #include "scenario_files.h"
+#include "solve_option_json.h"
 #include "static_files.h"
 
 #include "iarap/core/errors.h"
@@ -164,25 +165,23 @@ ArapAccelerator accelerator_field(const json& body, const char* field, ArapAccel
   }
 }
 
+// The solve options (solve_option_json.h) and the server's own fields. The server holds a request to at
+// least one iteration and at most its limit (limits.max_iterations of /api/state), in the schema's words.
 SolveRequest parse_solve_request(const json& body, int max_iterations) {
-  require_known_fields(body, {"method", "iterations", "tolerance", "transform", "handle_targets",
-                              "cell_energy", "accelerator", "window", "gradient_tolerance", "time_budget_ms",
-                              "refine", "refine_accelerator"});
+  std::vector<std::string> known = solve_option_names();
+  known.insert(known.end(),
+               {"method", "transform", "handle_targets", "cell_energy", "refine", "refine_accelerator"});
+  require_known_fields(body, known);
   SolveRequest request;
   request.method = parse_arap_method(string_field(body, "method", "iarap"));
-  request.iterations = integer_field(body, "iterations", 5, 1, max_iterations);
-  request.tolerance = number_field(body, "tolerance", 1e-6);
+  read_solve_options(body, request.solve);
+  const int iterations = request.solve.max_iterations;
+  if (iterations < 1 || iterations > max_iterations)
+    throw HttpError(400, "iterations must be an integer in [1, " + std::to_string(max_iterations) +
+                             "] on this server (limits.max_iterations); got " + std::to_string(iterations));
   request.cell_energy = bool_field(body, "cell_energy", false);
   request.refine_iterations = bool_field(body, "refine", false) ? max_iterations : 0;
-  request.accelerator = accelerator_field(body, "accelerator", request.accelerator);
   request.refine_accelerator = accelerator_field(body, "refine_accelerator", request.refine_accelerator);
-  request.window = integer_field(body, "window", request.window, 0, 1000);
-  request.gradient_tolerance = number_field(body, "gradient_tolerance", 0.0);
-  if (!(request.gradient_tolerance >= 0) || !std::isfinite(request.gradient_tolerance))
-    throw HttpError(400, "gradient_tolerance must be a finite number >= 0");
-  request.time_budget_ms = number_field(body, "time_budget_ms", 0.0);
-  if (!(request.time_budget_ms >= 0) || !std::isfinite(request.time_budget_ms))
-    throw HttpError(400, "time_budget_ms must be a finite number >= 0");
   if (body.contains("transform")) {
     const std::vector<double> m = number_array_field(body, "transform");
     if (m.size() != 16)
@@ -358,8 +357,10 @@ SolveRequest parse_target_request(const json& body, int max_iterations) {
 
 } // namespace
 
-void register_routes(httplib::Server& server, const ServeConfig& config, ServeState& state,
-                     PrivateTempDir& temp) {
+namespace {
+
+// Status of every failure, the origin check, the transport errors' messages and the optional log.
+void configure_server(httplib::Server& server, const ServeConfig& config) {
   server.set_payload_max_length(std::max(config.max_json_bytes, config.max_upload_bytes));
   server.set_pre_routing_handler([&config](const httplib::Request& req, httplib::Response& res) {
     return check_origin(config, req, res);
@@ -378,8 +379,11 @@ void register_routes(httplib::Server& server, const ServeConfig& config, ServeSt
       std::cerr << "serve: " << req.method << " " << req.path << " -> " << res.status << "\n";
     });
   }
-  RouteTable routes(server);
+}
 
+// The session: its state, a server mesh or an upload, the constrained set (with undo) and a reset.
+void add_session_routes(RouteTable& routes, const ServeConfig& config, ServeState& state,
+                        PrivateTempDir& temp) {
   routes.get("/api/state", [&](const httplib::Request&, httplib::Response& res) {
     send_json(res, state_json(config, state));
   });
@@ -423,16 +427,6 @@ void register_routes(httplib::Server& server, const ServeConfig& config, ServeSt
     send_json(res, state_json(config, state));
   });
 
-  routes.get("/api/faces", [&](const httplib::Request&, httplib::Response& res) {
-    send_binary(res, raw_bytes(state.faces()));
-  });
-
-  routes.get("/api/positions", [&](const httplib::Request& req, httplib::Response& res) {
-    const bool rest = req.get_param_value("method") == "rest";
-    send_binary(
-        res, raw_bytes(state.positions(rest ? std::nullopt : std::optional<ArapMethod>(method_param(req)))));
-  });
-
   routes.post("/api/constraints", [&](const httplib::Request& req, httplib::Response& res) {
     const json body = json_body(req, config);
     if (body.contains("revision")) { // undo / redo: an earlier set with its anchors
@@ -445,6 +439,15 @@ void register_routes(httplib::Server& server, const ServeConfig& config, ServeSt
     send_json(res, state_json(config, state));
   });
 
+  routes.post("/api/reset", [&](const httplib::Request& req, httplib::Response& res) {
+    if (!req.body.empty()) require_known_fields(json_body(req, config), {});
+    state.reset();
+    send_json(res, state_json(config, state));
+  });
+}
+
+// Solving: a solve, its progress, the frames that follow it (refinement included) and a cancel.
+void add_solve_routes(RouteTable& routes, const ServeConfig& config, ServeState& state) {
   routes.post("/api/solve", [&](const httplib::Request& req, httplib::Response& res) {
     const SolveRequest request = parse_solve_request(json_body(req, config), config.max_iterations);
     const SolveResult result = state.solve(request);
@@ -482,11 +485,19 @@ void register_routes(httplib::Server& server, const ServeConfig& config, ServeSt
     const bool refining = state.stop_refinement();
     send_json(res, {{"cancelling", running}, {"refinement_stopped", refining}});
   });
+}
 
-  routes.post("/api/reset", [&](const httplib::Request& req, httplib::Response& res) {
-    if (!req.body.empty()) require_known_fields(json_body(req, config), {});
-    state.reset();
-    send_json(res, state_json(config, state));
+// What the viewer draws and the files it exchanges: faces, positions, the intrinsic overlay, the UV map,
+// scenario files and mesh downloads.
+void add_view_routes(RouteTable& routes, const ServeConfig& config, ServeState& state, PrivateTempDir& temp) {
+  routes.get("/api/faces", [&](const httplib::Request&, httplib::Response& res) {
+    send_binary(res, raw_bytes(state.faces()));
+  });
+
+  routes.get("/api/positions", [&](const httplib::Request& req, httplib::Response& res) {
+    const bool rest = req.get_param_value("method") == "rest";
+    send_binary(
+        res, raw_bytes(state.positions(rest ? std::nullopt : std::optional<ArapMethod>(method_param(req)))));
   });
 
   // The session as a file `iarap deform` replays (see scenario_files.h); the body is a solve request's
@@ -547,7 +558,17 @@ void register_routes(httplib::Server& server, const ServeConfig& config, ServeSt
                                               arap_method_name(method) + "." + format + "\"");
     send_file(res, read_file_bytes(file.path()), format == "ply" ? "application/octet-stream" : "text/plain");
   });
+}
 
+} // namespace
+
+void register_routes(httplib::Server& server, const ServeConfig& config, ServeState& state,
+                     PrivateTempDir& temp) {
+  configure_server(server, config);
+  RouteTable routes(server);
+  add_session_routes(routes, config, state, temp);
+  add_solve_routes(routes, config, state);
+  add_view_routes(routes, config, state, temp);
   routes.answer_other_methods_with_405();
 
   server.Get("/api/.*", [](const httplib::Request& req, httplib::Response&) {

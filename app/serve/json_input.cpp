@@ -2,6 +2,7 @@
 
 #include "http_error.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -69,16 +70,17 @@ nlohmann::json parse_json_object(const std::string& body, std::size_t max_bytes)
   return object;
 }
 
-void require_known_fields(const nlohmann::json& object, std::initializer_list<const char*> allowed) {
+void require_known_fields(const nlohmann::json& object, const std::vector<std::string>& allowed) {
   for (const auto& item : object.items()) {
-    bool known = false;
-    for (const char* name : allowed) known = known || item.key() == name;
-    if (!known) {
-      std::string names;
-      for (const char* name : allowed) names += (names.empty() ? "" : ", ") + std::string(name);
-      throw HttpError(400, "unknown field " + short_description(item.key()) + "; expected " + names);
-    }
+    if (std::find(allowed.begin(), allowed.end(), item.key()) != allowed.end()) continue;
+    std::string names;
+    for (const std::string& name : allowed) names += (names.empty() ? "" : ", ") + name;
+    throw HttpError(400, "unknown field " + short_description(item.key()) + "; expected " + names);
   }
+}
+
+void require_known_fields(const nlohmann::json& object, std::initializer_list<const char*> allowed) {
+  require_known_fields(object, std::vector<std::string>(allowed.begin(), allowed.end()));
 }
 
 namespace {
@@ -140,14 +142,6 @@ int integer_field(const nlohmann::json& object, const char* field, int fallback,
                              std::to_string(max) + ", got " + short_description(*it));
   }
   return it->get<int>();
-}
-
-double number_field(const nlohmann::json& object, const char* field, double fallback) {
-  const auto it = object.find(field);
-  if (it == object.end()) return fallback;
-  if (!it->is_number() || !std::isfinite(it->get<double>()))
-    throw HttpError(400, std::string(field) + " must be a finite number, got " + short_description(*it));
-  return it->get<double>();
 }
 
 std::string string_field(const nlohmann::json& object, const char* field, const std::string& fallback) {

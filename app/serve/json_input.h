@@ -32,6 +32,7 @@ nlohmann::json parse_json_object(const std::string& body, std::size_t max_bytes)
 std::string short_description(const nlohmann::json& value);
 
 // Throws HttpError 400 naming the first member of object that is not in allowed (catches typos).
+void require_known_fields(const nlohmann::json& object, const std::vector<std::string>& allowed);
 void require_known_fields(const nlohmann::json& object, std::initializer_list<const char*> allowed);
 
 // object[field] as a list of integers (any value range: range checks need the mesh, see ServeState);
@@ -45,9 +46,6 @@ std::vector<double> number_array_field(const nlohmann::json& object, const char*
 
 // object[field] as an integer in [min, max], fallback when absent; 400 otherwise.
 int integer_field(const nlohmann::json& object, const char* field, int fallback, int min, int max);
-
-// object[field] as a finite number, fallback when absent; 400 otherwise.
-double number_field(const nlohmann::json& object, const char* field, double fallback);
 
 // object[field] as a string, fallback when absent; 400 otherwise.
 std::string string_field(const nlohmann::json& object, const char* field, const std::string& fallback);

@@ -65,19 +65,13 @@ ArapReport solve_with_progress(ArapData& data, const Eigen::MatrixXd& targets, E
   progress.cancel_requested = false;
   progress.method = static_cast<int>(request.method);
   progress.iteration = 0;
-  progress.iterations = request.iterations;
+  progress.iterations = request.solve.max_iterations;
   progress.running = true;
   struct Done { // clears `running` on every exit, a throw included
     SolveProgress& progress;
     ~Done() { progress.running = false; }
   } done{progress};
-  ArapSolveOptions options;
-  options.max_iterations = request.iterations;
-  options.tolerance = request.tolerance;
-  options.accelerator = request.accelerator;
-  options.window = request.window;
-  options.gradient_tolerance = request.gradient_tolerance;
-  options.time_budget_ms = request.time_budget_ms;
+  ArapSolveOptions options = request.solve;
   options.on_iteration = [&progress](const ArapReport& report) {
     progress.iteration = report.iterations;
     progress.energy = last_energy(report);
@@ -435,10 +429,10 @@ SolveResult ServeState::solve(const SolveRequest& request) {
     job.options.max_iterations = request.refine_iterations;
     job.options.tolerance = -1; // the job's own rules, in refine_chunk
     job.options.accelerator = request.refine_accelerator;
-    job.options.window = request.window;
-    job.tolerance = request.tolerance;
-    job.gradient_target = request.gradient_tolerance * result.report.initial_gradient_norm;
-    if (request.refine_accelerator == request.accelerator) { // Newton's state goes on (same targets)
+    job.options.window = request.solve.window;
+    job.tolerance = request.solve.tolerance;
+    job.gradient_target = request.solve.gradient_tolerance * result.report.initial_gradient_norm;
+    if (request.refine_accelerator == request.solve.accelerator) { // Newton's state goes on (same targets)
       job.trust_radius = result.report.newton_trust_radius;
       job.reference_gradient = result.report.newton_reference_gradient;
     }
@@ -452,7 +446,7 @@ SolveResult ServeState::solve(const SolveRequest& request) {
   frame.iterations = result.report.iterations;
   frame.energy = last_energy(result.report);
   frame.relative_decrease = last_relative_decrease(result.report);
-  frame.tolerance = request.tolerance;
+  frame.tolerance = request.solve.tolerance;
   frame.refining = result.refining;
   frame.converged = result.report.converged;
   frame.positions = result.positions;

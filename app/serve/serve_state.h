@@ -47,16 +47,19 @@ struct MeshSummary {
   std::vector<std::string> notes, warnings; // reader notes and check_mesh warnings
 };
 
-// What a solve is asked to do. A new solver option (e.g. an accelerator) is one more member here, parsed
-// in api_routes.cpp's parse_solve_request and passed to ArapSolveOptions in ServeState::solve.
+// The server's solve options before a request sets any: the library's, but 5 iterations per answer (an
+// interactive update; `refine` goes on in the background).
+inline ArapSolveOptions interactive_solve_options() {
+  ArapSolveOptions options;
+  options.max_iterations = 5;
+  return options;
+}
+
+// What a solve is asked to do. The solve options are the fields of solve_option_fields.h, parsed from the
+// request by their names (solve_option_json.h); a new one needs nothing here.
 struct SolveRequest {
   ArapMethod method = ArapMethod::Iarap;
-  int iterations = 5;
-  double tolerance = 1e-6; // ArapSolveOptions::tolerance; negative: exactly `iterations`
-  ArapAccelerator accelerator = ArapSolveOptions{}.accelerator; // as `iarap deform --accel`
-  int window = ArapSolveOptions{}.window;
-  double gradient_tolerance = 0; // ArapSolveOptions::gradient_tolerance (0 = off)
-  double time_budget_ms = 0;     // ArapSolveOptions::time_budget_ms (0 = none)
+  ArapSolveOptions solve = interactive_solve_options(); // max_iterations at most the server's limit
   // Handle targets: anchors moved by transform (4 x 4 affine, last row 0 0 0 1), or given as #handle x 3.
   std::optional<Eigen::Matrix4d> transform;
   std::optional<Eigen::MatrixXd> handle_targets;

@@ -16,6 +16,7 @@ _StrPath = str | bytes | os.PathLike[str] | os.PathLike[bytes]
 ARAP_METHODS: tuple[str, ...]
 LAPLACIAN_KINDS: tuple[str, ...]
 MASS_KINDS: tuple[str, ...]
+SOLVE_OPTIONS: tuple[dict[str, Any], ...]
 
 class Error(Exception): ...
 class InputError(Error, ValueError): ...
@@ -55,6 +56,7 @@ class ARAP:
         window: int = 8,
         gradient_tolerance: float = 0.0,
         time_budget_ms: float = 0.0,
+        newton_trust_radius: float = 0.0,
         soft_targets: npt.ArrayLike | None = None,
         forces: npt.ArrayLike | None = None,
     ) -> _FloatArray: ...
@@ -154,6 +156,9 @@ class Simulation:
         tolerance: float = 1e-10,
         accelerator: str = "newton",
         window: int = 8,
+        gradient_tolerance: float = 0.0,
+        time_budget_ms: float = 0.0,
+        newton_trust_radius: float = 0.0,
     ) -> None: ...
     def step(self, targets: npt.ArrayLike | None = None) -> dict[str, Any]: ...
     @property

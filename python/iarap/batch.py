@@ -9,7 +9,12 @@ A manifest is a JSON list of jobs (or {"jobs": [...]}) or a CSV file with a head
      "command": "deform",                                         # or "param"; default "deform"
      "scenario": "bunny_scenario.json" | "constraints": "c.txt",  # deform: one of them
      "method": "iarap",                                           # deform --method (param: --energy)
-     "args": ["--iterations", "100"]}                             # further options of the command
+     "tolerance": 1e-8, "accelerator": "lbfgs",                   # deform: solve options by name
+     "args": ["--repair"]}                                        # further options of the command
+
+The solve options of a deform job (iarap.SOLVE_OPTIONS: iterations, tolerance, accelerator, window,
+gradient_tolerance, time_budget_ms; docs/options.md) are fields of their own, in a CSV manifest columns;
+each becomes its command-line flag, and the tool checks its value.
 
 Relative paths are relative to the manifest's folder. Each job runs the `iarap` command line tool in a
 worker process with one thread (`--threads 1`), so its output is bitwise the output of the same
@@ -38,9 +43,12 @@ from pathlib import Path
 import collections.abc as _abc
 from typing import Any
 
+from . import SOLVE_OPTIONS
+
 __all__ = ["Job", "JobCrashed", "ManifestError", "main", "read_manifest", "run_batch", "run_job"]
 
-_FIELDS = {"mesh", "output", "command", "scenario", "constraints", "method", "args", "name"}
+_SOLVE_FLAGS = {option["name"]: option["flag"] for option in SOLVE_OPTIONS}
+_FIELDS = {"mesh", "output", "command", "scenario", "constraints", "method", "args", "name"} | set(_SOLVE_FLAGS)
 _COMMANDS = ("deform", "param")
 
 
@@ -94,6 +102,11 @@ def _job_from_entry(entry: dict[str, Any], where: str, base: Path) -> Job:
         raise ManifestError(f"{where}: a param job takes no scenario or constraints")
     if entry.get("method"):
         options += ["--method" if command == "deform" else "--energy", str(entry["method"])]
+    solve = [name for name in _SOLVE_FLAGS if name in entry]
+    if solve and command != "deform":
+        raise ManifestError(f"{where}: {', '.join(solve)}: solve options are for deform jobs (param: 'args')")
+    for name in solve:  # str() of a float is its repr: the tool reads back the very number
+        options += [_SOLVE_FLAGS[name], str(entry[name])]
     extra = entry.get("args") or []
     if isinstance(extra, str):
         extra = extra.split()

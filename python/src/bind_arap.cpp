@@ -2,6 +2,7 @@
 // targets. Heavy work runs without the GIL; a mutex keeps two Python threads off one solver at a time.
 #include "bindings.h"
 #include "numpy_arrays.h"
+#include "solve_option_keywords.h"
 
 #include "iarap/core/errors.h"
 #include "iarap/core/stopwatch.h"
@@ -133,10 +134,20 @@ std::unique_ptr<ArapSolver> make_solver(const py::object& V, const py::object& F
   return std::make_unique<ArapSolver>(positions, faces, constrained, soft, options);
 }
 
-py::array_t<double> solve_py(ArapSolver& solver, const py::object& targets, const py::object& U0,
-                             int iterations, double tolerance, const std::string& accelerator, int window,
-                             double gradient_tolerance, double time_budget_ms, const py::object& soft_targets,
-                             const py::object& forces) {
+// ARAP.solve's parameters: targets, U0, the solve options (iterations and tolerance positional, as they
+// always were), then soft_targets and forces.
+KeywordSignature solve_signature() {
+  std::vector<Parameter> parameters = {{"targets", "npt.ArrayLike", py::object(), false},
+                                       {"U0", "npt.ArrayLike | None", py::none(), false}};
+  for (Parameter& p : solve_option_parameters(ArapSolveOptions{}, 2)) parameters.push_back(std::move(p));
+  parameters.push_back({"soft_targets", "npt.ArrayLike | None", py::none(), true});
+  parameters.push_back({"forces", "npt.ArrayLike | None", py::none(), true});
+  return KeywordSignature("solve", std::move(parameters), "numpy.ndarray");
+}
+
+py::array_t<double> solve_py(ArapSolver& solver, const BoundArguments& arguments) {
+  const py::object &targets = arguments["targets"], &U0 = arguments["U0"];
+  const py::object &soft_targets = arguments["soft_targets"], &forces = arguments["forces"];
   const auto [n, fixed_count] =
       without_gil(solver, [](const ArapData& d) { return std::make_pair(d.V.rows(), d.fixed.size()); });
   const Eigen::Index soft_count = without_gil(solver, [](const ArapData& d) { return d.soft.size(); });
@@ -154,13 +165,8 @@ py::array_t<double> solve_py(ArapSolver& solver, const py::object& targets, cons
                                                  })
                                    : to_points(U0, "U0", true, n, "#V", planar);
   ArapSolveOptions options;
-  options.max_iterations = iterations;
-  options.tolerance = tolerance;
-  options.accelerator = parse_arap_accelerator(accelerator);
+  set_solve_options(options, arguments);
   if (!forces.is_none()) options.forces = to_points(forces, "forces", true, n, "#V", planar);
-  options.window = window;
-  options.gradient_tolerance = gradient_tolerance;
-  options.time_budget_ms = time_budget_ms;
   {
     py::gil_scoped_release release;
     U = solver.solve(target_rows, soft_rows, std::move(U), options);
@@ -179,30 +185,7 @@ py::object report_py(const ArapSolver& solver) {
     timings = solver.with_data([](const ArapData& d) { return d.timings; });
   }
   if (!report) return py::none();
-  py::dict d;
-  d["iterations"] = report->iterations;
-  d["converged"] = report->converged;
-  d["stop_reason"] = arap_stop_reason_name(report->stop_reason);
-  d["initial_energy"] = report->initial_energy;
-  d["penalty"] = report->penalty;
-  d["potential"] = report->potential;
-  d["arap_energy"] = report->arap_energy;
-  d["energies"] = to_numpy(report->energies);
-  d["local_ms"] = report->local_ms;
-  d["global_ms"] = report->global_ms;
-  d["local_ms_per_iteration"] = to_numpy(report->local_ms_per_iteration);
-  d["global_ms_per_iteration"] = to_numpy(report->global_ms_per_iteration);
-  d["accelerator"] = arap_accelerator_name(report->accelerator);
-  d["initial_gradient_norm"] = report->initial_gradient_norm;
-  d["gradient_norms"] = to_numpy(report->gradient_norms);
-  py::array_t<bool> accepted(static_cast<py::ssize_t>(report->accepted.size()));
-  for (std::size_t k = 0; k < report->accepted.size(); ++k)
-    accepted.mutable_at(static_cast<py::ssize_t>(k)) = report->accepted[k] != 0;
-  d["accepted"] = accepted;
-  d["rejected"] = report->rejected;
-  d["solves"] = report->solves;
-  d["accelerator_ms"] = report->accelerator_ms;
-  d["elapsed_ms"] = to_numpy(report->elapsed_ms);
+  py::dict d = arap_report_dict(*report);
   d["solve_ms"] = solve_ms;
   d["intrinsic_ms"] = timings.intrinsic_ms;
   d["assembly_ms"] = timings.assembly_ms;
@@ -240,68 +223,36 @@ template <typename Function> auto on_positions(const ArapSolver& solver, const p
   return without_gil(solver, [&](const ArapData& d) { return f(d, positions); });
 }
 
-} // namespace
+// ARAP.solve, its keywords from the schema of the solve options: signature and docs are assembled here.
+void def_solve(py::class_<ArapSolver>& arap) {
+  const auto signature = std::make_shared<const KeywordSignature>(solve_signature());
+  py::options options; // the docstring's first line is the signature, from the schema
+  options.disable_function_signatures();
+  arap.def(
+      "solve",
+      [signature](ArapSolver& s, const py::args& args, const py::kwargs& kwargs) {
+        return solve_py(s, signature->bind(args, kwargs));
+      },
+      (signature->text() + R"(
 
-void bind_arap(py::module_& m) {
-  py::class_<ArapSolver>(m, "ARAP", R"(As-rigid-as-possible deformation of a triangle mesh.
-
-Set up once per constrained set, solve for many targets:
-
-    solver = iarap.ARAP(V, F, fixed=handles, method="iarap")
-    U = solver.solve(targets)            # targets[k] is where vertex fixed[k] goes
-    solver.report["energies"]            # energy after each iteration
-
-Methods: "iarap" (intrinsic ARAP, paper Eq. 9), "spokes-rims" (Chao et al. 2010, Eq. 2), "arap" (Sorkine
-and Alexa 2007, Eq. 1). New targets reuse the factorization of L_ff; assigning `fixed` refactorizes.
-Energies are in squared mesh units. Methods release the GIL; one solver serves one thread at a time.)")
-      .def(py::init(&make_solver), py::arg("V"), py::arg("F"), py::arg("fixed"), py::arg("method") = "iarap",
-           py::kw_only(), py::arg("pin_unconstrained_components") = false, py::arg("refine_boundary") = true,
-           py::arg("soft_vertices") = py::none(), py::arg("soft_weights") = py::none(),
-           py::arg("soft_faces") = py::none(), py::arg("soft_barycentric") = py::none(),
-           py::arg("soft_face_weights") = py::none(), py::arg("hard_faces") = py::none(),
-           py::arg("hard_barycentric") = py::none(),
-           R"(Precomputes the elements of `method`, the system matrix L and the factorization of L_ff.
-
-V: (#V, 3) rest positions, or (#V, 2) for a planar mesh, deformed in its plane with rotations about z
-(targets, U0, results, energy and gradient arguments then have 2 columns). F: (#F, 3) faces of a manifold, consistently oriented triangle mesh (boundary
-allowed). fixed: (#fixed,) distinct constrained vertex indices. pin_unconstrained_components: pin the first
-vertex of every connected component without a constrained vertex (else such a component raises SolverError).
-refine_boundary ("iarap" only, not in the paper): split boundary edges opposite an obtuse intrinsic angle, so
-that no weight is negative; the inserted points get rotation cells of their own (rows #V.. of `rotations`).
-Soft constraints (issue 32): soft_vertices (#sv,) with soft_weights (#sv,) W > 0, and points on faces:
-soft_faces (#sb,), soft_barycentric (#sb, 3) rows summing to 1, soft_face_weights (#sb,). The solve then
-minimizes E_ARAP + sum_k W_k |c_k^T U - t_k|^2 (c_k: the vertex, or B0, B1, B2 at the face's corners); the
-soft vertices stay free, and `fixed` may be empty when every component has a soft point.
-Hard points on faces: hard_faces (#hb,) and hard_barycentric (#hb, 3): the solve keeps each point exactly on
-its target (the last #hb rows of soft_targets), by a Schur complement on the factorized system; a point that
-contradicts others (the same point, or one whose corners are all fixed, sent elsewhere) raises ValueError
-naming both.
-Raises ValueError (InputError, TopologyError) for bad arrays, indices, weights or meshes; SolverError (a
-RuntimeError) for an unconstrained component or a failed factorization.)")
-      .def("solve", &solve_py, py::arg("targets"), py::arg("U0") = py::none(), py::arg("iterations") = 50,
-           py::arg("tolerance") = 1e-6, py::kw_only(),
-           py::arg("accelerator") = arap_accelerator_name(ArapSolveOptions{}.accelerator),
-           py::arg("window") = ArapSolveOptions{}.window, py::arg("gradient_tolerance") = 0.0,
-           py::arg("time_budget_ms") = 0.0, py::arg("soft_targets") = py::none(),
-           py::arg("forces") = py::none(),
-           R"(Deforms the mesh: returns U, float64 (#V, 3), with U[fixed] == targets.
+Deforms the mesh: returns U, float64 (#V, 3), with U[fixed] == targets.
 
 targets: (#fixed, 3) positions of the constrained vertices, in the order of `fixed`.
 U0: (#V, 3) initial guess (None: the rest positions); its constrained rows are replaced by the targets.
-iterations: at most this many local/global iterations (>= 0).
-tolerance: stop when one iteration lowers the energy by at most tolerance * energy; negative: always run
-`iterations` iterations.
-accelerator: "newton" (default), "lbfgs", "anderson" or "none" (plain local/global); window: its history length
-(newton: conjugate-gradient steps per Newton step; 0 = plain).
-gradient_tolerance: also stop when the gradient norm at the free vertices is this fraction of its value at
-U0 (0 = off). time_budget_ms: stop after the iteration that ends past this many milliseconds (0 = none;
-report["stop_reason"] says which rule stopped the solve). Warm start: pass the previous solution as U0.
+Warm start: pass the previous solution as U0.
+)" + solve_option_docs() +
+       R"(report["stop_reason"] says which rule stopped the solve.
 soft_targets: (#soft, 3) targets of the soft constraints (vertices first, then soft face points, then hard
 face points), required when there are any; new soft targets reuse the factorization.
 forces: (#V, 3) external forces f (None: none): minimizes E_ARAP + penalty - f . (U - V), the statics of
 constant forces (gravity: vertex_masses(V, F)[:, None] * g); report["potential"] is -f . (U - V).
 The run is described by `report`; rotations of U by `rotations`.)")
-      .def_property(
+          .c_str());
+}
+
+// The constrained set and the soft constraints: fixed, set_soft_weights, penalty.
+void def_constraints(py::class_<ArapSolver>& arap) {
+  arap.def_property(
           "fixed",
           [](const ArapSolver& s) {
             return to_numpy(without_gil(s, [](const ArapData& d) { return Eigen::VectorXi(d.fixed); }));
@@ -334,14 +285,19 @@ The run is described by `report`; rotations of U by `rotations`.)")
           py::arg("U"), py::arg("soft_targets"),
           "sum_k W_k |c_k^T U - t_k|^2: the soft constraints' penalty at U (#V, 3); energy(U) + penalty is "
           "the "
-          "total the solve minimizes.")
-      .def_property_readonly("report", &report_py,
+          "total the solve minimizes.");
+}
+
+// What the last solve and the precomputation left: report, rotations and the factorization's state.
+void def_results(py::class_<ArapSolver>& arap) {
+  arap.def_property_readonly("report", &report_py,
                              R"(The last solve as a dict (None before the first solve): iterations, converged,
 initial_energy, penalty and arap_energy (the two parts of the last energy; penalty 0 without soft
 constraints), energies (float64 (iterations,), energy after each iteration), local_ms, global_ms,
 local_ms_per_iteration, global_ms_per_iteration, accelerator, initial_gradient_norm, gradient_norms (per
 iteration), accepted (bool per iteration: the accelerated iterate was kept), rejected, solves, accelerator_ms,
-elapsed_ms (per iteration, since the start), solve_ms (the whole C++ solve), and the precomputation's
+elapsed_ms (per iteration, since the start), stop_reason, potential, newton_trust_radius and
+newton_reference_gradient (Newton's state after the solve), solve_ms (the whole C++ solve), and the precomputation's
 intrinsic_ms, assembly_ms, factor_ms, analyze_ms (the symbolic analysis, on its own thread beside
 intrinsic_ms + assembly_ms when threads > 1). Times in milliseconds.)")
       .def_property_readonly(
@@ -373,8 +329,12 @@ intrinsic_ms + assembly_ms when threads > 1). Times in milliseconds.)")
           "intrinsic", &intrinsic_py,
           "Summary of the intrinsic Delaunay triangulation (iarap only; zeros otherwise): "
           "flips, non_delaunay_before, non_delaunay_after, mollify_delta, intrinsic_edges, "
-          "segments.")
-      .def(
+          "segments.");
+}
+
+// Evaluations at given positions: energy, cell_energy, gradient, the system matrix.
+void def_evaluations(py::class_<ArapSolver>& arap) {
+  arap.def(
           "energy",
           [](const ArapSolver& s, const py::object& U) {
             return on_positions(
@@ -411,7 +371,52 @@ intrinsic_ms + assembly_ms when threads > 1). Times in milliseconds.)")
                  " fixed>";
         });
       });
+}
+
+} // namespace
+
+void bind_arap(py::module_& m) {
+  py::class_<ArapSolver> arap(m, "ARAP", R"(As-rigid-as-possible deformation of a triangle mesh.
+
+Set up once per constrained set, solve for many targets:
+
+    solver = iarap.ARAP(V, F, fixed=handles, method="iarap")
+    U = solver.solve(targets)            # targets[k] is where vertex fixed[k] goes
+    solver.report["energies"]            # energy after each iteration
+
+Methods: "iarap" (intrinsic ARAP, paper Eq. 9), "spokes-rims" (Chao et al. 2010, Eq. 2), "arap" (Sorkine
+and Alexa 2007, Eq. 1). New targets reuse the factorization of L_ff; assigning `fixed` refactorizes.
+Energies are in squared mesh units. Methods release the GIL; one solver serves one thread at a time.)");
+  arap.def(py::init(&make_solver), py::arg("V"), py::arg("F"), py::arg("fixed"), py::arg("method") = "iarap",
+           py::kw_only(), py::arg("pin_unconstrained_components") = false, py::arg("refine_boundary") = true,
+           py::arg("soft_vertices") = py::none(), py::arg("soft_weights") = py::none(),
+           py::arg("soft_faces") = py::none(), py::arg("soft_barycentric") = py::none(),
+           py::arg("soft_face_weights") = py::none(), py::arg("hard_faces") = py::none(),
+           py::arg("hard_barycentric") = py::none(),
+           R"(Precomputes the elements of `method`, the system matrix L and the factorization of L_ff.
+
+V: (#V, 3) rest positions, or (#V, 2) for a planar mesh, deformed in its plane with rotations about z
+(targets, U0, results, energy and gradient arguments then have 2 columns). F: (#F, 3) faces of a manifold, consistently oriented triangle mesh (boundary
+allowed). fixed: (#fixed,) distinct constrained vertex indices. pin_unconstrained_components: pin the first
+vertex of every connected component without a constrained vertex (else such a component raises SolverError).
+refine_boundary ("iarap" only, not in the paper): split boundary edges opposite an obtuse intrinsic angle, so
+that no weight is negative; the inserted points get rotation cells of their own (rows #V.. of `rotations`).
+Soft constraints (issue 32): soft_vertices (#sv,) with soft_weights (#sv,) W > 0, and points on faces:
+soft_faces (#sb,), soft_barycentric (#sb, 3) rows summing to 1, soft_face_weights (#sb,). The solve then
+minimizes E_ARAP + sum_k W_k |c_k^T U - t_k|^2 (c_k: the vertex, or B0, B1, B2 at the face's corners); the
+soft vertices stay free, and `fixed` may be empty when every component has a soft point.
+Hard points on faces: hard_faces (#hb,) and hard_barycentric (#hb, 3): the solve keeps each point exactly on
+its target (the last #hb rows of soft_targets), by a Schur complement on the factorized system; a point that
+contradicts others (the same point, or one whose corners are all fixed, sent elsewhere) raises ValueError
+naming both.
+Raises ValueError (InputError, TopologyError) for bad arrays, indices, weights or meshes; SolverError (a
+RuntimeError) for an unconstrained component or a failed factorization.)");
+  def_solve(arap);
+  def_constraints(arap);
+  def_results(arap);
+  def_evaluations(arap);
   m.attr("ARAP_METHODS") = py::make_tuple("iarap", "spokes-rims", "arap");
+  m.attr("SOLVE_OPTIONS") = solve_option_table();
 }
 
 } // namespace iarap::python

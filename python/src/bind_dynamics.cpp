@@ -2,6 +2,7 @@
 // Steps run without the GIL; a mutex keeps two Python threads off one simulation at a time.
 #include "bindings.h"
 #include "numpy_arrays.h"
+#include "solve_option_keywords.h"
 
 #include "iarap/core/errors.h"
 #include "iarap/dynamics/simulation.h"
@@ -37,11 +38,31 @@ Eigen::Vector3d to_vector3(const py::object& value, const std::string& name) {
   return g.row(0).transpose();
 }
 
-std::unique_ptr<PySimulation> make_simulation(const py::object& V, const py::object& F,
-                                              const py::object& fixed, double dt, const std::string& method,
-                                              const py::object& gravity, double damping, double density,
-                                              const py::object& forces, bool refine_boundary, int iterations,
-                                              double tolerance, const std::string& accelerator, int window) {
+// Simulation's parameters: the mesh and fixed vertices, the dynamics, then each step's solve options
+// (keyword-only, defaults SimulationOptions::default_step_options()).
+KeywordSignature simulation_signature() {
+  std::vector<Parameter> parameters = {{"V", "npt.ArrayLike", py::object(), false},
+                                       {"F", "npt.ArrayLike", py::object(), false},
+                                       {"fixed", "npt.ArrayLike | None", py::none(), false},
+                                       {"dt", "float", py::object(), true},
+                                       {"method", "str", py::str("iarap"), true},
+                                       {"gravity", "npt.ArrayLike", py::make_tuple(0.0, 0.0, 0.0), true},
+                                       {"damping", "float", py::float_(0.0), true},
+                                       {"density", "float", py::float_(1.0), true},
+                                       {"forces", "npt.ArrayLike | None", py::none(), true},
+                                       {"refine_boundary", "bool", py::bool_(true), true}};
+  for (Parameter& p : solve_option_parameters(SimulationOptions::default_step_options(), 0))
+    parameters.push_back(std::move(p));
+  return KeywordSignature("__init__", std::move(parameters), "None");
+}
+
+std::unique_ptr<PySimulation> make_simulation(const BoundArguments& arguments) {
+  const py::object &V = arguments["V"], &F = arguments["F"], &fixed = arguments["fixed"],
+                   &gravity = arguments["gravity"], &forces = arguments["forces"];
+  const auto dt = arguments.as<double>("dt"), damping = arguments.as<double>("damping"),
+             density = arguments.as<double>("density");
+  const auto method = arguments.as<std::string>("method");
+  const auto refine_boundary = arguments.as<bool>("refine_boundary");
   const Eigen::MatrixXd positions = to_points(V, "V");
   const Eigen::MatrixXi faces = to_faces(F, "F", positions.rows());
   const Eigen::VectorXi constrained =
@@ -54,10 +75,7 @@ std::unique_ptr<PySimulation> make_simulation(const py::object& V, const py::obj
   options.density = density;
   options.gravity = to_vector3(gravity, "gravity");
   if (!forces.is_none()) options.forces = to_points(forces, "forces", true, positions.rows(), "#V");
-  options.solve.max_iterations = iterations;
-  options.solve.tolerance = tolerance;
-  options.solve.accelerator = parse_arap_accelerator(accelerator);
-  options.solve.window = window;
+  set_solve_options(options.solve, arguments);
   py::gil_scoped_release release;
   return std::make_unique<PySimulation>(positions, faces, constrained, options);
 }
@@ -107,7 +125,7 @@ void bind_dynamics(py::module_& m) {
       R"(float64 (#V,): lumped masses m_i = density x the area of vertex i's mixed Voronoi cell, on the
 intrinsic Delaunay triangulation for "iarap", on the input mesh for "arap" and "spokes-rims".)");
 
-  py::class_<PySimulation>(m, "Simulation", R"(Implicit-Euler dynamics of the ARAP elastic energy.
+  py::class_<PySimulation> simulation(m, "Simulation", R"(Implicit-Euler dynamics of the ARAP elastic energy.
 
 Each step minimizes sum_i m_i / (2 dt^2) |y_i - x_i - dt v_i|^2 + E_ARAP(y) - f . (y - V) over y by the
 local/global solver (the inertia is a soft constraint on every free vertex), then sets
@@ -117,18 +135,24 @@ area, gravity in mesh units / time^2, energies in mass x (mesh units / time)^2 w
     sim = iarap.Simulation(V, F, fixed=bottom, dt=0.1, gravity=(0, -1, 0), damping=0.1)
     for _ in range(100):
         report = sim.step()          # the fixed vertices stay at their last targets (at first: rest)
-    sim.positions, sim.velocities, sim.kinetic_energy, sim.elastic_energy)")
-      .def(py::init(&make_simulation), py::arg("V"), py::arg("F"), py::arg("fixed") = py::none(),
-           py::kw_only(), py::arg("dt"), py::arg("method") = "iarap",
-           py::arg("gravity") = py::make_tuple(0.0, 0.0, 0.0), py::arg("damping") = 0.0,
-           py::arg("density") = 1.0, py::arg("forces") = py::none(), py::arg("refine_boundary") = true,
-           py::arg("iterations") = SimulationOptions::default_step_options().max_iterations,
-           py::arg("tolerance") = SimulationOptions::default_step_options().tolerance,
-           py::arg("accelerator") = arap_accelerator_name(ArapSolveOptions{}.accelerator),
-           py::arg("window") = ArapSolveOptions{}.window,
-           R"(V (#V, 3), F (#F, 3), fixed: vertex indices held at their targets (None: a free body). dt > 0;
-damping in [0, 1); density > 0; gravity (3,); forces (#V, 3) further constant forces; iterations, tolerance,
-accelerator, window: each step's solve (as ARAP.solve). Raises InputError for a bad value, naming it.)")
+    sim.positions, sim.velocities, sim.kinetic_energy, sim.elastic_energy)");
+  const auto signature = std::make_shared<const KeywordSignature>(simulation_signature());
+  {
+    py::options options;
+    options.disable_function_signatures();
+    simulation.def(py::init([signature](const py::args& args, const py::kwargs& kwargs) {
+                     return make_simulation(signature->bind(args, kwargs));
+                   }),
+                   (signature->text() + R"(
+
+V (#V, 3), F (#F, 3), fixed: vertex indices held at their targets (None: a free body). dt > 0;
+damping in [0, 1); density > 0; gravity (3,); forces (#V, 3) further constant forces. Each step's solve
+(as ARAP.solve):
+)" + solve_option_docs() +
+                    "Raises InputError for a bad value, naming it.")
+                       .c_str());
+  }
+  simulation
       .def("step", &step_py, py::arg("targets") = py::none(),
            "One step to time + dt; targets (#fixed, 3) where the fixed vertices are then (None: where they "
            "were). Returns {step, time, kinetic_energy, elastic_energy, potential_energy, iterations, "

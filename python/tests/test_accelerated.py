@@ -58,7 +58,7 @@ def test_bad_accelerator_arguments(bunny):
     V, F = bunny
     fixed, targets = handle_scene(V)
     solver = iarap.ARAP(V, F, fixed=fixed)
-    with pytest.raises(ValueError, match="'fast'"):
+    with pytest.raises(ValueError, match="got fast$"):
         solver.solve(targets, accelerator="fast")
     with pytest.raises(ValueError, match="window"):
         solver.solve(targets, window=-1)

@@ -70,8 +70,8 @@ CASES = {
     "targets None": (lambda: solver().solve(None), r"targets must hold real coordinates, got dtype object"),
     "U0 shape": (lambda: solver().solve(V[FIXED], U0=V[:3]), r"U0 must be a #V x 3 = 4 x 3 array, got shape \(3, 3\)"),
     "U0 NaN": (lambda: solver().solve(V[FIXED], U0=with_value(V, (3, 2), np.nan)), r"U0 row 3 column 2 is nan"),
-    "iterations negative": (lambda: solver().solve(V[FIXED], iterations=-1), r"max_iterations must be >= 0, got -1"),
-    "tolerance NaN": (lambda: solver().solve(V[FIXED], tolerance=np.nan), r"tolerance is NaN"),
+    "iterations negative": (lambda: solver().solve(V[FIXED], iterations=-1), r"^iterations must be an integer in \[0, 1000000\]; got -1$"),
+    "tolerance NaN": (lambda: solver().solve(V[FIXED], tolerance=np.nan), r"^tolerance must be a finite number; got nan$"),
     "energy U shape": (lambda: solver().energy(V[:2]), r"U must be a #V x 3 = 4 x 3 array"),
     # choices and files
     "method": (lambda: iarap.ARAP(V, F, FIXED, method="bogus"), r"unknown ARAP method 'bogus'"),
@@ -146,3 +146,21 @@ def test_solver_still_works_after_errors():
             s.solve(bad)
     U = s.solve(V[FIXED], iterations=3)
     np.testing.assert_allclose(U, V, atol=1e-12)
+
+
+def test_arguments_are_bound_as_python_binds_them():
+    """ARAP.solve and Simulation take keywords assembled from the solve options' schema; wrong calls are
+    TypeErrors in Python's words, naming the argument."""
+    s = solver()
+    for call, message in [
+        (lambda: s.solve(V[FIXED], bogus=1), r"solve\(\) got an unexpected keyword argument 'bogus'"),
+        (lambda: s.solve(V[FIXED], None, 3, -1, "newton"), r"solve\(\) takes at most 4 positional arguments"),
+        (lambda: s.solve(V[FIXED], None, 3, iterations=4), r"solve\(\) got multiple values for argument 'iterations'"),
+        (lambda: s.solve(), r"solve\(\) missing required argument 'targets'"),
+        (lambda: iarap.Simulation(V, F, FIXED), r"__init__\(\) missing required argument 'dt'"),
+        (lambda: iarap.Simulation(V, F, FIXED, dt="0.1"), r"__init__\(\) argument 'dt' must be float, got str"),
+    ]:
+        with pytest.raises(TypeError, match=message):
+            call()
+    U = s.solve(V[FIXED], None, 3, -1)  # iterations and tolerance still by position
+    assert s.report["iterations"] == 3 and U.shape == V.shape

@@ -367,7 +367,7 @@ TEST(Cli, BadArgumentsAreUsageErrors) {
            "deform" + mesh + scenario + out + " --iterations -1",
            "deform" + mesh + scenario + out + " --method fast-arap",
            "deform" + mesh + scenario + out + " --threads -2",
-           "deform" + mesh + scenario + out + " --tolerance -1",
+           "deform" + mesh + scenario + out + " --tolerance inf",
            "deform" + mesh + scenario + out + " --iterations many",
            "deform" + mesh + scenario + out + " --accel fast",
            "deform" + mesh + scenario + out + " --window -1",
