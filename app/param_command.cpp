@@ -1,11 +1,10 @@
 // `iarap param MESH --out OUT.obj`: an ARAP parameterization (UV map) of a disk-like mesh, flip-free by
 // default, written as an OBJ with texture coordinates or as `u v` lines, and on request pictured in a PNG.
 #include "command_registry.h"
-#include "iteration_options.h"
 #include "json_text.h"
-#include "number_validators.h"
 #include "param_report_json.h"
 #include "same_file.h"
+#include "solve_option_flags.h"
 #include "write_text_file.h"
 
 #include "iarap/core/errors.h"
@@ -32,7 +31,6 @@ namespace {
 struct ParamArguments {
   std::string mesh, out, report, picture, pins, energy = "triangle", init, boundary = "free";
   ArapSolveOptions solve = default_param_solve_options();
-  std::string accel = arap_accelerator_name(solve.accelerator);
   int threads = 0;
   bool allow_flips = false, json = false, quiet = false;
 };
@@ -78,7 +76,6 @@ ParamOptions options_of(const ParamArguments& args) {
     throw CLI::ValidationError("--boundary circle needs --init tutte or harmonic (lscm has a free boundary)");
   options.allow_flips = args.allow_flips;
   options.solve = args.solve;
-  options.solve.accelerator = parse_arap_accelerator(args.accel);
   return options;
 }
 
@@ -200,26 +197,8 @@ const bool registered = register_command(
        sub->add_flag("--allow-flips", args->allow_flips,
                      "Minimize the energy alone (no barrier, no injectivity bound on the steps): triangles "
                      "may fold, as in libigl and CGAL");
-       add_iteration_options(*sub, args->solve.max_iterations, args->solve.tolerance);
-       sub->add_option("--accel", args->accel,
-                       "Accelerator of the local/global iteration: newton, lbfgs, anderson or none; every "
-                       "one keeps the map flip-free unless --allow-flips")
-           ->check(CLI::IsMember({"anderson", "lbfgs", "newton", "none"}))
-           ->capture_default_str();
-       sub->add_option("--window", args->solve.window,
-                       "History length of the accelerator (newton: conjugate-gradient steps per Newton step; "
-                       "0 = plain iteration)")
-           ->check(CLI::Range(0, 1000))
-           ->capture_default_str();
-       sub->add_option("--grad-tol", args->solve.gradient_tolerance,
-                       "Also stop when the gradient norm at the free vertices falls to this fraction of its "
-                       "initial value (0 = off)")
-           ->check(finite_non_negative)
-           ->capture_default_str();
-       sub->add_option("--time-budget", args->solve.time_budget_ms,
-                       "Stop after the iteration that ends past this many milliseconds (0 = off)")
-           ->check(finite_non_negative)
-           ->capture_default_str();
+       // The engine's options, as deform's (solve_option_flags.h); each accelerator stays flip-free.
+       add_solve_option_flags(*sub, args->solve);
        sub->add_option("--threads", args->threads, "Threads for the parallel loops; 0 = automatic (one)")
            ->check(CLI::Range(0, 4096))
            ->capture_default_str();

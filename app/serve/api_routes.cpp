@@ -542,8 +542,8 @@ void add_view_routes(RouteTable& routes, const ServeConfig& config, ServeState& 
 
   // The UV tab: the rest mesh flattened (param_route.h); runs outside the session lock on a snapshot.
   routes.post("/api/param", [&](const httplib::Request& req, httplib::Response& res) {
-    const json body = json_body(req, config);
-    send_binary(res, param_frame(state.snapshot(std::nullopt), body, config.max_iterations));
+    const ParamOptions options = parse_param_request(json_body(req, config), config.max_iterations);
+    send_binary(res, param_frame(state.snapshot(std::nullopt), options));
   });
 
   routes.get("/api/download", [&](const httplib::Request& req, httplib::Response& res) {

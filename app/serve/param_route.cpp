@@ -2,24 +2,36 @@
 
 #include "../param_report_json.h"
 #include "binary_frame.h"
+#include "http_error.h"
 #include "json_input.h"
+#include "solve_option_json.h"
 
 #include "iarap/param/arap_parameterize.h"
 
+#include <string>
 #include <vector>
 
 namespace iarap::serve {
 
-std::string param_frame(const MeshSnapshot& rest, const nlohmann::json& body, int max_iterations) {
-  require_known_fields(body, {"energy", "boundary", "init", "allow_flips", "iterations"});
+ParamOptions parse_param_request(const nlohmann::json& body, int max_iterations) {
+  std::vector<std::string> known = solve_option_names(); // the engine's options, as POST /api/solve
+  known.insert(known.end(), {"energy", "boundary", "init", "allow_flips"});
+  require_known_fields(body, known);
   ParamOptions options;
   options.energy = parse_param_energy(string_field(body, "energy", "triangle"));
   options.boundary = parse_param_boundary(string_field(body, "boundary", "free"));
   const std::string init = string_field(body, "init", "");
   options.init = init.empty() ? default_param_init(options.boundary) : parse_param_init(init);
   options.allow_flips = bool_field(body, "allow_flips", false);
-  options.solve.max_iterations =
-      integer_field(body, "iterations", options.solve.max_iterations, 0, max_iterations);
+  read_solve_options(body, options.solve);
+  if (options.solve.max_iterations > max_iterations)
+    throw HttpError(400, "iterations must be an integer in [0, " + std::to_string(max_iterations) +
+                             "] on this server (limits.max_iterations); got " +
+                             std::to_string(options.solve.max_iterations));
+  return options;
+}
+
+std::string param_frame(const MeshSnapshot& rest, const ParamOptions& options) {
   const ParamResult result = arap_parameterize(rest.V, rest.F, options);
   std::vector<float> uv(static_cast<std::size_t>(result.UV.size()));
   for (Eigen::Index v = 0; v < result.UV.rows(); ++v)

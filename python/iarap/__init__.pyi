@@ -124,14 +124,15 @@ def parameterize(
     init: str | None = None,
     boundary: str = "free",
     allow_flips: bool = False,
-    iterations: int = 100,
-    tolerance: float = 1e-06,
     pins: npt.ArrayLike | None = None,
     pin_uv: npt.ArrayLike | None = None,
+    iterations: int = 100,
+    tolerance: float = 1e-06,
     accelerator: str = "newton",
     window: int = 8,
     gradient_tolerance: float = 0.0,
     time_budget_ms: float = 0.0,
+    newton_trust_radius: float = 0.0,
 ) -> tuple[_FloatArray, dict[str, Any]]: ...
 def set_thread_count(n: int) -> None: ...
 def thread_count() -> int: ...

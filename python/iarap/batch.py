@@ -9,10 +9,10 @@ A manifest is a JSON list of jobs (or {"jobs": [...]}) or a CSV file with a head
      "command": "deform",                                         # or "param"; default "deform"
      "scenario": "bunny_scenario.json" | "constraints": "c.txt",  # deform: one of them
      "method": "iarap",                                           # deform --method (param: --energy)
-     "tolerance": 1e-8, "accelerator": "lbfgs",                   # deform: solve options by name
+     "tolerance": 1e-8, "accelerator": "lbfgs",                   # solve options by name
      "args": ["--repair"]}                                        # further options of the command
 
-The solve options of a deform job (iarap.SOLVE_OPTIONS: iterations, tolerance, accelerator, window,
+The solve options of a deform or param job (iarap.SOLVE_OPTIONS: iterations, tolerance, accelerator, window,
 gradient_tolerance, time_budget_ms; docs/options.md) are fields of their own, in a CSV manifest columns;
 each becomes its command-line flag, and the tool checks its value.
 
@@ -102,9 +102,7 @@ def _job_from_entry(entry: dict[str, Any], where: str, base: Path) -> Job:
         raise ManifestError(f"{where}: a param job takes no scenario or constraints")
     if entry.get("method"):
         options += ["--method" if command == "deform" else "--energy", str(entry["method"])]
-    solve = [name for name in _SOLVE_FLAGS if name in entry]
-    if solve and command != "deform":
-        raise ManifestError(f"{where}: {', '.join(solve)}: solve options are for deform jobs (param: 'args')")
+    solve = [name for name in _SOLVE_FLAGS if name in entry]  # deform and param run on one engine
     for name in solve:  # str() of a float is its repr: the tool reads back the very number
         options += [_SOLVE_FLAGS[name], str(entry[name])]
     extra = entry.get("args") or []

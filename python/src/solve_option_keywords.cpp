@@ -83,19 +83,7 @@ py::tuple solve_option_table() {
 
 py::dict arap_report_dict(const ArapReport& report) {
   py::dict d;
-  visit_arap_report(report, [&d](const char* name, const auto& value) {
-    using Value = std::decay_t<decltype(value)>;
-    if constexpr (std::is_same_v<Value, std::vector<double>>) {
-      d[name] = to_numpy(value);
-    } else if constexpr (std::is_same_v<Value, std::vector<unsigned char>>) {
-      py::array_t<bool> flags(static_cast<py::ssize_t>(value.size()));
-      for (std::size_t k = 0; k < value.size(); ++k)
-        flags.mutable_at(static_cast<py::ssize_t>(k)) = value[k] != 0;
-      d[name] = flags;
-    } else {
-      d[name] = value;
-    }
-  });
+  visit_arap_report(report, [&d](const char* name, const auto& value) { d[name] = report_value(value); });
   return d;
 }
 

@@ -3,10 +3,12 @@
 // library's checks and messages.
 #pragma once
 #include "keyword_signature.h"
+#include "numpy_arrays.h"
 
 #include "iarap/solver/arap_types.h"
 
 #include <string>
+#include <type_traits>
 #include <vector>
 
 namespace iarap::python {
@@ -27,7 +29,22 @@ void set_solve_options(ArapSolveOptions& options, const BoundArguments& argument
 // iarap.batch's manifests and the parity test of docs/options.md.
 py::tuple solve_option_table();
 
-// ARAP.report: every field of visit_arap_report (per-iteration lists as numpy arrays, accepted as bool).
+// A report field's value for Python: per-iteration lists as numpy arrays (flags such as `accepted` as bool),
+// anything else as pybind11 casts it.
+template <typename Value> py::object report_value(const Value& value) {
+  if constexpr (std::is_same_v<Value, std::vector<double>>) {
+    return to_numpy(value);
+  } else if constexpr (std::is_same_v<Value, std::vector<unsigned char>>) {
+    py::array_t<bool> flags(static_cast<py::ssize_t>(value.size()));
+    for (std::size_t k = 0; k < value.size(); ++k)
+      flags.mutable_at(static_cast<py::ssize_t>(k)) = value[k] != 0;
+    return std::move(flags);
+  } else {
+    return py::cast(value);
+  }
+}
+
+// ARAP.report: every field of visit_arap_report (report_value of each).
 py::dict arap_report_dict(const ArapReport& report);
 
 } // namespace iarap::python

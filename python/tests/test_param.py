@@ -98,7 +98,7 @@ def test_bad_arguments():
         iarap.parameterize(V, F, init="spectral")
     with pytest.raises(iarap.InputError, match="tutte or harmonic"):
         iarap.parameterize(V, F, boundary="circle", init="lscm")
-    with pytest.raises(iarap.InputError, match="max_iterations"):
+    with pytest.raises(iarap.InputError, match=r"iterations must be an integer in \[0, 1000000\]; got -1"):
         iarap.parameterize(V, F, iterations=-1)
     V[3, 0] = np.nan
     with pytest.raises(iarap.InputError):
@@ -160,5 +160,5 @@ def test_every_accelerator_of_the_engine():
         assert report["flipped"] == 0 and np.all(det_J_signs(V, F, UV) > 0)
     _, budget = iarap.parameterize(V, F, accelerator="none", tolerance=-1, time_budget_ms=1e-3)
     assert budget["stop_reason"] == "time_budget" and budget["iterations"] == 1
-    with pytest.raises(iarap.InputError, match="unknown ARAP accelerator 'adam'"):
+    with pytest.raises(iarap.InputError, match="accelerator must be one of newton, lbfgs, anderson, none; got adam"):
         iarap.parameterize(V, F, accelerator="adam")

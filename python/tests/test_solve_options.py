@@ -43,6 +43,7 @@ def test_the_schema_names_every_option_once():
 @pytest.mark.parametrize("function, defaults", [
     (iarap.ARAP.solve, {}),
     (iarap.Simulation.__init__, {"iterations": 100, "tolerance": 1e-10}),  # default_step_options()
+    (iarap.parameterize, {"iterations": 100}),  # default_param_solve_options()
 ])
 def test_python_takes_every_option_with_its_default_and_doc(function, defaults):
     keywords = signature(function)
@@ -52,7 +53,7 @@ def test_python_takes_every_option_with_its_default_and_doc(function, defaults):
         assert f"{name}: {option['doc']} ({option['range']}" in function.__doc__, name
 
 
-@pytest.mark.parametrize("command", ["deform", "simulate"])
+@pytest.mark.parametrize("command", ["deform", "simulate", "param"])
 def test_the_command_line_takes_every_option(cli, command):
     help_text = subprocess.run([cli, command, "--help"], capture_output=True, text=True, check=True).stdout
     for option in iarap.SOLVE_OPTIONS:
@@ -75,16 +76,17 @@ def server(cli):
     process.wait(timeout=10)
 
 
-def post_error(url, body):
-    request = urllib.request.Request(url + "api/solve", data=json.dumps(body).encode(),
+def post_error(url, body, route="api/solve"):
+    request = urllib.request.Request(url + route, data=json.dumps(body).encode(),
                                      headers={"Content-Type": "application/json"})
     with pytest.raises(urllib.error.HTTPError) as refused:
         urllib.request.urlopen(request, timeout=30)
     return refused.value.code, json.loads(refused.value.read())["error"]
 
 
-def test_the_server_accepts_every_option_by_name(server):
-    status, message = post_error(server, {"no_such_option": 1})
+@pytest.mark.parametrize("route", ["api/solve", "api/param"])
+def test_the_server_accepts_every_option_by_name(server, route):
+    status, message = post_error(server, {"no_such_option": 1}, route)
     assert status == 400
     accepted = message.split("; expected ")[1].split(", ")
     assert set(OPTIONS) <= set(accepted), message
@@ -114,10 +116,13 @@ def test_batch_manifests_take_every_option_as_a_field(tmp_path):
     argv = batch.read_manifest(tmp_path / "jobs.json")[0].argv("iarap")
     for name, option in OPTIONS.items():
         assert argv[argv.index(option["flag"]) + 1] == str(job[name]), name
-    (tmp_path / "param.json").write_text(json.dumps([{"mesh": job["mesh"], "output": job["output"],
-                                                      "command": "param", "tolerance": 1e-8}]))
-    with pytest.raises(batch.ManifestError, match="tolerance: solve options are for deform jobs"):
-        batch.read_manifest(tmp_path / "param.json")
+    # param runs on the same engine: the same fields become the same flags.
+    param = {"mesh": job["mesh"], "output": str(tmp_path / "uv.obj"), "command": "param"}
+    param.update({name: job[name] for name in OPTIONS})
+    (tmp_path / "param.json").write_text(json.dumps([param]))
+    argv = batch.read_manifest(tmp_path / "param.json")[0].argv("iarap")
+    for name, option in OPTIONS.items():
+        assert argv[argv.index(option["flag"]) + 1] == str(param[name]), name
 
 
 def test_a_bad_tolerance_gets_one_message_everywhere(cli, server, tmp_path):
@@ -139,14 +144,18 @@ def test_a_bad_tolerance_gets_one_message_everywhere(cli, server, tmp_path):
     assert run.returncode == 2 and f"--tolerance: {BAD_TOLERANCE}" in run.stderr, run.stderr
 
     assert post_error(server, {"tolerance": "nan"}) == (400, 'tolerance must be a finite number; got "nan"')
+    assert post_error(server, {"tolerance": "nan"}, "api/param") == \
+        (400, 'tolerance must be a finite number; got "nan"')
+    with pytest.raises(iarap.InputError, match=re.escape(BAD_TOLERANCE)):
+        iarap.parameterize(V, F, tolerance=math.nan)
     assert post_error(server, {"gradient_tolerance": -1}) == \
         (400, "gradient_tolerance must be a finite number >= 0; got -1")
 
     job = {"mesh": str(REPO / "data" / "bunny.off"), "output": str(tmp_path / "b.obj"),
            "scenario": str(REPO / "data" / "bunny_scenario.json"), "tolerance": math.nan}
     (tmp_path / "jobs.json").write_text(json.dumps([job]))
-    with pytest.raises(RuntimeError, match=re.escape(f"--tolerance: {BAD_TOLERANCE}")):
-        batch.run_job(batch.read_manifest(tmp_path / "jobs.json")[0], str(cli))
+    failed = batch.run_job(batch.read_manifest(tmp_path / "jobs.json")[0], str(cli))  # a usage error: no retry
+    assert failed["status"] == "failed" and f"--tolerance: {BAD_TOLERANCE}" in failed["error"], failed
 
 
 def test_the_python_report_has_every_documented_field():

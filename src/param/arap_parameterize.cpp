@@ -6,6 +6,7 @@
 #include "iarap/param/disk_mesh.h"
 #include "iarap/param/fixed_boundary_map.h"
 #include "iarap/param/lscm.h"
+#include "iarap/solver/solve_option_fields.h"
 
 #include "../solver/local_global_loops.h"
 #include "injectivity_barrier.h"
@@ -25,12 +26,9 @@ namespace iarap {
 namespace {
 
 void check_options(const ParamOptions& options) {
-  detail::check_solve_options(options.solve);
+  detail::check_solve_options_and_state(options.solve);
   if (options.solve.forces.size() > 0)
     throw InputError("forces do not apply to a UV map: the parameterization has no external forces");
-  if (options.solve.newton_trust_radius != 0 || options.solve.newton_reference_gradient != 0)
-    throw InputError("a Newton warm start (newton_trust_radius, newton_reference_gradient) does not apply "
-                     "to a parameterization, which always starts fresh");
   if (!(options.step_fraction > 0 && options.step_fraction < 1))
     throw InputError("step_fraction must lie in (0, 1); got " + std::to_string(options.step_fraction));
   if (options.barrier_weight && (!(*options.barrier_weight > 0) || !std::isfinite(*options.barrier_weight)))
@@ -207,8 +205,13 @@ ParamResult arap_parameterize(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F
   report.init_ms = ms_since(phase_start);
 
   report.energy = options.energy;
-  UV = iterate(disk, UV, options, pins, report, total_start);
+  ParamOptions scaled = options; // lengths in the solve's units, as V / s
+  scale_length_options(scaled.solve, s);
+  scaled.solve.newton_reference_gradient /= s;
+  UV = iterate(disk, UV, scaled, pins, report, total_start);
   ArapReport& solve = report.solve;
+  solve.newton_trust_radius *= s;
+  solve.newton_reference_gradient *= s;
   solve.initial_energy *= s * s;
   for (double& e : solve.energies) e *= s * s;
   solve.initial_gradient_norm *= s; // d(s^2 E) / d(s U)

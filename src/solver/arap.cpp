@@ -308,7 +308,7 @@ ArapReport arap_solve(ArapData& data, const Eigen::MatrixXd& targets, Eigen::Mat
 ArapReport arap_solve(ArapData& data, const Eigen::MatrixXd& targets, const Eigen::MatrixXd& soft_targets,
                       Eigen::MatrixXd& U, const ArapSolveOptions& options) {
   const auto start = Clock::now();
-  detail::check_solve_options(options);
+  detail::check_solve_options_and_state(options);
   check_solver_positions(data, targets, data.fixed.size(), "targets");
   check_solver_positions(data, soft_targets, data.soft.size(), "soft targets");
   check_solver_positions(data, U, data.V.rows(), "initial guess U");

@@ -7,32 +7,19 @@
 #include "stopping.h"
 
 #include "iarap/core/errors.h"
+#include "iarap/solver/solve_option_fields.h"
 
 #include <cmath>
 #include <string>
-#include <utility>
 
 namespace iarap::detail {
 
-void check_solve_options(const ArapSolveOptions& options) {
-  if (options.max_iterations < 0)
-    throw InputError("ARAP: max_iterations must be >= 0, got " + std::to_string(options.max_iterations));
-  if (std::isnan(options.tolerance)) throw InputError("ARAP: tolerance is NaN");
-  if (!(options.gradient_tolerance >= 0))
-    throw InputError("ARAP: gradient_tolerance must be >= 0, got " +
-                     std::to_string(options.gradient_tolerance));
-  if (options.window < 0)
-    throw InputError("ARAP: window must be >= 0, got " + std::to_string(options.window));
-  if (!(options.time_budget_ms >= 0) || !std::isfinite(options.time_budget_ms))
-    throw InputError("ARAP: time_budget_ms must be a finite number >= 0, got " +
-                     std::to_string(options.time_budget_ms));
-  for (const auto& [name, value] :
-       {std::pair<const char*, double>{"newton_trust_radius", options.newton_trust_radius},
-        {"newton_reference_gradient", options.newton_reference_gradient}}) {
-    if (!(value >= 0) || !std::isfinite(value))
-      throw InputError(std::string("ARAP: ") + name + " must be a finite number >= 0, got " +
-                       std::to_string(value));
-  }
+void check_solve_options_and_state(const ArapSolveOptions& options) {
+  check_solve_options(options); // the schema's fields, with the message every front-end gives
+  const double reference = options.newton_reference_gradient; // state, not a field of the schema
+  if (!(reference >= 0) || !std::isfinite(reference))
+    throw InputError("newton_reference_gradient must be a finite number >= 0; got " +
+                     std::to_string(reference));
 }
 
 ArapReport run_local_global(Problem& problem, const ArapSolveOptions& options,

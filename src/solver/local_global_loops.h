@@ -9,8 +9,9 @@
 
 namespace iarap::detail {
 
-// Throws InputError naming the first option of `options` out of its range.
-void check_solve_options(const ArapSolveOptions& options);
+// Throws InputError naming the first option of `options` out of its range: check_solve_options (the
+// schema's fields) and Newton's reference gradient, which a solve hands on to the next.
+void check_solve_options_and_state(const ArapSolveOptions& options);
 
 // Runs options.accelerator (plain for ArapAccelerator::None or window 0) from the problem's current U.
 // start: when arap_solve began (report.elapsed_ms counts from it). Throws SolverError naming the

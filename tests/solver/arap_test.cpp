@@ -270,7 +270,8 @@ TEST(Arap, BadConstraintSetsAreNamed) {
   expect_error_mentions([&] { arap_solve(data, targets, short_guess); }, "initial guess U must be 16 x 3");
   ArapSolveOptions negative;
   negative.max_iterations = -1;
-  expect_error_mentions([&] { arap_solve(data, targets, U, negative); }, "max_iterations");
+  expect_error_mentions([&] { arap_solve(data, targets, U, negative); },
+                        "iterations must be an integer in [0, 1000000]; got -1");
   // A failed arap_set_fixed leaves the previous constraints in place.
   EXPECT_THROW(arap_set_fixed(data, Eigen::Vector2i(1, -3)), InputError);
   EXPECT_EQ(data.fixed, Eigen::Vector2i(0, 5));

@@ -2,13 +2,18 @@
 // Python dict) names the same values the same way.
 #pragma once
 #include "iarap/param/arap_parameterize.h"
+#include "iarap/solver/solve_report_fields.h"
+
+#include <string_view>
 
 namespace iarap {
 
-// Calls visit(name, value) for each field of `report` in a fixed order. Values are std::string (names),
-// int, bool, double, std::vector<double> (energies, gradient_norms, elapsed_ms: one per iteration) or
-// DistortionRange (area_distortion, angle_distortion). Energies in squared mesh units, gradient norms in
-// mesh units, times in milliseconds.
+// Calls visit(name, value) for each field of `report` in a fixed order: the map's own fields, then the
+// engine's (visit_arap_report: iterations, converged, stop_reason, energies, gradient_norms, ...; not the
+// penalty, potential and arap_energy of deformation's terms, which a UV map does not have). Values are
+// std::string (names), int, bool, double, std::vector<double> (one per iteration), std::vector<unsigned
+// char> (accepted) or DistortionRange (area_distortion, angle_distortion). Energies in squared mesh units,
+// gradient norms in mesh units, times in milliseconds.
 template <typename Visitor> void visit_param_report(const ParamReport& report, Visitor&& visit) {
   const MapDistortion& d = report.distortion;
   const ArapReport& solve = report.solve;
@@ -18,18 +23,7 @@ template <typename Visitor> void visit_param_report(const ParamReport& report, V
   visit("init_flipped", report.init_flipped);
   visit("init_fallback", report.init_fallback);
   visit("pinned", report.pinned);
-  visit("accelerator", arap_accelerator_name(solve.accelerator));
-  visit("iterations", solve.iterations);
-  visit("converged", solve.converged);
-  visit("stop_reason", arap_stop_reason_name(solve.stop_reason));
-  visit("initial_energy", solve.initial_energy);
-  visit("energies", solve.energies);
   visit("barrier", report.barrier);
-  visit("initial_gradient_norm", solve.initial_gradient_norm);
-  visit("gradient_norms", solve.gradient_norms);
-  visit("rejected", solve.rejected);
-  visit("solves", solve.solves);
-  visit("elapsed_ms", solve.elapsed_ms);
   visit("energy", d.energy);
   visit("scaled_energy", d.scaled_energy);
   visit("best_scale", d.best_scale);
@@ -43,6 +37,10 @@ template <typename Visitor> void visit_param_report(const ParamReport& report, V
   visit("factor_ms", report.factor_ms);
   visit("iterate_ms", report.iterate_ms);
   visit("parameterize_ms", report.total_ms);
+  visit_arap_report(solve, [&visit](const char* name, const auto& value) {
+    const std::string_view field(name);
+    if (field != "penalty" && field != "potential" && field != "arap_energy") visit(name, value);
+  });
 }
 
 } // namespace iarap
