@@ -63,13 +63,16 @@ class Job:
     mesh: str
     output: str
     options: tuple[str, ...] = ()
+    # The manifest's folder: the tool runs there, so that a relative path in 'args' (--pins, --report,
+    # --forces, ...) means what 'mesh' and 'output' mean, a path from the manifest.
+    folder: str = ""
 
     def argv(self, cli: str) -> list[str]:
         return [cli, self.command, self.mesh, *self.options, "--out", self.output, "--threads", "1", "--quiet"]
 
     def key(self) -> str:
         """What identifies the job's result: its command line and the inputs' sizes and times."""
-        inputs = [self.mesh] + [o for o in self.options if os.path.isfile(o)]
+        inputs = [self.mesh] + [p for p in (os.path.join(self.folder, o) for o in self.options) if os.path.isfile(p)]
         stamp = [(p, os.stat(p).st_size, os.stat(p).st_mtime_ns) for p in inputs]
         text = json.dumps([self.command, self.mesh, self.options, self.output, stamp])
         return hashlib.sha256(text.encode()).hexdigest()
@@ -116,7 +119,7 @@ def _job_from_entry(entry: dict[str, Any], where: str, base: Path) -> Job:
     if os.path.abspath(mesh) == os.path.abspath(output):
         raise ManifestError(f"{where}: the output is the input mesh")
     name = str(entry.get("name") or Path(output).name)
-    return Job(name, command, mesh, output, tuple(options + extra))
+    return Job(name, command, mesh, output, tuple(options + extra), str(base))
 
 
 def read_manifest(path: str | os.PathLike[str]) -> list[Job]:
@@ -199,7 +202,8 @@ def run_job(job: Job, cli: str) -> dict[str, Any]:
         return {"name": job.name, "status": "skipped", "output": job.output}
     os.makedirs(os.path.dirname(os.path.abspath(job.output)), exist_ok=True)
     started = time.perf_counter()
-    run = subprocess.run(job.argv(cli) + ["--json"], capture_output=True, text=True)
+    tool = os.path.abspath(cli) if os.sep in cli else cli  # it runs in the manifest's folder
+    run = subprocess.run(job.argv(tool) + ["--json"], capture_output=True, text=True, cwd=job.folder or None)
     seconds = time.perf_counter() - started
     if run.returncode in _PERMANENT_EXIT_CODES:
         return {"name": job.name, "status": "failed", "output": job.output,

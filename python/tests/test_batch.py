@@ -201,3 +201,22 @@ def test_the_iarap_batch_command(cli, tmp_path):
     assert "2 done, 0 skipped, 0 failed" in run.stderr
     bad = subprocess.run([str(cli), "batch", str(tmp_path / "none.json")], capture_output=True, text=True)
     assert bad.returncode == 2 and "none.json: cannot read the manifest" in bad.stderr
+
+
+def test_every_relative_path_of_a_job_is_from_the_manifests_folder(cli, tmp_path, monkeypatch):
+    """mesh, output and the paths inside 'args' alike: the tool runs in the manifest's folder, wherever the
+    batch was started from (here another folder), so a job means the same from every caller."""
+    folder = tmp_path / "project"
+    (folder / "meshes").mkdir(parents=True)
+    (folder / "meshes" / "head.off").write_bytes((DATA / "bunny_head.off").read_bytes())
+    manifest = write_manifest(folder, [{"mesh": "meshes/head.off", "output": "out/uv.obj", "command": "param",
+                                        "iterations": 3, "args": ["--report", "out/report.json"]}])
+    elsewhere = tmp_path / "elsewhere"
+    elsewhere.mkdir()
+    monkeypatch.chdir(elsewhere)
+    [job] = batch.read_manifest(manifest)
+    result = batch.run_job(job, str(cli))
+    assert result["status"] == "done", result
+    report = json.loads((folder / "out" / "report.json").read_text())
+    assert report["iterations"] <= 3 and (folder / "out" / "uv.obj").is_file()
+    assert not (elsewhere / "out").exists()
