@@ -4,7 +4,6 @@
 #include "external_force_options.h"
 #include "json_text.h"
 #include "same_file.h"
-#include "soft_constraint_sets.h"
 #include "solve_option_flags.h"
 #include "solve_report_json.h"
 #include "write_text_file.h"
@@ -15,15 +14,11 @@
 #include "iarap/io/check_output_path.h"
 #include "iarap/io/read_mesh.h"
 #include "iarap/io/write_mesh.h"
-#include "iarap/mesh/normalize_scale.h"
-#include "iarap/mesh/repair.h"
+#include "iarap/jobs/deform_job.h"
 #include "iarap/mesh/validate.h"
 #include "iarap/scene/read_constraints.h"
 #include "iarap/scene/read_scenario.h"
-#include "iarap/scene/remap_constraints.h"
-#include "iarap/scene/remap_scenario.h"
 #include "iarap/solver/arap.h"
-#include "iarap/solver/solve_option_fields.h"
 
 #include <nlohmann/json.hpp>
 
@@ -44,71 +39,21 @@ struct DeformArguments {
   ExternalForceArguments forces; // statics under gravity / per-vertex forces (none: the plain deformation)
 };
 
-// A constrained vertex that --repair split (one copy per fan or sheet) gets every copy constrained to its
-// target: a copy left free would leave its sheet hanging. Copies a geometric region already selected (they
-// sit at the vertex's position) stay as they are.
-void constrain_split_copies(ConstraintSet& constraints, const RepairResult& repaired) {
-  const Eigen::Index n = repaired.V.rows(), count = constraints.fixed.size();
-  std::vector<Eigen::Index> row_of(static_cast<std::size_t>(n), -1);
-  for (Eigen::Index k = 0; k < count; ++k) row_of[static_cast<std::size_t>(constraints.fixed(k))] = k;
-  std::vector<std::pair<int, Eigen::Index>> added; // (copy, row of its constrained first copy)
-  for (Eigen::Index v = 0; v < n; ++v) {
-    const int first = repaired.old_to_new(repaired.new_to_old(v));
-    if (first != v && row_of[static_cast<std::size_t>(v)] < 0 && row_of[static_cast<std::size_t>(first)] >= 0)
-      added.emplace_back(static_cast<int>(v), row_of[static_cast<std::size_t>(first)]);
-  }
-  if (added.empty()) return;
-  const auto extra = static_cast<Eigen::Index>(added.size());
-  constraints.fixed.conservativeResize(count + extra);
-  constraints.targets.conservativeResize(count + extra, 3);
-  const bool named = static_cast<Eigen::Index>(constraints.origins.size()) == count;
-  for (Eigen::Index i = 0; i < extra; ++i) {
-    const auto& [copy, row] = added[static_cast<std::size_t>(i)];
-    constraints.fixed(count + i) = copy;
-    constraints.targets.row(count + i) = constraints.targets.row(row);
-    if (named) constraints.origins.push_back(constraints.origins[static_cast<std::size_t>(row)]);
-  }
-}
-
-// The mesh to deform and its constraints. With --repair the mesh is repaired first (welded, unreferenced
-// vertices and zero-area and duplicate faces dropped, non-manifold edges and vertices split, faces
-// oriented consistently: repair_mesh with remove_zero_area) and a scenario is resolved on
-// the repaired mesh, so that its regions cannot select a vertex the repair drops; a constraints file's
-// indices are carried over.
-// The forces file's rows follow the file's vertices and are carried over (added up where vertices weld).
-void load_mesh_and_constraints(const DeformArguments& args, MeshData& mesh, ConstraintSet& constraints,
-                               Eigen::MatrixXd& forces, nlohmann::json& j) {
-  mesh = read_mesh(args.mesh);
-  Scenario scenario;
-  if (!args.scenario.empty()) scenario = read_scenario(args.scenario);
-  forces = file_forces(args.forces, static_cast<int>(mesh.V.rows()));
-  if (!args.repair) {
-    constraints = args.constraints.empty()
-                      ? resolve_scenario(scenario, mesh.V)
-                      : read_constraints(args.constraints, static_cast<int>(mesh.V.rows()),
-                                         static_cast<int>(mesh.F.rows()));
-    return;
-  }
-  RepairOptions repair_options;
-  repair_options.remove_zero_area = true;
-  RepairResult repaired = repair_mesh(mesh.V, mesh.F, repair_options);
-  if (args.constraints.empty()) {
-    constraints = resolve_scenario(remap_scenario(scenario, repaired.old_to_new), repaired.V);
-  } else {
-    constraints = remap_constraints(
-        read_constraints(args.constraints, static_cast<int>(mesh.V.rows()), static_cast<int>(mesh.F.rows())),
-        repaired.old_to_new);
-  }
-  constrain_split_copies(constraints, repaired);
-  if (forces.rows() > 0) {
-    Eigen::MatrixXd moved = Eigen::MatrixXd::Zero(repaired.V.rows(), 3);
-    for (Eigen::Index v = 0; v < forces.rows(); ++v)
-      if (repaired.old_to_new(v) >= 0) moved.row(repaired.old_to_new(v)) += forces.row(v);
-    forces = std::move(moved);
-  }
-  mesh.V = std::move(repaired.V);
-  mesh.F = std::move(repaired.F);
-  j["repair"] = repaired.actions;
+// The mesh to deform and its constraints, read from the files and prepared by the library's job
+// (prepare_deform: with --repair the mesh is repaired, a scenario resolved on the repaired mesh, a
+// constraints file's indices and the forces file's rows carried over).
+DeformScene read_and_prepare(const DeformArguments& args) {
+  MeshData mesh = read_mesh(args.mesh);
+  DeformConstraints constraints;
+  if (!args.scenario.empty())
+    constraints.scenario = read_scenario(args.scenario);
+  else
+    constraints.set =
+        read_constraints(args.constraints, static_cast<int>(mesh.V.rows()), static_cast<int>(mesh.F.rows()));
+  Eigen::MatrixXd forces = file_forces(args.forces, static_cast<int>(mesh.V.rows()));
+  DeformPrepareOptions options;
+  options.repair = args.repair;
+  return prepare_deform(std::move(mesh), constraints, options, std::move(forces));
 }
 
 // Original ARAP's energy is bounded below only with non-negative cotangent weights: on meshes with many
@@ -129,41 +74,6 @@ void warn_about_original_energy(const ArapReport& report, const MeshReport& chec
               << " edges have negative cotangent weights; original ARAP's energy is then not bounded below "
                  "and its result can be far from rigid; --method iarap has no negative weights\n";
   }
-}
-
-// The constraint whose target lies farthest from its rest position, named by where it came from: when
-// the energy overflows, this is the target to fix.
-std::string farthest_target(const ConstraintSet& constraints, const Eigen::MatrixXd& V) {
-  Eigen::Index worst = 0;
-  double distance = -1;
-  for (Eigen::Index k = 0; k < constraints.fixed.size(); ++k) {
-    const double d = (constraints.targets.row(k) - V.row(constraints.fixed(k))).stableNorm();
-    if (!(d <= distance)) {
-      worst = k;
-      distance = d;
-    }
-  }
-  std::ostringstream text;
-  text << "the target of vertex " << constraints.fixed(worst) << " lies " << distance
-       << " from its rest position";
-  if (static_cast<Eigen::Index>(constraints.origins.size()) == constraints.fixed.size())
-    text << " (" << constraints.origins[static_cast<std::size_t>(worst)] << ")";
-  return text.str();
-}
-
-// External forces (statics): f in the solve's units (the mesh divided by s) for the minimum of
-// E_ARAP + P - f . (U - V); 0 x 0 without --gravity and --forces. Every component must be held.
-Eigen::MatrixXd statics_forces(const DeformArguments& args, const MeshData& mesh,
-                               const Eigen::VectorXi& fixed, const ArapSoftConstraints& soft,
-                               const Eigen::MatrixXd& V, ArapMethod method, double s,
-                               const Eigen::MatrixXd& forces_in_file) {
-  if (!args.forces.any()) return Eigen::MatrixXd();
-  if (!args.pin_unconstrained) {
-    Eigen::VectorXi faces(soft.faces.size() + soft.hard_faces.size()); // a hard point holds its body too
-    faces << soft.faces, soft.hard_faces;
-    require_held_components(mesh.F, static_cast<int>(mesh.V.rows()), fixed, soft.vertices, faces);
-  }
-  return scaled_forces(args.forces, V, mesh.F, method, s, forces_in_file);
 }
 
 // The statics' report keys: energy = arap_energy + penalty + potential, potential = -f . (U - V).
@@ -200,33 +110,6 @@ void require_usable(const DeformArguments& args, const MeshReport& check) {
                                              : "\n(run `iarap info " + args.mesh + "` for the full report)"));
 }
 
-ArapData precompute_explained(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
-                              const Eigen::VectorXi& fixed, const ArapSoftConstraints& soft,
-                              const ArapOptions& options, const ErrorContext& context) {
-  try {
-    return arap_precompute(V, F, fixed, soft, options);
-  } catch (const SolverError& e) {
-    throw SolverError(explain_solver_error(e.what(), context));
-  } catch (const TopologyError& e) {
-    throw TopologyError(explain_solver_error(e.what(), context));
-  }
-}
-
-// The report of a solve on the mesh divided by s, in the file's units: energies scale with length^2,
-// gradients (L U - rhs) and Newton's trust radius (the L_ff norm of a displacement) with length.
-void to_file_units(ArapReport& report, double s) {
-  const double energy_unit = s * s;
-  report.initial_energy *= energy_unit;
-  for (double& e : report.energies) e *= energy_unit;
-  report.penalty *= energy_unit;
-  report.arap_energy *= energy_unit;
-  report.potential *= energy_unit;
-  report.initial_gradient_norm *= s;
-  for (double& g : report.gradient_norms) g *= s;
-  report.newton_trust_radius *= s;
-  report.newton_reference_gradient *= s;
-}
-
 void print_progress(const DeformArguments& args, ArapMethod method, const MeshData& mesh,
                     const ConstraintSet& constraints, const ArapReport& report) {
   const Eigen::Index soft = constraints.soft.size();
@@ -257,20 +140,36 @@ nlohmann::json intrinsic_json(const ArapIntrinsicSummary& intrinsic, const std::
           {"inserted_points", intrinsic.inserted_points}};
 }
 
+// The job's solve with the library's errors told in the tool's words (explain_solver_error).
+DeformResult solve_explained(const DeformArguments& args, const DeformScene& scene,
+                             const ArapOptions& options) {
+  StaticForces forces;
+  forces.present = args.forces.any();
+  forces.gravity = args.forces.gravity_vector();
+  forces.density = args.forces.density;
+  const ErrorContext context{args.mesh, args.repair};
+  try {
+    return solve_deform(scene, options, args.solve, forces);
+  } catch (const SolverError& e) {
+    throw SolverError(explain_solver_error(e.what(), context));
+  } catch (const TopologyError& e) {
+    throw TopologyError(explain_solver_error(e.what(), context));
+  }
+}
+
 void run_deform(const DeformArguments& args) {
   check_arguments(args);
   const auto total_start = Clock::now();
   nlohmann::json j;
   j["input"] = args.mesh;
-  MeshData mesh;
-  ConstraintSet constraints;
-  Eigen::MatrixXd forces_in_file; // 0 x 0 without --forces
-  load_mesh_and_constraints(args, mesh, constraints, forces_in_file, j);
-  const MeshReport check = check_mesh(mesh.V, mesh.F);
-  require_usable(args, check);
+  const DeformScene scene = read_and_prepare(args);
+  if (args.repair) j["repair"] = scene.repairs;
+  const MeshData& mesh = scene.mesh;
+  const ConstraintSet& constraints = scene.constraints;
+  require_usable(args, scene.check);
   for (const auto& warning : constraints.warnings) std::cerr << "deform: warning: " << warning << "\n";
   if (!args.quiet) {
-    for (const auto& warning : check.warnings)
+    for (const auto& warning : scene.check.warnings)
       std::cerr << "deform: mesh warning: " << name_repair(warning, deform_repair_flag) << "\n";
   }
 
@@ -280,52 +179,15 @@ void run_deform(const DeformArguments& args) {
   options.method = parse_arap_method(args.method);
   options.pin_unconstrained_components = args.pin_unconstrained;
   options.intrinsic.refine_boundary = args.boundary == "refine";
-  // The solve runs on the mesh divided by a power of two s that brings its coordinates near 1 (exact), so
-  // that squared lengths neither overflow nor underflow at 1e+-80 and beyond; results return in file units.
-  const double s = normalizing_scale(mesh.V);
-  const Eigen::MatrixXd V = mesh.V / s;
-  const Eigen::MatrixXd targets = constraints.targets / s;
-  // A mesh in the plane z = 0 whose targets stay in it deforms in its plane, with rotations about z (a cell
-  // squeezed through a reflection keeps a 2x2 rotation); targets off the plane make it a 3D deformation.
-  // Soft weights need no scaling: E_ARAP and W |x - t|^2 both scale with length^2.
-  const ArapSoftConstraints soft = soft_constraints_of(constraints.soft);
-  const Eigen::MatrixXd soft_targets = soft_targets_of(constraints.soft) / s;
-  const Eigen::MatrixXd forces =
-      statics_forces(args, mesh, constraints.fixed, soft, V, options.method, s, forces_in_file);
-  options.planar = (V.col(2).array() == 0.0).all() && (targets.col(2).array() == 0.0).all() &&
-                   (soft_targets.rows() == 0 || (soft_targets.col(2).array() == 0.0).all()) &&
-                   (forces.rows() == 0 || (forces.col(2).array() == 0.0).all());
-  const ErrorContext context{args.mesh, args.repair};
-  const auto precompute_start = Clock::now();
-  ArapData arap = precompute_explained(V, mesh.F, constraints.fixed, soft, options, context);
-  const double precompute_ms = ms_since(precompute_start);
-
-  Eigen::MatrixXd U = V;
-  ArapSolveOptions solve_options = args.solve;
-  scale_length_options(solve_options, s);
-  solve_options.forces = forces;
-  ArapReport report;
-  try {
-    report = arap_solve(arap, targets, soft_targets, U, solve_options);
-  } catch (const HardPointConflict& e) {
-    throw InputError(hard_point_conflict_message(e, constraints.soft));
-  } catch (const SolverError& e) {
-    if (std::string(e.what()).find("initial guess is not finite") != std::string::npos)
-      throw SolverError(
-          "the ARAP energy of the constraints overflows: " + farthest_target(constraints, mesh.V) +
-          ", against a mesh of bounding-box diagonal " + std::to_string(check.bbox_diagonal) +
-          "; give targets at a distance comparable to the mesh");
-    throw SolverError(explain_solver_error(e.what(), context));
-  }
-  const double max_displacement = (U - V).rowwise().norm().maxCoeff() * s; // no overflow at 1e300
-  U *= s;
-  to_file_units(report, s);
+  const DeformResult result = solve_explained(args, scene, options);
+  const ArapReport& report = result.report;
+  const ArapData& arap = result.data;
   if (!args.quiet) print_progress(args, options.method, mesh, constraints, report);
-  if (options.method == ArapMethod::Arap) warn_about_original_energy(report, check);
-  write_mesh(args.out, U, mesh.F);
+  if (options.method == ArapMethod::Arap) warn_about_original_energy(report, scene.check);
+  write_mesh(args.out, result.U, mesh.F);
 
   j["method"] = arap_method_name(options.method);
-  j["planar"] = options.planar;
+  j["planar"] = result.planar;
   j["vertices"] = mesh.V.rows();
   j["faces"] = mesh.F.rows();
   j["constrained"] = constraints.fixed.size();
@@ -335,17 +197,17 @@ void run_deform(const DeformArguments& args) {
   add_arap_report_json(report, j);
   // The energy of the result = arap_energy + penalty, penalty = sum_k W_k |c_k^T U - t_k|^2 (file units).
   j["energy"] = report.arap_energy + report.penalty;
-  j["soft"] = soft.size();
+  j["soft"] = constraints.soft.size();
   if (args.forces.any()) add_statics_keys(args.forces, report, j);
   j["window"] = args.solve.window; // as before "options" held it
-  j["precompute_ms"] = precompute_ms;
+  j["precompute_ms"] = result.precompute_ms;
   j["intrinsic_ms"] = arap.timings.intrinsic_ms;
   j["assembly_ms"] = arap.timings.assembly_ms;
   j["factor_ms"] = arap.timings.factor_ms;
   j["analyze_ms"] = arap.timings.analyze_ms; // overlapped with intrinsic + assembly when threads > 1
   j["factorization"] = factorization_name(arap_factorization(arap));
-  j["max_displacement"] = max_displacement;
-  j["bbox_diagonal"] = check.bbox_diagonal;
+  j["max_displacement"] = result.max_displacement;
+  j["bbox_diagonal"] = scene.check.bbox_diagonal;
   j["output"] = args.out;
   j["total_ms"] = ms_since(total_start);
   if (options.method == ArapMethod::Iarap) j["intrinsic"] = intrinsic_json(arap.intrinsic, args.boundary);

@@ -1,0 +1,87 @@
+// The deformation pipeline as a library call, so that every front-end (`iarap deform`, batch jobs through
+// it, Python, the server) gives the same numbers for the same input:
+//
+//   DeformScene scene = prepare_deform(mesh, constraints_or_scenario, {.repair = true});  // repair, remap
+//   ... a front-end reports scene.check's errors and warnings in its own words ...
+//   DeformResult result = solve_deform(scene, arap_options, solve_options, forces);       // normalize, solve
+//
+// prepare_deform repairs the mesh on request (repair_mesh with zero-area faces removed) and carries the
+// constraints over: a scenario is resolved on the repaired mesh (its regions cannot select a vertex the
+// repair drops), a constraints set is remapped (remap_constraints), the copies of a constrained vertex the
+// repair split are constrained too, and per-vertex forces are carried over (added where vertices weld).
+// solve_deform divides the mesh by a power of two that brings its coordinates near 1 (exact: squared
+// lengths neither overflow nor underflow at 1e+-80), decides the planar mode (a mesh and targets in z = 0),
+// precomputes, solves and returns positions and report in the input's units.
+#pragma once
+#include "iarap/io/read_mesh.h"
+#include "iarap/mesh/validate.h"
+#include "iarap/scene/constraint_set.h"
+#include "iarap/scene/scenario.h"
+#include "iarap/solver/arap.h"
+
+#include <Eigen/Core>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace iarap {
+
+// Where the constraints come from: a scenario (resolved on the mesh as prepared) or a constraints set.
+struct DeformConstraints {
+  std::optional<Scenario> scenario;
+  ConstraintSet set; // used when there is no scenario
+};
+
+// The statics' external forces (deform --gravity / --forces / --density): the minimum of
+// E_ARAP + P - f . (U - V) with f_i = m_i g + the scene's per-vertex forces, m the lumped masses of the
+// method (arap_vertex_masses).
+struct StaticForces {
+  Eigen::Vector3d gravity = Eigen::Vector3d::Zero(); // mesh units / time^2
+  double density = 1.0;                              // mass = density x area
+  bool present = false; // false: the plain deformation (the scene's per-vertex forces are ignored)
+};
+
+struct DeformPrepareOptions {
+  bool repair = false;
+};
+
+// The mesh and constraints a solve runs on, and what the checks found.
+struct DeformScene {
+  MeshData mesh;                    // repaired when asked
+  ConstraintSet constraints;        // resolved or remapped onto mesh
+  Eigen::MatrixXd forces;           // #V x 3 per-vertex forces on mesh (0 x 0: none)
+  std::vector<std::string> repairs; // RepairResult::actions (empty without repair)
+  MeshReport check;                 // check_mesh(mesh): a front-end refuses it when !check.usable()
+};
+
+// Repairs on request and carries the constraints and forces over. forces: #V x 3 per-vertex forces of the
+// input mesh, or 0 x 0. Throws what resolve_scenario, remap_constraints and repair_mesh throw.
+DeformScene prepare_deform(MeshData mesh, const DeformConstraints& constraints,
+                           const DeformPrepareOptions& options = {},
+                           Eigen::MatrixXd forces = Eigen::MatrixXd());
+
+struct DeformResult {
+  Eigen::MatrixXd U;           // #V x 3 positions in the input's units
+  ArapReport report;           // in the input's units (energies length^2, gradients and trust radius length)
+  ArapData data;               // the precomputation: timings, pinned vertices, intrinsic summary, factor
+  bool planar = false;         // deformed in the plane z = 0 (ArapOptions::planar)
+  double precompute_ms = 0;    // arap_precompute's wall time
+  double max_displacement = 0; // max_i |U_i - V_i|, input units
+};
+
+// Solves scene with `options` (method, boundary refinement, pin_unconstrained_components; planar is set
+// here) and `solve` (lengths in mesh units: scale_length_options is applied here). With forces.present every
+// connected component must hold a fixed vertex, a soft vertex or a point on a face (InputError otherwise:
+// a free body under a force has no equilibrium). Throws what arap_precompute and arap_solve throw; a
+// HardPointConflict comes back as InputError naming both lines (hard_point_conflict_message), and an
+// energy that overflows as SolverError naming the farthest target.
+DeformResult solve_deform(const DeformScene& scene, ArapOptions options, ArapSolveOptions solve,
+                          const StaticForces& forces = {});
+
+// Throws InputError when a connected component of (#V, F) has no fixed vertex, no soft vertex and no soft
+// or hard point on one of its faces: under an external force a free body has no equilibrium.
+void require_held_components(const Eigen::MatrixXi& F, int num_vertices, const Eigen::VectorXi& fixed,
+                             const Eigen::VectorXi& soft_vertices, const Eigen::VectorXi& soft_faces);
+
+} // namespace iarap

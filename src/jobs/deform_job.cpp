@@ -1,0 +1,204 @@
+#include "iarap/jobs/deform_job.h"
+
+#include "iarap/core/errors.h"
+#include "iarap/core/stopwatch.h"
+#include "iarap/dynamics/simulation.h"
+#include "iarap/jobs/soft_constraints.h"
+#include "iarap/mesh/connected_components.h"
+#include "iarap/mesh/normalize_scale.h"
+#include "iarap/mesh/repair.h"
+#include "iarap/scene/remap_constraints.h"
+#include "iarap/scene/remap_scenario.h"
+#include "iarap/solver/solve_option_fields.h"
+
+#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace iarap {
+namespace {
+
+// A constrained vertex that the repair split (one copy per fan or sheet) gets every copy constrained to its
+// target: a copy left free would leave its sheet hanging. Copies a geometric region already selected (they
+// sit at the vertex's position) stay as they are.
+void constrain_split_copies(ConstraintSet& constraints, const RepairResult& repaired) {
+  const Eigen::Index n = repaired.V.rows(), count = constraints.fixed.size();
+  std::vector<Eigen::Index> row_of(static_cast<std::size_t>(n), -1);
+  for (Eigen::Index k = 0; k < count; ++k) row_of[static_cast<std::size_t>(constraints.fixed(k))] = k;
+  std::vector<std::pair<int, Eigen::Index>> added; // (copy, row of its constrained first copy)
+  for (Eigen::Index v = 0; v < n; ++v) {
+    const int first = repaired.old_to_new(repaired.new_to_old(v));
+    if (first != v && row_of[static_cast<std::size_t>(v)] < 0 && row_of[static_cast<std::size_t>(first)] >= 0)
+      added.emplace_back(static_cast<int>(v), row_of[static_cast<std::size_t>(first)]);
+  }
+  if (added.empty()) return;
+  const auto extra = static_cast<Eigen::Index>(added.size());
+  constraints.fixed.conservativeResize(count + extra);
+  constraints.targets.conservativeResize(count + extra, 3);
+  const bool named = static_cast<Eigen::Index>(constraints.origins.size()) == count;
+  for (Eigen::Index i = 0; i < extra; ++i) {
+    const auto& [copy, row] = added[static_cast<std::size_t>(i)];
+    constraints.fixed(count + i) = copy;
+    constraints.targets.row(count + i) = constraints.targets.row(row);
+    if (named) constraints.origins.push_back(constraints.origins[static_cast<std::size_t>(row)]);
+  }
+}
+
+// The constraint whose target lies farthest from its rest position, named by where it came from: when
+// the energy overflows, this is the target to fix.
+std::string farthest_target(const ConstraintSet& constraints, const Eigen::MatrixXd& V) {
+  Eigen::Index worst = 0;
+  double distance = -1;
+  for (Eigen::Index k = 0; k < constraints.fixed.size(); ++k) {
+    const double d = (constraints.targets.row(k) - V.row(constraints.fixed(k))).stableNorm();
+    if (!(d <= distance)) {
+      worst = k;
+      distance = d;
+    }
+  }
+  std::ostringstream text;
+  text << "the target of vertex " << constraints.fixed(worst) << " lies " << distance
+       << " from its rest position";
+  if (static_cast<Eigen::Index>(constraints.origins.size()) == constraints.fixed.size())
+    text << " (" << constraints.origins[static_cast<std::size_t>(worst)] << ")";
+  return text.str();
+}
+
+// The forces of a solve on the mesh divided by s (V_scaled = V / s, a power of two): in those units a
+// mass is density s^2 x area (the file's mass) and a force f / s, so that the minimizer is the file's
+// divided by s and energies are the file's / s^2. m_i g / s + per-vertex forces / s; 0 x 0 without forces.
+Eigen::MatrixXd scaled_forces(const DeformScene& scene, const StaticForces& forces,
+                              const ArapSoftConstraints& soft, const Eigen::MatrixXd& V_scaled,
+                              const ArapOptions& options, double s) {
+  if (!forces.present) return Eigen::MatrixXd();
+  if (!options.pin_unconstrained_components) {
+    Eigen::VectorXi faces(soft.faces.size() + soft.hard_faces.size()); // a hard point holds its body too
+    faces << soft.faces, soft.hard_faces;
+    require_held_components(scene.mesh.F, static_cast<int>(scene.mesh.V.rows()), scene.constraints.fixed,
+                            soft.vertices, faces);
+  }
+  Eigen::MatrixXd f = Eigen::MatrixXd::Zero(V_scaled.rows(), 3);
+  if (forces.gravity != Eigen::Vector3d::Zero())
+    f = gravity_forces(arap_vertex_masses(V_scaled, scene.mesh.F, options.method, forces.density * s * s),
+                       forces.gravity / s);
+  if (scene.forces.rows() > 0) f += scene.forces / s;
+  return f;
+}
+
+// The report of a solve on the mesh divided by s, in the input's units: energies scale with length^2,
+// gradients (L U - rhs) and Newton's trust radius (the L_ff norm of a displacement) with length.
+void to_input_units(ArapReport& report, double s) {
+  const double energy_unit = s * s;
+  report.initial_energy *= energy_unit;
+  for (double& e : report.energies) e *= energy_unit;
+  report.penalty *= energy_unit;
+  report.arap_energy *= energy_unit;
+  report.potential *= energy_unit;
+  report.initial_gradient_norm *= s;
+  for (double& g : report.gradient_norms) g *= s;
+  report.newton_trust_radius *= s;
+  report.newton_reference_gradient *= s;
+}
+
+} // namespace
+
+DeformScene prepare_deform(MeshData mesh, const DeformConstraints& constraints,
+                           const DeformPrepareOptions& options, Eigen::MatrixXd forces) {
+  DeformScene scene;
+  if (!options.repair) {
+    scene.constraints =
+        constraints.scenario ? resolve_scenario(*constraints.scenario, mesh.V) : constraints.set;
+    scene.forces = std::move(forces);
+  } else {
+    RepairOptions repair_options;
+    repair_options.remove_zero_area = true;
+    RepairResult repaired = repair_mesh(mesh.V, mesh.F, repair_options);
+    scene.constraints =
+        constraints.scenario
+            ? resolve_scenario(remap_scenario(*constraints.scenario, repaired.old_to_new), repaired.V)
+            : remap_constraints(constraints.set, repaired.old_to_new);
+    constrain_split_copies(scene.constraints, repaired);
+    if (forces.rows() > 0) {
+      scene.forces = Eigen::MatrixXd::Zero(repaired.V.rows(), 3);
+      for (Eigen::Index v = 0; v < forces.rows(); ++v)
+        if (repaired.old_to_new(v) >= 0) scene.forces.row(repaired.old_to_new(v)) += forces.row(v);
+    }
+    mesh.V = std::move(repaired.V);
+    mesh.F = std::move(repaired.F);
+    scene.repairs = std::move(repaired.actions);
+  }
+  scene.mesh = std::move(mesh);
+  scene.check = check_mesh(scene.mesh.V, scene.mesh.F);
+  return scene;
+}
+
+DeformResult solve_deform(const DeformScene& scene, ArapOptions options, ArapSolveOptions solve,
+                          const StaticForces& forces) {
+  const MeshData& mesh = scene.mesh;
+  const ConstraintSet& constraints = scene.constraints;
+  const double s = normalizing_scale(mesh.V);
+  const Eigen::MatrixXd V = mesh.V / s;
+  const Eigen::MatrixXd targets = constraints.targets / s;
+  // Soft weights need no scaling: E_ARAP and W |x - t|^2 both scale with length^2.
+  const ArapSoftConstraints soft = soft_constraints_of(constraints.soft);
+  const Eigen::MatrixXd soft_targets = soft_targets_of(constraints.soft) / s;
+  solve.forces = scaled_forces(scene, forces, soft, V, options, s);
+  // A mesh in the plane z = 0 whose targets stay in it deforms in its plane, with rotations about z (a cell
+  // squeezed through a reflection keeps a 2x2 rotation); targets off the plane make it a 3D deformation.
+  options.planar = (V.col(2).array() == 0.0).all() && (targets.col(2).array() == 0.0).all() &&
+                   (soft_targets.rows() == 0 || (soft_targets.col(2).array() == 0.0).all()) &&
+                   (solve.forces.rows() == 0 || (solve.forces.col(2).array() == 0.0).all());
+  DeformResult result;
+  result.planar = options.planar;
+  const auto precompute_start = Clock::now();
+  result.data = arap_precompute(V, mesh.F, constraints.fixed, soft, options);
+  result.precompute_ms = ms_since(precompute_start);
+
+  result.U = V;
+  scale_length_options(solve, s);
+  try {
+    result.report = arap_solve(result.data, targets, soft_targets, result.U, solve);
+  } catch (const HardPointConflict& e) {
+    throw InputError(hard_point_conflict_message(e, constraints.soft));
+  } catch (const SolverError& e) {
+    if (std::string(e.what()).find("initial guess is not finite") == std::string::npos) throw;
+    throw SolverError(
+        "the ARAP energy of the constraints overflows: " + farthest_target(constraints, mesh.V) +
+        ", against a mesh of bounding-box diagonal " + std::to_string(scene.check.bbox_diagonal) +
+        "; give targets at a distance comparable to the mesh");
+  }
+  result.max_displacement = (result.U - V).rowwise().norm().maxCoeff() * s; // no overflow at 1e300
+  result.U *= s;
+  to_input_units(result.report, s);
+  return result;
+}
+
+void require_held_components(const Eigen::MatrixXi& F, int num_vertices, const Eigen::VectorXi& fixed,
+                             const Eigen::VectorXi& soft_vertices, const Eigen::VectorXi& soft_faces) {
+  int count = 0;
+  const Eigen::VectorXi component = vertex_components(F, num_vertices, &count);
+  std::vector<char> held(static_cast<size_t>(count), 0);
+  for (Eigen::Index k = 0; k < fixed.size(); ++k) held[static_cast<size_t>(component(fixed(k)))] = 1;
+  for (Eigen::Index k = 0; k < soft_vertices.size(); ++k)
+    held[static_cast<size_t>(component(soft_vertices(k)))] = 1;
+  for (Eigen::Index k = 0; k < soft_faces.size(); ++k)
+    held[static_cast<size_t>(component(F(soft_faces(k), 0)))] = 1;
+  std::vector<int> size(static_cast<size_t>(count), 0), first(static_cast<size_t>(count), -1);
+  for (int v = 0; v < num_vertices; ++v) {
+    const auto c = static_cast<size_t>(component(v));
+    if (first[c] < 0) first[c] = v;
+    ++size[c];
+  }
+  for (int c = 0; c < count; ++c) {
+    const auto k = static_cast<size_t>(c);
+    if (held[k] || size[k] < 2) continue; // a vertex used by no face carries no force's work
+    throw InputError("connected component " + std::to_string(c) + " (" + std::to_string(size[k]) +
+                     " vertices, e.g. vertex " + std::to_string(first[k]) +
+                     ") has no constrained vertex: under gravity or external forces a free body has no "
+                     "static equilibrium; fix a vertex of it (or simulate its motion: `iarap simulate`, "
+                     "iarap.Simulation)");
+  }
+}
+
+} // namespace iarap

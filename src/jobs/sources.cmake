@@ -1,0 +1,2 @@
+# Sources of the jobs module (the pipelines every front-end calls), relative to src/.
+list(APPEND IARAP_SOURCES jobs/deform_job.cpp)
