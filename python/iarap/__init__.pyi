@@ -134,6 +134,26 @@ def parameterize(
     time_budget_ms: float = 0.0,
     newton_trust_radius: float = 0.0,
 ) -> tuple[_FloatArray, dict[str, Any]]: ...
+def deform_file(
+    mesh: _StrPath,
+    *,
+    scenario: _StrPath | None = None,
+    constraints: _StrPath | None = None,
+    method: str = "iarap",
+    refine_boundary: bool = True,
+    repair: bool = False,
+    pin_unconstrained_components: bool = False,
+    gravity: npt.ArrayLike | None = None,
+    density: float = 1.0,
+    forces: _StrPath | None = None,
+    iterations: int = 50,
+    tolerance: float = 1e-06,
+    accelerator: str = "newton",
+    window: int = 8,
+    gradient_tolerance: float = 0.0,
+    time_budget_ms: float = 0.0,
+    newton_trust_radius: float = 0.0,
+) -> tuple[_FloatArray, _IndexArray, dict[str, Any]]: ...
 def set_thread_count(n: int) -> None: ...
 def thread_count() -> int: ...
 

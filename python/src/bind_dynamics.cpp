@@ -30,14 +30,6 @@ private:
 };
 
 // Three finite numbers (a sequence or an array of 3) as a vector; InputError naming `name` otherwise.
-Eigen::Vector3d to_vector3(const py::object& value, const std::string& name) {
-  const py::object flat = py::module_::import("numpy").attr("ravel")(value);
-  const auto count = py::len(flat);
-  if (count != 3) throw InputError(name + ": want 3 numbers (x, y, z), got " + std::to_string(count));
-  const Eigen::MatrixXd g = to_points(flat.attr("reshape")(1, 3), name, true, 1, "1");
-  return g.row(0).transpose();
-}
-
 // Simulation's parameters: the mesh and fixed vertices, the dynamics, then each step's solve options
 // (keyword-only, defaults SimulationOptions::default_step_options()).
 KeywordSignature simulation_signature() {

@@ -20,5 +20,7 @@ void bind_intrinsic(py::module_& m);
 void bind_param(py::module_& m);
 // Simulation (implicit-Euler ARAP dynamics) and vertex_masses.
 void bind_dynamics(py::module_& m);
+// deform_file(mesh, scenario=..., constraints=...): the job of `iarap deform`.
+void bind_deform_job(py::module_& m);
 
 } // namespace iarap::python

@@ -220,4 +220,12 @@ py::object to_csr(const Eigen::SparseMatrix<double>& A) {
                     py::arg("shape") = py::make_tuple(R.rows(), R.cols()));
 }
 
+Eigen::Vector3d to_vector3(const py::object& value, const std::string& name) {
+  const py::object flat = py::module_::import("numpy").attr("ravel")(value);
+  const auto count = py::len(flat);
+  if (count != 3) throw InputError(name + ": want 3 numbers (x, y, z), got " + std::to_string(count));
+  const Eigen::MatrixXd g = to_points(flat.attr("reshape")(1, 3), name, true, 1, "1");
+  return g.row(0).transpose();
+}
+
 } // namespace iarap::python

@@ -36,6 +36,9 @@ Eigen::VectorXi to_indices(const py::handle& object, const std::string& name, Ei
 std::string to_path(const py::handle& path);
 
 // C-ordered numpy arrays that own a copy of the data (no view into C++ objects that may die first).
+// Three finite numbers (any array-like of 3) as a vector; InputError naming `name` otherwise.
+Eigen::Vector3d to_vector3(const py::object& value, const std::string& name);
+
 py::array_t<double> to_numpy(const Eigen::MatrixXd& M);
 py::array_t<double> to_numpy(const Eigen::VectorXd& v);
 py::array_t<double> to_numpy(const std::vector<double>& v);

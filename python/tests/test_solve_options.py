@@ -44,6 +44,7 @@ def test_the_schema_names_every_option_once():
     (iarap.ARAP.solve, {}),
     (iarap.Simulation.__init__, {"iterations": 100, "tolerance": 1e-10}),  # default_step_options()
     (iarap.parameterize, {"iterations": 100}),  # default_param_solve_options()
+    (iarap.deform_file, {}),
 ])
 def test_python_takes_every_option_with_its_default_and_doc(function, defaults):
     keywords = signature(function)
