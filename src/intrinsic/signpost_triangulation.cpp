@@ -429,6 +429,20 @@ InputTriangulation input_triangulation(const SignpostTriangulation& unflipped) {
   return input;
 }
 
+namespace {
+
+// edge_halfedge of the edge of slot s: of an edge's two halfedges, the one with the lower tail vertex
+// (E(e,0) <= E(e,1)).
+void refresh_edge_halfedge(SignpostTriangulation& tri, int s) {
+  const int x = tri.twin[static_cast<size_t>(s)];
+  const int edge_id = tri.edge[static_cast<size_t>(s)];
+  int best = s;
+  if (x >= 0 && (tri.tail(x) < tri.tail(s) || (tri.tail(x) == tri.tail(s) && x < s))) best = x;
+  tri.edge_halfedge[static_cast<size_t>(edge_id)] = best;
+}
+
+} // namespace
+
 bool flip_edge(SignpostTriangulation& tri, int e) {
   auto& twin = tri.twin;
   const int h = tri.edge_halfedge[static_cast<size_t>(e)];
@@ -491,14 +505,7 @@ bool flip_edge(SignpostTriangulation& tri, int e) {
   tri.edge_halfedge[static_cast<size_t>(e)] = c <= d ? n_cd : n_dc;
   tri.edge_vertex[static_cast<size_t>(2 * e)] = std::min(c, d);
   tri.edge_vertex[static_cast<size_t>(2 * e + 1)] = std::max(c, d);
-  for (int s : {n_ca, n_ad, n_db, n_bc}) {
-    // edge_halfedge: of an edge's two halfedges, the one with the lower tail vertex (E(e,0) <= E(e,1)).
-    const int x = twin[static_cast<size_t>(s)];
-    const int edge_id = tri.edge[static_cast<size_t>(s)];
-    int best = s;
-    if (x >= 0 && (tri.tail(x) < tri.tail(s) || (tri.tail(x) == tri.tail(s) && x < s))) best = x;
-    tri.edge_halfedge[static_cast<size_t>(edge_id)] = best;
-  }
+  for (int s : {n_ca, n_ad, n_db, n_bc}) refresh_edge_halfedge(tri, s);
   // Signposts of the new diagonal: rotate from the neighbouring halfedge by the new corner angle.
   auto wrap = [&](int v, double angle) {
     const double theta = tri.vertex_angle_sum[static_cast<size_t>(v)];
