@@ -55,7 +55,7 @@ HardPointProjection::HardPointProjection(std::vector<ConstraintRow> rows, Eigen:
       if (row.column[j] >= 0) Ct(row.column[j], i) += row.c[j];
   }
   Y_ = solve(Ct);
-  S_.compute(independent_times(Y_));
+  S_.emplace(independent_times(Y_));
 }
 
 Eigen::MatrixXd HardPointProjection::independent_times(const Eigen::MatrixXd& x) const {
@@ -73,17 +73,17 @@ void HardPointProjection::correct(Eigen::MatrixXd& x, const Eigen::MatrixXd& d) 
   Eigen::MatrixXd r = independent_times(x);
   for (size_t i = 0; i < independent_.size(); ++i)
     r.row(static_cast<Eigen::Index>(i)) -= d.row(independent_[i]);
-  x.noalias() -= Y_ * S_.solve(r);
+  x.noalias() -= Y_ * S_->solve(r);
 }
 
 void HardPointProjection::project(Eigen::MatrixXd& x) const {
   if (independent_.empty()) return;
-  x.noalias() -= Y_ * S_.solve(independent_times(x));
+  x.noalias() -= Y_ * S_->solve(independent_times(x));
 }
 
 void HardPointProjection::project_gradient(Eigen::MatrixXd& g) const {
   if (independent_.empty()) return;
-  const Eigen::MatrixXd mu = S_.solve(Y_.transpose() * g); // |I| x 3
+  const Eigen::MatrixXd mu = S_->solve(Y_.transpose() * g); // |I| x 3
   for (size_t i = 0; i < independent_.size(); ++i) {
     const ConstraintRow& row = rows_[static_cast<size_t>(independent_[i])];
     for (int j = 0; j < 3; ++j)

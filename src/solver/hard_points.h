@@ -59,7 +59,9 @@ private:
   std::vector<Eigen::Index> independent_;                           // I, increasing
   std::vector<std::pair<Eigen::Index, Eigen::VectorXd>> dependent_; // row and its alpha over I
   Eigen::MatrixXd Y_;                                               // n x |I|
-  Eigen::LDLT<Eigen::MatrixXd> S_;                                  // C_I Y (LDLT: A may be indefinite)
+  // C_I Y (LDLT: A may be indefinite); none without independent rows. Optional, not an empty LDLT: Eigen's
+  // leaves its status unset until compute(), and copying it would read that (UBSan: an invalid enum).
+  std::optional<Eigen::LDLT<Eigen::MatrixXd>> S_;
 };
 
 } // namespace iarap::detail
