@@ -231,6 +231,26 @@ try {
   assert.ok(maxDistance(rowsOf(replayed, handle), rowsOf(dragged, handle)) <= displayTolerance);
   await page.fill('#iterations', '5');
 
+  // 4b. A weighted handle (soft, weight 10) loads and drags: the gizmo sits on its vertices and moves
+  // their targets; the fixed vertices stay. Then the saved scenario comes back for the steps below.
+  const weightedPath = path.join(userDataDir, 'weighted.json');
+  fs.writeFileSync(weightedPath, JSON.stringify({ fixed: { indices: fixed }, handles: [{ name: 'top', vertices: { indices: handle }, translate: [0, 0, 0], weight: 10 }] }));
+  await page.setInputFiles('#load-scenario', weightedPath);
+  await page.waitForFunction(() => document.getElementById('status').textContent.startsWith('loaded weighted'), null, { timeout: 30000 });
+  await settle();
+  assert.match(await page.textContent('#selection-info'), new RegExp(`^${fixed.length} fixed, 0 handle vertices, ${handle.length} soft`));
+  const softRest = await viewer('displayedPositions');
+  await dragGizmo(0, 96);
+  const softDragged = await viewer('displayedPositions');
+  const softMove = maxDistance(rowsOf(softDragged, handle), rowsOf(softRest, handle));
+  console.log(`weighted handle: largest move ${(softMove / height).toFixed(3)} x height after the drag`);
+  assert.ok(softMove > 0.05 * height, `the weighted handle moved only ${softMove}`);
+  assert.ok(maxDistance(rowsOf(softDragged, fixed), rowsOf(softRest, fixed)) <= displayTolerance);
+  assert.equal(await viewer('errors'), 0, await page.textContent('#banner-text'));
+  await page.setInputFiles('#load-scenario', scenarioPath);
+  await page.waitForFunction(() => document.getElementById('status').textContent.startsWith('loaded bunny'), null, { timeout: 30000 });
+  await settle();
+
   // 5. Side by side: all copies fit, selection and the gizmo work on the right copy, one colour scale.
   await page.uncheck('#show-intrinsic'); // three overlays cost software WebGL, and hide the energy colours
   await page.check('#side-by-side');
