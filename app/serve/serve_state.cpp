@@ -324,9 +324,13 @@ int ServeState::set_constraints(const Eigen::VectorXi& fixed, const Eigen::Vecto
   check_sets(fixed, handle, soft_.soft);
   use_sets(fixed, handle);
   new_generation();
+  // The dragged soft vertices are re-anchored where the shape put them, like the handle; the other soft
+  // points keep their targets (soft: the shape does not reach them exactly).
   for (MethodState& state : methods_) {
     state.anchor = gather_rows(state.U, constrained_);
-    state.soft_anchor = soft_points_at(soft_.soft, mesh_->F, state.U);
+    for (Eigen::Index k = 0; k < soft_.soft.vertices.size(); ++k)
+      if (soft_.dragged[static_cast<std::size_t>(k)])
+        state.soft_anchor.row(k) = state.U.row(soft_.soft.vertices[k]);
   }
   return record_revision();
 }

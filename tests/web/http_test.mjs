@@ -755,6 +755,13 @@ describe('soft constraints and statics, as `iarap deform`', () => {
     assert.ok(gap <= 1e-9 * diagonal, `drag and deform differ by ${gap}`);
     // Explicit handle targets cannot place the soft vertices: refused, naming the field.
     await expectError(postJson('/api/solve', { method: 'iarap', handle_targets: [] }), 400, /handle_targets: this session has \d+ weighted handle/);
+    // A new hard set re-anchors the dragged soft vertices where the drag left them: the identity keeps them
+    // there (released a little: they were short of their targets), it does not take them back.
+    const draggedAt = await (await fetch(`${base}/api/positions?method=iarap`)).arrayBuffer().then((b) => new Float32Array(b));
+    assert.equal((await postJson('/api/constraints', { fixed: loaded.fixed, handle: [] })).status, 200);
+    const { arrays } = decodeFrame(await (await postJson('/api/solve', { method: 'iarap', ...solveOptions })).arrayBuffer());
+    const back = Math.max(...handle.map((i) => Math.hypot(...[0, 1, 2].map((k) => arrays.positions[3 * i + k] - draggedAt[3 * i + k]))));
+    assert.ok(back < 0.01 * height, `re-anchored soft handle moved by ${back / height} x height`);
     // A hard set beside the soft one: a vertex cannot be both.
     await expectError(postJson('/api/constraints', { fixed, handle: [handle[1]] }), 400, /handle\[0\] = \d+ repeats a soft vertex of the loaded file \(rest\.json/);
   });
