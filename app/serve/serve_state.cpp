@@ -207,8 +207,13 @@ bool ServeState::stop_refinement() {
   frame.refined = true;
   frame.iterations = job.iterations_done;
   frame.tolerance = job.tolerance;
-  frame.energy = arap_energy(*state_of(job.method).data, state_of(job.method).U);
-  frame.positions = to_float_rows(state_of(job.method).U);
+  const MethodState& state = state_of(job.method);
+  // The energy the solves report: E_ARAP + P - f . (U - V), as the refinement's other frames.
+  frame.energy = arap_energy(*state.data, state.U);
+  if (state.data->soft.size() > 0) frame.energy += arap_penalty(*state.data, job.soft_targets, state.U);
+  if (job.options.forces.rows() > 0)
+    frame.energy -= (job.options.forces.array() * (state.U - mesh_->V).array()).sum();
+  frame.positions = to_float_rows(state.U);
   frames_.publish(std::move(frame));
   return true;
 }
