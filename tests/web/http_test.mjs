@@ -682,6 +682,11 @@ describe('soft constraints and statics, as `iarap deform`', () => {
     assert.equal(loaded.status, 200, await loaded.clone().text());
     const solved = await postJson('/api/solve', { method: 'iarap', ...solveOptions, ...fields });
     assert.equal(solved.status, 200, await solved.clone().text());
+    // The energy of the result is the total: E_ARAP + penalty + potential (negative: the forces do work).
+    const { header } = decodeFrame(await solved.arrayBuffer());
+    const total = header.arap_energy + header.penalty + header.potential;
+    assert.ok(Math.abs(header.energies.at(-1) - total) <= 1e-9 * Math.abs(total), JSON.stringify(header));
+    assert.ok(fields.gravity ? header.potential < 0 : header.potential === 0 && header.penalty > 0, JSON.stringify(header));
     const session = path.join(dir, 'session.obj');
     fs.writeFileSync(session, Buffer.from(await (await fetch(`${base}/api/download?method=iarap&format=obj`)).arrayBuffer()));
     fs.writeFileSync(path.join(dir, name), text);
