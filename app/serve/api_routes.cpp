@@ -20,6 +20,7 @@
 #include <cctype>
 #include <charconv>
 #include <chrono>
+#include <cmath>
 #include <fstream>
 #include <iostream>
 #include <limits>
@@ -133,6 +134,20 @@ ArapMethod method_param(const httplib::Request& req) {
   return parse_arap_method(req.has_param("method") ? req.get_param_value("method") : "iarap");
 }
 
+// The loaded file's soft constraints: the soft vertices with their weights and whether the drag moves them
+// (a weighted handle), and the count of points on faces (which keep their targets).
+json soft_json(const SoftSession& session) {
+  const SoftConstraintSet& soft = session.soft;
+  json dragged = json::array();
+  for (const char d : session.dragged) dragged.push_back(d != 0);
+  return {{"vertices", std::vector<int>(soft.vertices.data(), soft.vertices.data() + soft.vertices.size())},
+          {"weights", std::vector<double>(soft.vertex_weights.data(),
+                                          soft.vertex_weights.data() + soft.vertex_weights.size())},
+          {"dragged", dragged},
+          {"face_points", soft.faces.size()},
+          {"hard_face_points", soft.hard_faces.size()}};
+}
+
 json state_json(const ServeConfig& config, const ServeState& state) {
   json j;
   j["meshes"] = json::array();
@@ -152,6 +167,7 @@ json state_json(const ServeConfig& config, const ServeState& state) {
     const Eigen::VectorXi fixed = state.fixed(), handle = state.handle();
     j["fixed"] = std::vector<int>(fixed.data(), fixed.data() + fixed.size());
     j["handle"] = std::vector<int>(handle.data(), handle.data() + handle.size());
+    j["soft"] = soft_json(state.soft());
     j["revision"] = state.revision();
   }
   return j;
@@ -165,12 +181,32 @@ ArapAccelerator accelerator_field(const json& body, const char* field, ArapAccel
   }
 }
 
+// Statics (`iarap deform --gravity --density --forces`): gravity [gx, gy, gz], density > 0, forces 3 x #V
+// numbers (their count is checked against the mesh by ServeState::solve).
+void read_statics_fields(const json& body, SolveRequest& request) {
+  if (body.contains("gravity")) {
+    const std::vector<double> g = number_array_field(body, "gravity");
+    if (g.size() != 3)
+      throw HttpError(400, "gravity has " + std::to_string(g.size()) +
+                               " numbers; expected 3 (gx, gy, gz in mesh units / time^2)");
+    request.gravity = Eigen::Vector3d(g[0], g[1], g[2]);
+  }
+  if (body.contains("density")) {
+    const json& density = body.at("density");
+    if (!density.is_number() || !std::isfinite(density.get<double>()) || !(density.get<double>() > 0))
+      throw HttpError(400, "density must be a finite number > 0 (mass per unit area), got " +
+                               short_description(density));
+    request.density = density.get<double>();
+  }
+  if (body.contains("forces")) request.forces = number_array_field(body, "forces");
+}
+
 // The solve options (solve_option_json.h) and the server's own fields. The server holds a request to at
 // least one iteration and at most its limit (limits.max_iterations of /api/state), in the schema's words.
 SolveRequest parse_solve_request(const json& body, int max_iterations) {
   std::vector<std::string> known = solve_option_names();
-  known.insert(known.end(),
-               {"method", "transform", "handle_targets", "cell_energy", "refine", "refine_accelerator"});
+  known.insert(known.end(), {"method", "transform", "handle_targets", "cell_energy", "refine",
+                             "refine_accelerator", "gravity", "density", "forces"});
   require_known_fields(body, known);
   SolveRequest request;
   request.method = parse_arap_method(string_field(body, "method", "iarap"));
@@ -198,6 +234,7 @@ SolveRequest parse_solve_request(const json& body, int max_iterations) {
     request.handle_targets =
         Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>>(t.data(), rows, 3);
   }
+  read_statics_fields(body, request);
   return request;
 }
 
@@ -213,6 +250,9 @@ std::string solve_frame(const SolveRequest& request, const SolveResult& result) 
                        {"stop_reason", arap_stop_reason_name(report.stop_reason)},
                        {"initial_energy", report.initial_energy},
                        {"energies", report.energies},
+                       {"arap_energy", report.arap_energy},
+                       {"penalty", report.penalty},
+                       {"potential", report.potential},
                        {"gradient_norms", report.gradient_norms},
                        {"wait_ms", result.wait_ms},
                        {"refinement_preempted", result.refinement_preempted},
@@ -522,8 +562,8 @@ void add_view_routes(RouteTable& routes, const ServeConfig& config, ServeState& 
                                byte_limit_text(config.max_json_bytes));
     const std::string name = safe_label(req.has_param("name") ? req.get_param_value("name") : "scenario");
     const MeshSnapshot rest = state.snapshot(std::nullopt);
-    const LoadedSession loaded = load_session(req.body, name, rest.V);
-    state.load_constraints(loaded.fixed, loaded.handle, loaded.targets);
+    const LoadedSession loaded = load_session(req.body, name, rest.V, rest.F);
+    state.load_constraints(loaded.fixed, loaded.handle, loaded.targets, loaded.soft);
     json answer = state_json(config, state);
     answer["warnings"] = loaded.warnings;
     send_json(res, answer);

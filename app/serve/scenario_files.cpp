@@ -56,7 +56,7 @@ std::string constraints_text(const ConstraintTargets& targets, const std::string
   std::ostringstream out;
   out << "# " << description << "\n# index x y z (" << targets.fixed.size() << " fixed, then "
       << targets.handle.size() << " handle vertices)\n";
-  char line[128];
+  char line[256];
   for (Eigen::Index i = 0; i < targets.targets.rows(); ++i) {
     const int vertex = i < targets.fixed.size() ? targets.fixed[i] : targets.handle[i - targets.fixed.size()];
     // %.17g: every double written so that it reads back bit for bit.
@@ -64,15 +64,30 @@ std::string constraints_text(const ConstraintTargets& targets, const std::string
                   targets.targets(i, 1), targets.targets(i, 2));
     out << line;
   }
+  const SoftConstraintSet& soft = targets.soft;
+  if (soft.size() > 0)
+    out << "# soft: index x y z weight, then points on faces: b face b0 b1 b2 x y z [weight]\n";
+  for (Eigen::Index k = 0; k < soft.vertices.size(); ++k) {
+    const auto t = soft.vertex_targets.row(k);
+    std::snprintf(line, sizeof line, "%d %.17g %.17g %.17g %.17g\n", soft.vertices[k], t(0), t(1), t(2),
+                  soft.vertex_weights[k]);
+    out << line;
+  }
+  const auto face_point = [&](int face, const auto& b, const auto& t) {
+    std::snprintf(line, sizeof line, "b %d %.17g %.17g %.17g %.17g %.17g %.17g", face, b(0), b(1), b(2), t(0),
+                  t(1), t(2));
+    out << line;
+  };
+  for (Eigen::Index k = 0; k < soft.faces.size(); ++k) {
+    face_point(soft.faces[k], soft.barycentric.row(k), soft.face_targets.row(k));
+    std::snprintf(line, sizeof line, " %.17g\n", soft.face_weights[k]);
+    out << line;
+  }
+  for (Eigen::Index k = 0; k < soft.hard_faces.size(); ++k) {
+    face_point(soft.hard_faces[k], soft.hard_barycentric.row(k), soft.hard_targets.row(k));
+    out << "\n";
+  }
   return out.str();
-}
-
-// The viewer drags hard handles only: a weighted handle or soft line is refused rather than dropped.
-void refuse_soft(const ConstraintSet& set) {
-  if (set.soft.size() > 0)
-    throw InputError(
-        set.soft.origins.front() +
-        ": soft constraints (weights) are not supported by the viewer yet; `iarap deform` takes them");
 }
 
 } // namespace
@@ -80,11 +95,13 @@ void refuse_soft(const ConstraintSet& set) {
 SavedSession save_session(const ConstraintTargets& targets, const std::optional<Eigen::Matrix4d>& transform,
                           const std::string& description) {
   const Eigen::Matrix4d M = transform.value_or(Eigen::Matrix4d::Identity());
-  if (targets.anchored_at_rest && is_rigid(M)) return {scenario_text(targets, M, description), true};
+  if (targets.soft.size() == 0 && targets.anchored_at_rest && is_rigid(M))
+    return {scenario_text(targets, M, description), true};
   return {constraints_text(targets, description), false};
 }
 
-LoadedSession load_session(const std::string& text, const std::string& source, const Eigen::MatrixXd& V) {
+LoadedSession load_session(const std::string& text, const std::string& source, const Eigen::MatrixXd& V,
+                           const Eigen::MatrixXi& F) {
   const std::size_t first = text.find_first_not_of(" \t\r\n");
   LoadedSession out;
   if (first != std::string::npos && text[first] == '{') {
@@ -96,7 +113,8 @@ LoadedSession load_session(const std::string& text, const std::string& source, c
       throw InputError(source + ": malformed JSON: " + e.what());
     }
     const ConstraintSet set = resolve_scenario(scenario, V);
-    refuse_soft(set);
+    // A scenario's soft vertices are those of its weighted handles: the drag moves them all.
+    out.soft = {set.soft, std::vector<char>(static_cast<std::size_t>(set.soft.vertices.size()), 1)};
     // resolve_scenario lists the fixed vertices first; their count is that of the fixed part alone.
     Eigen::Index fixed_count = 0;
     if (!scenario.fixed.empty()) {
@@ -111,8 +129,11 @@ LoadedSession load_session(const std::string& text, const std::string& source, c
     return out;
   }
   std::istringstream in(text);
-  const ConstraintSet set = parse_constraints(in, source, static_cast<int>(V.rows()));
-  refuse_soft(set);
+  const ConstraintSet set =
+      parse_constraints(in, source, static_cast<int>(V.rows()), static_cast<int>(F.rows()));
+  out.soft.soft = set.soft;
+  for (Eigen::Index k = 0; k < set.soft.vertices.size(); ++k)
+    out.soft.dragged.push_back(set.soft.vertex_targets.row(k) != V.row(set.soft.vertices[k]) ? 1 : 0);
   std::vector<Eigen::Index> fixed_rows, handle_rows;
   for (Eigen::Index i = 0; i < set.fixed.size(); ++i)
     (set.targets.row(i) == V.row(set.fixed[i]) ? fixed_rows : handle_rows).push_back(i);

@@ -4,10 +4,13 @@
 // rotates), the session is exactly a scenario (README "Scenario files"): the fixed indices at rest and one
 // handle moved by `rotate` about the origin and `translate`. Otherwise (anchors re-taken on a deformed
 // shape, or explicit handle targets) it is written as a constraints file, one "index x y z" per vertex,
-// which holds any targets exactly.
+// which holds any targets exactly. Soft constraints (weights) and points on faces are written as the
+// constraints file's soft lines ("index x y z w", "b face b0 b1 b2 x y z [w]"), so a session with any is
+// always a constraints file.
 // Loading: a scenario (JSON, told by its first non-blank character '{') is resolved on the rest mesh, its
-// fixed vertices stay fixed and its handles become the handle; in a constraints file a vertex whose target
-// is its rest position is fixed and every other one is a handle vertex.
+// fixed vertices stay fixed, its hard handles become the handle and its weighted handles soft vertices the
+// drag moves; in a constraints file a vertex whose target is its rest position is fixed and every other one
+// is a handle vertex, likewise a soft vertex stays or is dragged, and points on faces keep their targets.
 #pragma once
 #include "serve_state.h"
 
@@ -28,11 +31,13 @@ SavedSession save_session(const ConstraintTargets& targets, const std::optional<
 struct LoadedSession {
   Eigen::VectorXi fixed, handle;
   Eigen::MatrixXd targets; // #fixed + #handle x 3, fixed rows first
+  SoftSession soft;
   std::vector<std::string> warnings;
 };
 
-// Parses text (a scenario or constraints file named source) for the rest mesh V (#V x 3). Throws
+// Parses text (a scenario or constraints file named source) for the rest mesh (V #V x 3, F #F x 3). Throws
 // InputError / HttpError 400 naming source and the line or JSON path at fault.
-LoadedSession load_session(const std::string& text, const std::string& source, const Eigen::MatrixXd& V);
+LoadedSession load_session(const std::string& text, const std::string& source, const Eigen::MatrixXd& V,
+                           const Eigen::MatrixXi& F);
 
 } // namespace iarap::serve

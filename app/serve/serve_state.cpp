@@ -1,6 +1,8 @@
 #include "serve_state.h"
 
 #include "../explain_error.h"
+#include "../external_force_options.h"
+#include "../soft_constraint_sets.h"
 #include "http_error.h"
 
 #include "iarap/core/errors.h"
@@ -45,6 +47,23 @@ void check_index_set(const Eigen::VectorXi& set, const char* name, int vertex_co
   }
 }
 
+// The positions on U of the soft points in the solver's order: soft vertices, soft points on faces, hard
+// points on faces (barycentric combinations of their face's corners).
+Eigen::MatrixXd soft_points_at(const SoftConstraintSet& soft, const Eigen::MatrixXi& F,
+                               const Eigen::MatrixXd& U) {
+  Eigen::MatrixXd P(soft.size(), 3);
+  Eigen::Index row = 0;
+  for (Eigen::Index k = 0; k < soft.vertices.size(); ++k) P.row(row++) = U.row(soft.vertices[k]);
+  const auto on_face = [&](int f, const auto& b) {
+    return (b(0) * U.row(F(f, 0)) + b(1) * U.row(F(f, 1)) + b(2) * U.row(F(f, 2))).eval();
+  };
+  for (Eigen::Index k = 0; k < soft.faces.size(); ++k)
+    P.row(row++) = on_face(soft.faces[k], soft.barycentric.row(k));
+  for (Eigen::Index k = 0; k < soft.hard_faces.size(); ++k)
+    P.row(row++) = on_face(soft.hard_faces[k], soft.hard_barycentric.row(k));
+  return P;
+}
+
 // (E_prev - E) / |E_prev| of the report's last iteration: what the energy tolerance compares.
 double last_relative_decrease(const ArapReport& report) {
   if (report.energies.empty()) return 0;
@@ -60,8 +79,9 @@ double last_energy(const ArapReport& report) {
 // One arap_solve call that publishes its progress after every iteration and stops when a cancel is
 // requested (the callback returns false). One call, not chunks: the accelerators keep their history, so the
 // page's result equals `iarap deform`'s with the same options bit for bit.
-ArapReport solve_with_progress(ArapData& data, const Eigen::MatrixXd& targets, Eigen::MatrixXd& U,
-                               const SolveRequest& request, SolveProgress& progress) {
+ArapReport solve_with_progress(ArapData& data, const Eigen::MatrixXd& targets,
+                               const Eigen::MatrixXd& soft_targets, const Eigen::MatrixXd& forces,
+                               Eigen::MatrixXd& U, const SolveRequest& request, SolveProgress& progress) {
   progress.cancel_requested = false;
   progress.method = static_cast<int>(request.method);
   progress.iteration = 0;
@@ -77,7 +97,9 @@ ArapReport solve_with_progress(ArapData& data, const Eigen::MatrixXd& targets, E
     progress.energy = last_energy(report);
     return !progress.cancel_requested.load();
   };
-  return arap_solve(data, targets, U, options);
+  options.forces = forces;
+  if (data.soft.size() == 0) return arap_solve(data, targets, U, options);
+  return arap_solve(data, targets, soft_targets, U, options);
 }
 
 } // namespace
@@ -152,7 +174,9 @@ void ServeState::refine_chunk() {
   frame.tolerance = job.tolerance;
   try {
     Eigen::MatrixXd U = state.U;
-    const ArapReport report = arap_solve(*state.data, job.targets, U, options);
+    const ArapReport report = state.data->soft.size() == 0
+                                  ? arap_solve(*state.data, job.targets, U, options)
+                                  : arap_solve(*state.data, job.targets, job.soft_targets, U, options);
     state.U = std::move(U);
     job.iterations_done += report.iterations;
     job.options.max_iterations -= report.iterations;
@@ -183,8 +207,13 @@ bool ServeState::stop_refinement() {
   frame.refined = true;
   frame.iterations = job.iterations_done;
   frame.tolerance = job.tolerance;
-  frame.energy = arap_energy(*state_of(job.method).data, state_of(job.method).U);
-  frame.positions = to_float_rows(state_of(job.method).U);
+  const MethodState& state = state_of(job.method);
+  // The energy the solves report: E_ARAP + P - f . (U - V), as the refinement's other frames.
+  frame.energy = arap_energy(*state.data, state.U);
+  if (state.data->soft.size() > 0) frame.energy += arap_penalty(*state.data, job.soft_targets, state.U);
+  if (job.options.forces.rows() > 0)
+    frame.energy -= (job.options.forces.array() * (state.U - mesh_->V).array()).sum();
+  frame.positions = to_float_rows(state.U);
   frames_.publish(std::move(frame));
   return true;
 }
@@ -207,7 +236,10 @@ void ServeState::load_mesh(const std::string& name, MeshData mesh) {
     state.data.reset();
     state.U = mesh.V;
     state.anchor.resize(0, 3);
+    state.soft_anchor.resize(0, 3);
   }
+  soft_ = SoftSession{};
+  ++soft_version_;
   fixed_.resize(0);
   handle_.resize(0);
   constrained_.resize(0);
@@ -244,6 +276,12 @@ Eigen::VectorXi ServeState::handle() const {
   return handle_;
 }
 
+SoftSession ServeState::soft() const {
+  const SessionLock lock(*this);
+  require_mesh();
+  return soft_;
+}
+
 // ArapMethod counts 0, 1, 2 in the order of all_methods.
 ServeState::MethodState& ServeState::state_of(ArapMethod method) {
   return methods_[static_cast<std::size_t>(method)];
@@ -253,9 +291,16 @@ const ServeState::MethodState& ServeState::state_of(ArapMethod method) const {
   return methods_[static_cast<std::size_t>(method)];
 }
 
-void ServeState::check_sets(const Eigen::VectorXi& fixed, const Eigen::VectorXi& handle) const {
+void ServeState::check_sets(const Eigen::VectorXi& fixed, const Eigen::VectorXi& handle,
+                            const SoftConstraintSet& soft) const {
   const int vertex_count = static_cast<int>(mesh_->V.rows());
   std::unordered_map<int, std::string> seen;
+  for (Eigen::Index k = 0; k < soft.vertices.size(); ++k) {
+    const auto at = static_cast<std::size_t>(k);
+    seen.emplace(soft.vertices[k],
+                 "a soft vertex of the loaded file" +
+                     (at < soft.origins.size() ? " (" + soft.origins[at] + ")" : std::string()));
+  }
   check_index_set(fixed, "fixed", vertex_count, seen);
   check_index_set(handle, "handle", vertex_count, seen);
 }
@@ -268,8 +313,11 @@ void ServeState::use_sets(const Eigen::VectorXi& fixed, const Eigen::VectorXi& h
 }
 
 int ServeState::record_revision() {
-  Revision revision{next_revision_++, fixed_, handle_, {}};
-  for (std::size_t m = 0; m < methods_.size(); ++m) revision.anchors[m] = methods_[m].anchor;
+  Revision revision{next_revision_++, fixed_, handle_, {}, {}, soft_, soft_version_};
+  for (std::size_t m = 0; m < methods_.size(); ++m) {
+    revision.anchors[m] = methods_[m].anchor;
+    revision.soft_anchors[m] = methods_[m].soft_anchor;
+  }
   history_.push_back(std::move(revision));
   if (history_.size() > history_limit) history_.pop_front();
   return history_.back().id;
@@ -278,10 +326,17 @@ int ServeState::record_revision() {
 int ServeState::set_constraints(const Eigen::VectorXi& fixed, const Eigen::VectorXi& handle) {
   const SessionLock lock(*this);
   require_mesh();
-  check_sets(fixed, handle);
+  check_sets(fixed, handle, soft_.soft);
   use_sets(fixed, handle);
   new_generation();
-  for (MethodState& state : methods_) state.anchor = gather_rows(state.U, constrained_);
+  // The dragged soft vertices are re-anchored where the shape put them, like the handle; the other soft
+  // points keep their targets (soft: the shape does not reach them exactly).
+  for (MethodState& state : methods_) {
+    state.anchor = gather_rows(state.U, constrained_);
+    for (Eigen::Index k = 0; k < soft_.soft.vertices.size(); ++k)
+      if (soft_.dragged[static_cast<std::size_t>(k)])
+        state.soft_anchor.row(k) = state.U.row(soft_.soft.vertices[k]);
+  }
   return record_revision();
 }
 
@@ -295,8 +350,13 @@ void ServeState::restore_constraints(int revision) {
                              std::to_string(history_limit) + " of this mesh are)");
   }
   use_sets(it->fixed, it->handle);
+  soft_ = it->soft;
+  soft_version_ = it->soft_version;
   new_generation();
-  for (std::size_t m = 0; m < methods_.size(); ++m) methods_[m].anchor = it->anchors[m];
+  for (std::size_t m = 0; m < methods_.size(); ++m) {
+    methods_[m].anchor = it->anchors[m];
+    methods_[m].soft_anchor = it->soft_anchors[m];
+  }
   // The restored state becomes the newest, so that it outlives the revisions undone past it.
   Revision restored = *it;
   history_.erase(it);
@@ -309,10 +369,12 @@ int ServeState::revision() const {
 }
 
 int ServeState::load_constraints(const Eigen::VectorXi& fixed, const Eigen::VectorXi& handle,
-                                 const Eigen::MatrixXd& targets) {
+                                 const Eigen::MatrixXd& targets, const SoftSession& soft) {
   const SessionLock lock(*this);
   require_mesh();
-  check_sets(fixed, handle);
+  check_sets(fixed, handle, soft.soft);
+  if (soft.dragged.size() != static_cast<std::size_t>(soft.soft.vertices.size()))
+    throw InputError("soft constraints: the dragged marks do not match the soft vertices");
   if (targets.rows() != fixed.size() + handle.size() || targets.cols() != 3)
     throw InputError("constraint targets do not match the constrained vertices");
   for (Eigen::Index i = 0; i < targets.rows(); ++i) {
@@ -320,10 +382,14 @@ int ServeState::load_constraints(const Eigen::VectorXi& fixed, const Eigen::Vect
       throw InputError("constraint target " + std::to_string(i) + " is not finite");
   }
   use_sets(fixed, handle);
+  if (soft_.soft.size() > 0 || soft.soft.size() > 0) ++soft_version_; // rebuilt at the next solve
+  soft_ = soft;
   new_generation();
+  const Eigen::MatrixXd soft_targets = cli::soft_targets_of(soft.soft);
   for (MethodState& state : methods_) {
     state.U = mesh_->V;
     state.anchor = targets;
+    state.soft_anchor = soft_targets;
   }
   return record_revision();
 }
@@ -331,17 +397,25 @@ int ServeState::load_constraints(const Eigen::VectorXi& fixed, const Eigen::Vect
 ConstraintTargets ServeState::constraint_targets(ArapMethod method, const SolveRequest& request) const {
   const SessionLock lock(*this);
   require_mesh();
-  if (constrained_.size() == 0) throw HttpError(409, "no fixed or handle vertices; select some first");
+  if (constrained_.size() == 0 && soft_.soft.size() == 0)
+    throw HttpError(409, "no fixed or handle vertices; select some first");
   const MethodState& state = state_of(method);
   ConstraintTargets out;
   out.fixed = fixed_;
   out.handle = handle_;
   out.targets = targets_for(state, request);
+  out.soft = soft_.soft;
+  const Eigen::MatrixXd soft_targets = soft_targets_for(state, request);
+  const Eigen::Index sv = out.soft.vertices.size(), sb = out.soft.faces.size();
+  out.soft.vertex_targets = soft_targets.topRows(sv);
+  out.soft.face_targets = soft_targets.middleRows(sv, sb);
+  out.soft.hard_targets = soft_targets.bottomRows(out.soft.hard_faces.size());
   // Anchors re-taken after a solve that kept the shape (e.g. a handle selected, the identity solved) differ
   // from the rest rows by the solve's rounding (1e-16 relative, times the conditioning of L); 1e-9 of the
   // bounding-box diagonal lies far above that and far below anything a user's drag moves.
   const Eigen::MatrixXd rest = gather_rows(mesh_->V, constrained_);
-  out.anchored_at_rest = (state.anchor - rest).cwiseAbs().maxCoeff() <= 1e-9 * summary_.bbox_diagonal;
+  out.anchored_at_rest =
+      rest.size() == 0 || (state.anchor - rest).cwiseAbs().maxCoeff() <= 1e-9 * summary_.bbox_diagonal;
   return out;
 }
 
@@ -380,36 +454,100 @@ Eigen::MatrixXd ServeState::targets_for(const MethodState& state, const SolveReq
   return targets;
 }
 
-SolveResult ServeState::solve(const SolveRequest& request) {
-  const auto arrival = Clock::now();
-  const SessionLock lock(*this);
-  const double wait_ms = ms_since(arrival);
-  require_mesh();
-  if (constrained_.size() == 0)
-    throw HttpError(409, "no fixed or handle vertices; select some before solving");
-  MethodState& state = state_of(request.method);
-  const Eigen::MatrixXd targets = targets_for(state, request);
-  SolveResult result;
-  result.wait_ms = wait_ms;
-  result.refinement_preempted = refine_job_.has_value();
-  new_generation();
+// The soft points' targets for request: the anchors, the dragged soft vertices moved by its transform like
+// the handle. Explicit handle_targets cannot say where a dragged soft vertex goes: refused.
+Eigen::MatrixXd ServeState::soft_targets_for(const MethodState& state, const SolveRequest& request) const {
+  Eigen::MatrixXd targets = state.soft_anchor;
+  const auto dragged = static_cast<Eigen::Index>(std::count(soft_.dragged.begin(), soft_.dragged.end(), 1));
+  if (request.handle_targets && dragged > 0)
+    throw InputError(
+        "handle_targets: this session has " + std::to_string(dragged) +
+        " weighted handle (soft) vertices, which handle_targets cannot move; drag with transform");
+  if (!request.transform) return targets;
+  const Eigen::Matrix4d& M = *request.transform; // checked by targets_for
+  for (Eigen::Index k = 0; k < soft_.soft.vertices.size(); ++k) {
+    if (!soft_.dragged[static_cast<std::size_t>(k)]) continue;
+    const Eigen::Vector3d p = targets.row(k).transpose();
+    targets.row(k) = (M.topLeftCorner<3, 3>() * p + M.topRightCorner<3, 1>()).transpose();
+  }
+  return targets;
+}
 
+// As `iarap deform`'s statics (scaled_forces on the mesh in its own units, s = 1), with every connected
+// component held by a constrained vertex or a soft point: a free body under a net force has no minimum.
+Eigen::MatrixXd ServeState::forces_for(const SolveRequest& request) const {
+  if (!request.gravity && !request.forces) return Eigen::MatrixXd();
+  const Eigen::MatrixXd& V = mesh_->V;
+  Eigen::MatrixXd file_forces;
+  if (request.forces) {
+    const std::vector<double>& f = *request.forces;
+    if (f.size() != static_cast<std::size_t>(3 * V.rows()))
+      throw InputError("forces has " + std::to_string(f.size()) + " numbers; expected 3 x " +
+                       std::to_string(V.rows()) + " vertices = " + std::to_string(3 * V.rows()) +
+                       " (fx fy fz per vertex)");
+    file_forces =
+        Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>>(f.data(), V.rows(), 3);
+  }
+  Eigen::VectorXi faces(soft_.soft.faces.size() + soft_.soft.hard_faces.size()); // a hard point holds too
+  faces << soft_.soft.faces, soft_.soft.hard_faces;
+  try {
+    cli::require_held_components(mesh_->F, static_cast<int>(V.rows()), constrained_, soft_.soft.vertices,
+                                 faces);
+  } catch (const InputError& e) {
+    throw HttpError(422, std::string("gravity / forces: ") + e.what());
+  }
+  cli::ExternalForceArguments args;
+  if (request.gravity) args.gravity = {request.gravity->x(), request.gravity->y(), request.gravity->z()};
+  args.density = request.density;
+  return cli::scaled_forces(args, V, mesh_->F, request.method, 1.0, file_forces);
+}
+
+// The method's data for the session's sets: built on first use and for new soft constraints (with them),
+// refactorized when only the constrained set changed.
+void ServeState::prepare_data(MethodState& state, ArapMethod method, SolveResult& result) {
   const auto precompute_start = Clock::now();
-  if (!state.data) {
+  if (!state.data || state.data_soft_version != soft_version_ ||
+      (soft_.soft.size() > 0 && state.data->fixed != constrained_)) {
     ArapOptions options;
-    options.method = request.method;
+    options.method = method;
     // Uploaded meshes may have pieces the user did not select; pin them rather than refuse to solve.
     options.pin_unconstrained_components = true;
-    state.data = arap_precompute(mesh_->V, mesh_->F, constrained_, options);
+    state.data.reset(); // a throw leaves no data, rebuilt next time
+    state.data = soft_.soft.size() == 0 ? arap_precompute(mesh_->V, mesh_->F, constrained_, options)
+                                        : arap_precompute(mesh_->V, mesh_->F, constrained_,
+                                                          cli::soft_constraints_of(soft_.soft), options);
+    state.data_soft_version = soft_version_;
     result.precompute_ms = ms_since(precompute_start);
   } else if (state.data->fixed.size() != constrained_.size() || state.data->fixed != constrained_) {
     arap_set_fixed(*state.data, constrained_); // keeps the previous set on a throw
     result.precompute_ms = ms_since(precompute_start);
   }
+}
+
+SolveResult ServeState::solve(const SolveRequest& request) {
+  const auto arrival = Clock::now();
+  const SessionLock lock(*this);
+  const double wait_ms = ms_since(arrival);
+  require_mesh();
+  if (constrained_.size() == 0 && soft_.soft.size() == 0)
+    throw HttpError(409, "no fixed or handle vertices; select some before solving");
+  MethodState& state = state_of(request.method);
+  const Eigen::MatrixXd targets = targets_for(state, request);
+  const Eigen::MatrixXd soft_targets = soft_targets_for(state, request);
+  const Eigen::MatrixXd forces = forces_for(request);
+  SolveResult result;
+  result.wait_ms = wait_ms;
+  result.refinement_preempted = refine_job_.has_value();
+  new_generation();
+  prepare_data(state, request.method, result);
 
   Eigen::MatrixXd U = state.U; // commit only a successful solve
   const auto solve_start = Clock::now();
-  result.report = solve_with_progress(*state.data, targets, U, request, progress_);
+  try {
+    result.report = solve_with_progress(*state.data, targets, soft_targets, forces, U, request, progress_);
+  } catch (const HardPointConflict& e) {
+    throw InputError(cli::hard_point_conflict_message(e, soft_.soft));
+  }
   result.cancelled = result.report.stop_reason == ArapStopReason::Callback; // not a time budget
   result.solve_ms = ms_since(solve_start);
   result.pinned = static_cast<int>(state.data->pinned.size());
@@ -426,6 +564,8 @@ SolveResult ServeState::solve(const SolveRequest& request) {
     RefineJob job;
     job.method = request.method;
     job.targets = targets;
+    job.soft_targets = soft_targets;
+    job.options.forces = forces;
     job.options.max_iterations = request.refine_iterations;
     job.options.tolerance = -1; // the job's own rules, in refine_chunk
     job.options.accelerator = request.refine_accelerator;
@@ -461,8 +601,9 @@ void ServeState::reset() {
   for (MethodState& state : methods_) {
     state.U = mesh_->V;
     state.anchor = gather_rows(state.U, constrained_);
+    state.soft_anchor = soft_points_at(soft_.soft, mesh_->F, state.U);
   }
-  if (constrained_.size() > 0) record_revision();
+  if (constrained_.size() > 0 || soft_.soft.size() > 0) record_revision();
 }
 
 std::vector<float> ServeState::positions(std::optional<ArapMethod> method) const {

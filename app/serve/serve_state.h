@@ -20,6 +20,7 @@
 #include "iarap/core/stopwatch.h"
 #include "iarap/intrinsic/intrinsic_delaunay.h"
 #include "iarap/io/read_mesh.h"
+#include "iarap/scene/constraint_set.h"
 #include "iarap/solver/arap.h"
 
 #include <Eigen/Core>
@@ -64,6 +65,12 @@ struct SolveRequest {
   std::optional<Eigen::Matrix4d> transform;
   std::optional<Eigen::MatrixXd> handle_targets;
   bool cell_energy = false; // also return arap_cell_energy of the result
+  // Statics, as `iarap deform --gravity --density --forces`: forces f_i = m_i g (lumped masses of the
+  // method, density x area) plus the given per-vertex forces (3 x #V numbers, row-major), and the solve
+  // minimizes E_ARAP + P - f . (U - V). No gravity and no forces: the plain deformation.
+  std::optional<Eigen::Vector3d> gravity;    // mesh units / time^2
+  double density = 1.0;                      // surface density, > 0
+  std::optional<std::vector<double>> forces; // 3 x #V numbers (checked against the mesh in solve)
   // > 0: unless the solve converged, keep solving toward the same targets in the background after the
   // answer (same method, accelerator, window and tolerance), at most this many more iterations.
   int refine_iterations = 0;
@@ -88,10 +95,20 @@ struct SolveResult {
   bool refining = false;          // the background refinement continues from it
 };
 
+// The soft constraints of a loaded file (soft vertices, soft and hard points on faces): soft.*_targets are
+// the file's. dragged (#soft vertices) marks the soft vertices a drag moves with the handle: those of a
+// scenario's weighted handles, and in a constraints file those whose target is not their rest position.
+// Points on faces are never dragged: they keep their targets.
+struct SoftSession {
+  SoftConstraintSet soft;
+  std::vector<char> dragged;
+};
+
 // The constrained vertices of a method with their targets for a request, for saving them as a file.
 struct ConstraintTargets {
   Eigen::VectorXi fixed, handle;
   Eigen::MatrixXd targets; // #fixed + #handle x 3, fixed rows first
+  SoftConstraintSet soft;  // the session's soft constraints with their targets for the request
   // Every anchor is the vertex's rest position (to 1e-9 of the bounding-box diagonal): the targets are
   // then the rest mesh moved by the request.
   bool anchored_at_rest = false;
@@ -133,10 +150,12 @@ public:
   MeshSummary mesh_summary() const;
   Eigen::VectorXi fixed() const;
   Eigen::VectorXi handle() const;
+  SoftSession soft() const; // the loaded file's soft constraints, targets as loaded
 
   // Throws InputError naming the position for an index out of range, a repeat within a set, or a vertex
-  // in both sets; nothing changes then. Empty sets are allowed (solve then answers 409). Returns the new
-  // revision: the sets with every method's anchors, which restore_constraints brings back (undo).
+  // in both sets or also a soft vertex of the loaded file (kept: it stays soft); nothing changes then. Empty
+  // sets are allowed (solve then answers 409). Returns the new revision: the sets with every method's
+  // anchors, which restore_constraints brings back (undo).
   int set_constraints(const Eigen::VectorXi& fixed, const Eigen::VectorXi& handle);
   // Back to the sets and anchors of an earlier revision (one of the last history_limit); HttpError 409
   // when it is no longer kept. U stays: the next solve moves the shape back.
@@ -145,17 +164,20 @@ public:
   int revision() const;
   // Loads a saved constraint set: every method back to the rest shape, anchors = targets (#fixed +
   // #handle x 3), so a solve with no transform reaches them. Same checks as set_constraints, plus finite
-  // targets. Returns the new revision.
+  // targets. soft: the file's soft constraints (replacing the session's), anchored at their targets.
+  // Returns the new revision.
   int load_constraints(const Eigen::VectorXi& fixed, const Eigen::VectorXi& handle,
-                       const Eigen::MatrixXd& targets);
+                       const Eigen::MatrixXd& targets, const SoftSession& soft = {});
   // Where the method's constrained vertices go under request (its transform or handle_targets).
   ConstraintTargets constraint_targets(ArapMethod method, const SolveRequest& request) const;
 
-  // Precomputes the method on first use, refactorizes after a constraint change, then runs arap_solve from
+  // Precomputes the method on first use (with the soft constraints), refactorizes after a constraint change
+  // (precomputes again when the soft constraints changed), then runs arap_solve from
   // the method's current U as one call that reports every iteration to progress() and stops early on a
-  // cancel (keeping the last finished iterate). Throws HttpError 409 without constrained vertices, InputError
-  // for a target shape or value at fault, TopologyError / SolverError from the solver; the state is unchanged
-  // then.
+  // cancel (keeping the last finished iterate). Throws HttpError 409 without constrained vertices or soft
+  // constraints, 422 for forces on a connected component nothing holds, InputError for a target shape or
+  // value at fault (forces of the wrong length, contradicting hard points on faces), TopologyError /
+  // SolverError from the solver; the state is unchanged then.
   SolveResult solve(const SolveRequest& request);
 
   // Read without the session mutex (see SolveProgress).
@@ -183,6 +205,8 @@ private:
     std::optional<ArapData> data; // built lazily; its fixed set may lag behind constrained_ until a solve
     Eigen::MatrixXd U;            // #V x 3 current positions
     Eigen::MatrixXd anchor;       // #constrained x 3 positions of the constrained vertices when set
+    Eigen::MatrixXd soft_anchor;  // #soft x 3 positions of the soft points (solver order) when set
+    int data_soft_version = 0;    // soft_version_ of the soft constraints data was built with
   };
 
   // What the background refinement works toward: a solve's targets and stopping rule.
@@ -193,11 +217,11 @@ private:
   // refinement there), and the gradient rule compares with the gradient at the solve's initial guess.
   struct RefineJob {
     ArapMethod method = ArapMethod::Iarap;
-    Eigen::MatrixXd targets;
-    ArapSolveOptions options;   // max_iterations: the iterations left
-    double tolerance = 0;       // the energy rule (relative decrease of an accelerated iterate)
-    double gradient_target = 0; // stop once ||g|| <= this (0: no gradient rule)
-    double gradient_now = 0;    // ||g|| at the method's U
+    Eigen::MatrixXd targets, soft_targets; // options.forces: the solve's
+    ArapSolveOptions options;              // max_iterations: the iterations left
+    double tolerance = 0;                  // the energy rule (relative decrease of an accelerated iterate)
+    double gradient_target = 0;            // stop once ||g|| <= this (0: no gradient rule)
+    double gradient_now = 0;               // ||g|| at the method's U
     // Newton's trust radius and reference gradient, carried from the answer to the first chunk and from
     // chunk to chunk (same targets). Not from one answer to the next: carried over moved targets, the
     // radius of the previous step let the first steps of the beetle's drag run far (its last answer's
@@ -223,17 +247,23 @@ private:
   struct Revision {
     int id = 0;
     Eigen::VectorXi fixed, handle;
-    std::array<Eigen::MatrixXd, 3> anchors;
+    std::array<Eigen::MatrixXd, 3> anchors, soft_anchors;
+    SoftSession soft;
+    int soft_version = 0;
   };
   static constexpr std::size_t history_limit = 200;
 
   void require_mesh() const;
-  void check_sets(const Eigen::VectorXi& fixed, const Eigen::VectorXi& handle) const;
+  void check_sets(const Eigen::VectorXi& fixed, const Eigen::VectorXi& handle,
+                  const SoftConstraintSet& soft) const;
   void use_sets(const Eigen::VectorXi& fixed, const Eigen::VectorXi& handle);
   int record_revision();
   MethodState& state_of(ArapMethod method);
   const MethodState& state_of(ArapMethod method) const;
   Eigen::MatrixXd targets_for(const MethodState& state, const SolveRequest& request) const;
+  Eigen::MatrixXd soft_targets_for(const MethodState& state, const SolveRequest& request) const;
+  Eigen::MatrixXd forces_for(const SolveRequest& request) const; // 0 x 0 without gravity and forces
+  void prepare_data(MethodState& state, ArapMethod method, SolveResult& result);
   void new_generation(); // ends the refinement; a new state for frames
   void refine_in_background();
   void refine_chunk(); // one chunk of refine_job_, with the session mutex held
@@ -242,6 +272,8 @@ private:
   std::optional<MeshData> mesh_;
   MeshSummary summary_;
   Eigen::VectorXi fixed_, handle_, constrained_;
+  SoftSession soft_;
+  int soft_version_ = 0; // counts the soft sets loaded (a method's data is rebuilt for a new one)
   std::array<MethodState, 3> methods_;
   std::shared_ptr<const IntrinsicOverlay> overlay_;
   std::deque<Revision> history_; // oldest first, at most history_limit

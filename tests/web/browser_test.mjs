@@ -143,7 +143,8 @@ try {
     await page.mouse.move(g.x + 300, g.y); // a large edit in one update: the plain refinement is long
     await page.mouse.up();
     await idle();
-    const plainGeneration = (await viewer('answers')).at(-1).generation;
+    const plainAnswer = (await viewer('answers')).at(-1);
+    const plainGeneration = plainAnswer.generation;
     await page.waitForFunction((gen) => window.iarapViewer.frames().some((f) => f.generation === gen && f.refining), plainGeneration, { timeout: 60000 });
     await page.mouse.move(g.x + 300, g.y);
     await page.mouse.down();
@@ -158,7 +159,15 @@ try {
     // The plain refinement stops at the server's iteration limit (1000, 1-3 s here); a browser slowed by
     // the tests beside it under ctest -j2 can reach the drag only after that. Then there is nothing to
     // preempt: said, not failed (tests/web/http_test.mjs checks the preemption itself, without a browser).
-    if ((refined.some((f) => !f.refining) || refined.at(-1).iterations >= 900) && !preempting.refinement_preempted) {
+    // The page stops following the refinement once it drags again, so it may not see the refinement's last
+    // frame: at the pace of the frames it saw (a lower bound: counted from the answer), the refinement
+    // reached the limit before the drag's answer when its remaining iterations took less than the time
+    // between its last frame seen and that answer.
+    const lastSeen = refined.at(-1);
+    const maxIterations = (await (await fetch(`${server.url}api/state`)).json()).limits.max_iterations;
+    const pace = lastSeen.iterations / Math.max(lastSeen.receivedAt - plainAnswer.receivedAt, 1); // per ms
+    const endedUnseen = lastSeen.receivedAt + (maxIterations - lastSeen.iterations) / pace <= preempting.receivedAt;
+    if ((refined.some((f) => !f.refining) || lastSeen.iterations >= 900 || endedUnseen) && !preempting.refinement_preempted) {
       console.log(`the plain refinement ended (${refined.at(-1).iterations} iterations) before the drag reached the server: preemption not exercised in this run`);
     } else {
       assert.ok(refined.every((f) => !f.converged), 'the plain refinement converged before the drag');
@@ -230,6 +239,26 @@ try {
   // The saved targets are where the page had dragged the handle.
   assert.ok(maxDistance(rowsOf(replayed, handle), rowsOf(dragged, handle)) <= displayTolerance);
   await page.fill('#iterations', '5');
+
+  // 4b. A weighted handle (soft, weight 10) loads and drags: the gizmo sits on its vertices and moves
+  // their targets; the fixed vertices stay. Then the saved scenario comes back for the steps below.
+  const weightedPath = path.join(userDataDir, 'weighted.json');
+  fs.writeFileSync(weightedPath, JSON.stringify({ fixed: { indices: fixed }, handles: [{ name: 'top', vertices: { indices: handle }, translate: [0, 0, 0], weight: 10 }] }));
+  await page.setInputFiles('#load-scenario', weightedPath);
+  await page.waitForFunction(() => document.getElementById('status').textContent.startsWith('loaded weighted'), null, { timeout: 30000 });
+  await settle();
+  assert.match(await page.textContent('#selection-info'), new RegExp(`^${fixed.length} fixed, 0 handle vertices, ${handle.length} soft`));
+  const softRest = await viewer('displayedPositions');
+  await dragGizmo(0, 96);
+  const softDragged = await viewer('displayedPositions');
+  const softMove = maxDistance(rowsOf(softDragged, handle), rowsOf(softRest, handle));
+  console.log(`weighted handle: largest move ${(softMove / height).toFixed(3)} x height after the drag`);
+  assert.ok(softMove > 0.05 * height, `the weighted handle moved only ${softMove}`);
+  assert.ok(maxDistance(rowsOf(softDragged, fixed), rowsOf(softRest, fixed)) <= displayTolerance);
+  assert.equal(await viewer('errors'), 0, await page.textContent('#banner-text'));
+  await page.setInputFiles('#load-scenario', scenarioPath);
+  await page.waitForFunction(() => document.getElementById('status').textContent.startsWith('loaded bunny'), null, { timeout: 30000 });
+  await settle();
 
   // 5. Side by side: all copies fit, selection and the gizmo work on the right copy, one colour scale.
   await page.uncheck('#show-intrinsic'); // three overlays cost software WebGL, and hide the energy colours

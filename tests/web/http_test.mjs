@@ -663,3 +663,151 @@ describe('malformed-body campaign', () => {
     assert.equal(s.mesh.vertices, 3485);
   });
 });
+
+// Soft constraints, weighted handles and statics through the session, against `iarap deform` on the same
+// mesh, file and solve options (issue 43 item 3). Both results come as OBJ files with %.17g coordinates.
+describe('soft constraints and statics, as `iarap deform`', () => {
+  const solveOptions = { iterations: 40, tolerance: 0, accelerator: 'lbfgs' };
+  const cliOptions = ['--iterations', '40', '--tolerance', '0', '--accel', 'lbfgs', '--quiet'];
+  let dir;
+  before(() => { dir = fs.mkdtempSync(path.join(os.tmpdir(), 'iarap-soft-')); });
+  after(() => fs.rmSync(dir, { recursive: true, force: true }));
+
+  const loadFile = (name, text) => fetch(`${base}/api/scenario/load?name=${name}`, { method: 'POST', headers: { 'Content-Type': 'text/plain' }, body: text });
+
+  // The session's iarap positions (full precision) after a solve with extra fields, and deform's with
+  // extra flags, agree to 1e-9 of the bounding-box diagonal; returns the largest displacement.
+  async function expectSameAsDeform(name, text, fields, flags) {
+    const loaded = await loadFile(name, text);
+    assert.equal(loaded.status, 200, await loaded.clone().text());
+    const solved = await postJson('/api/solve', { method: 'iarap', ...solveOptions, ...fields });
+    assert.equal(solved.status, 200, await solved.clone().text());
+    // The energy of the result is the total: E_ARAP + penalty + potential (negative: the forces do work).
+    const { header } = decodeFrame(await solved.arrayBuffer());
+    const total = header.arap_energy + header.penalty + header.potential;
+    assert.ok(Math.abs(header.energies.at(-1) - total) <= 1e-9 * Math.abs(total), JSON.stringify(header));
+    assert.ok(fields.gravity ? header.potential < 0 : header.potential === 0 && header.penalty > 0, JSON.stringify(header));
+    const session = path.join(dir, 'session.obj');
+    fs.writeFileSync(session, Buffer.from(await (await fetch(`${base}/api/download?method=iarap&format=obj`)).arrayBuffer()));
+    fs.writeFileSync(path.join(dir, name), text);
+    const out = path.join(dir, 'deform.obj');
+    const kind = text.trimStart().startsWith('{') ? '--scenario' : '--constraints';
+    execFileSync(cliPath, ['deform', bunnyPath, kind, path.join(dir, name), ...cliOptions, ...flags, '--out', out]);
+    const [A, B] = [objVertices(session), objVertices(out)];
+    const diagonal = (await state()).mesh.bbox_diagonal;
+    let gap = 0, moved = 0;
+    A.forEach((a, i) => a.forEach((x, k) => { gap = Math.max(gap, Math.abs(x - B[i][k])); }));
+    const X = await restPositions();
+    A.forEach((a, i) => { moved = Math.max(moved, Math.hypot(a[0] - X[3 * i], a[1] - X[3 * i + 1], a[2] - X[3 * i + 2])); });
+    assert.equal(A.length, 3485);
+    assert.ok(gap <= 1e-9 * diagonal, `${name}: server and deform differ by ${gap} (diagonal ${diagonal})`);
+    return moved / diagonal;
+  }
+
+  const line = (i, p) => `${i} ${p[0]} ${p[1]} ${p[2]}`;
+
+  test('a constraints file with soft lines and points on faces solves as deform --constraints', async () => {
+    const { X, fixed, handle, height } = await bottomAndTop();
+    const at = (i) => [X[3 * i], X[3 * i + 1], X[3 * i + 2]];
+    const faces = new Uint32Array(await (await fetch(base + '/api/faces')).arrayBuffer());
+    // A face with no constrained corner, in the middle of the bunny by index.
+    const taken = new Set([...fixed, ...handle]);
+    const free = [];
+    for (let f = 0; f < faces.length / 3 && free.length < 2; f += 97)
+      if ([0, 1, 2].every((k) => !taken.has(faces[3 * f + k]))) free.push(f);
+    const point = (f, b) => [0, 1, 2].map((k) => b[0] * X[3 * faces[3 * f] + k] + b[1] * X[3 * faces[3 * f + 1] + k] + b[2] * X[3 * faces[3 * f + 2] + k]);
+    const text = [
+      ...fixed.map((i) => line(i, at(i))),
+      ...handle.map((i) => `${line(i, [at(i)[0] + 0.2 * height, at(i)[1], at(i)[2]])} 5`),
+      `b ${free[0]} 0.2 0.3 0.5 ${point(free[0], [0.2, 0.3, 0.5]).map((x, k) => x + (k === 2 ? 0.05 * height : 0)).join(' ')} 2`,
+      `b ${free[1]} 0.25 0.25 0.5 ${point(free[1], [0.25, 0.25, 0.5]).join(' ')}`,
+    ].join('\n') + '\n';
+    const moved = await expectSameAsDeform('soft.txt', text, {}, []);
+    assert.ok(moved > 0.01, `the soft handle moved the mesh by ${moved} of the diagonal`);
+    const s = await state();
+    // The file's hard lines hold the float32 rest positions read back: fixed or handle by the exact double.
+    const hard = [...s.fixed, ...s.handle].sort((a, b) => a - b);
+    assert.deepEqual([hard, s.soft.vertices, s.soft.face_points, s.soft.hard_face_points], [fixed, handle, 1, 1]);
+    assert.ok(s.soft.dragged.every((d) => d) && s.soft.weights.every((w) => w === 5));
+
+    // Saved again, the session is a constraints file with the same soft lines: deform replays it.
+    const saved = await postJson('/api/scenario', { method: 'iarap' });
+    assert.match(saved.headers.get('content-disposition'), /bunny_constraints\.txt/);
+    const again = await saved.text();
+    assert.equal(again.split('\n').filter((l) => /^\d+( \S+){4}$/.test(l)).length, handle.length);
+    assert.equal(again.split('\n').filter((l) => l.startsWith('b ')).length, 2);
+    await expectSameAsDeform('again.txt', again, {}, []);
+  });
+
+  test('a weighted handle dragged by a transform moves its soft targets, as deform with that translation', async () => {
+    const { fixed, handle, height } = await bottomAndTop();
+    const scenario = (dx) => JSON.stringify({ fixed: { indices: fixed }, handles: [{ name: 'top', vertices: { indices: handle }, translate: [dx, 0, 0], weight: 10 }] });
+    const deformed = path.join(dir, 'moved.json');
+    fs.writeFileSync(deformed, scenario(0.15 * height));
+    const loaded = await (await loadFile('rest.json', scenario(0))).json();
+    assert.deepEqual([loaded.fixed, loaded.handle, loaded.soft.vertices], [fixed, [], handle]);
+    const transform = [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0.15 * height, 0, 0, 1];
+    const solved = await postJson('/api/solve', { method: 'iarap', ...solveOptions, transform });
+    assert.equal(solved.status, 200, await solved.clone().text());
+    const session = path.join(dir, 'drag.obj');
+    fs.writeFileSync(session, Buffer.from(await (await fetch(`${base}/api/download?method=iarap&format=obj`)).arrayBuffer()));
+    execFileSync(cliPath, ['deform', bunnyPath, '--scenario', deformed, ...cliOptions, '--out', path.join(dir, 'moved.obj')]);
+    const [A, B] = [objVertices(session), objVertices(path.join(dir, 'moved.obj'))];
+    const diagonal = loaded.mesh.bbox_diagonal;
+    let gap = 0;
+    A.forEach((a, i) => a.forEach((x, k) => { gap = Math.max(gap, Math.abs(x - B[i][k])); }));
+    // The drag's targets are R p + t of the loaded ones: the same doubles as the scenario's translation.
+    assert.ok(gap <= 1e-9 * diagonal, `drag and deform differ by ${gap}`);
+    // Explicit handle targets cannot place the soft vertices: refused, naming the field.
+    await expectError(postJson('/api/solve', { method: 'iarap', handle_targets: [] }), 400, /handle_targets: this session has \d+ weighted handle/);
+    // A new hard set re-anchors the dragged soft vertices where the drag left them: the identity keeps them
+    // there (released a little: they were short of their targets), it does not take them back.
+    const draggedAt = await (await fetch(`${base}/api/positions?method=iarap`)).arrayBuffer().then((b) => new Float32Array(b));
+    assert.equal((await postJson('/api/constraints', { fixed: loaded.fixed, handle: [] })).status, 200);
+    const { arrays } = decodeFrame(await (await postJson('/api/solve', { method: 'iarap', ...solveOptions })).arrayBuffer());
+    const back = Math.max(...handle.map((i) => Math.hypot(...[0, 1, 2].map((k) => arrays.positions[3 * i + k] - draggedAt[3 * i + k]))));
+    assert.ok(back < 0.01 * height, `re-anchored soft handle moved by ${back / height} x height`);
+    // A hard set beside the soft one: a vertex cannot be both.
+    await expectError(postJson('/api/constraints', { fixed, handle: [handle[1]] }), 400, /handle\[0\] = \d+ repeats a soft vertex of the loaded file \(rest\.json/);
+  });
+
+  test('gravity and per-vertex forces solve as deform --gravity --density --forces', async () => {
+    const { X, fixed, height } = await bottomAndTop();
+    const text = fixed.map((i) => line(i, [X[3 * i], X[3 * i + 1], X[3 * i + 2]])).join('\n') + '\n';
+    const gravity = [0, -0.5 * height, 0.1 * height];
+    const moved = await expectSameAsDeform('fixed.txt', text, { gravity, density: 3 }, ['--gravity', ...gravity.map(String), '--density', '3']);
+    assert.ok(moved > 1e-3, `gravity moved the mesh by ${moved} of the diagonal`);
+    const s = await state();
+    assert.deepEqual([...s.fixed, ...s.handle].sort((a, b) => a - b), fixed);
+
+    const forces = new Array(3 * s.mesh.vertices).fill(0);
+    const pulled = [100, 2000, 3000];
+    pulled.forEach((v, k) => { forces[3 * v + k] = (k + 1) * 0.01 * height; });
+    const forcesFile = path.join(dir, 'forces.txt');
+    fs.writeFileSync(forcesFile, pulled.map((v, k) => `${v} ${[0, 1, 2].map((c) => forces[3 * v + c]).join(' ')}`).join('\n') + '\n');
+    await expectSameAsDeform('fixed.txt', text, { gravity, forces }, ['--gravity', ...gravity.map(String), '--forces', forcesFile]);
+  });
+
+  test('bad weights, gravity, density and forces are 400s naming the field; a free body is a 422', async () => {
+    const { X, fixed, handle } = await bottomAndTop();
+    const at = (i) => [X[3 * i], X[3 * i + 1], X[3 * i + 2]];
+    await expectError(loadFile('neg.txt', `${line(fixed[0], at(fixed[0]))}\n${line(handle[0], at(handle[0]))} -2\n`), 400, /neg\.txt:2: weight -2 must be > 0/);
+    await expectError(loadFile('neg.json', JSON.stringify({ fixed: { indices: fixed }, handles: [{ vertices: { indices: handle }, translate: [0, 0, 0], weight: -1 }] })), 400, /weight must be > 0/);
+    await loadFile('fixed.txt', fixed.map((i) => line(i, at(i))).join('\n'));
+    await expectError(postJson('/api/solve', { gravity: [NaN, 0, 0] }), 400, /gravity\[0\] must be a number/);
+    await expectError(postJson('/api/solve', { gravity: [0, 1] }), 400, /gravity has 2 numbers; expected 3/);
+    await expectError(postJson('/api/solve', { gravity: '0 0 1' }), 400, /gravity/);
+    for (const density of [0, -1, 'heavy', null])
+      await expectError(postJson('/api/solve', { gravity: [0, -1, 0], density }), 400, /density must be a finite number > 0/);
+    await expectError(postJson('/api/solve', { forces: [1, 2, 3] }), 400, /forces has 3 numbers; expected 3 x 3485 vertices = 10455/);
+    await expectError(postJson('/api/solve', { forces: [1, 'x'] }), 400, /forces\[1\] must be a number/);
+
+    // Two separate triangles, one held: the other falls without end under gravity.
+    const upload = await fetch(`${base}/api/upload?name=two.off`, { method: 'POST', headers: { 'Content-Type': 'application/octet-stream' }, body: 'OFF\n6 2 0\n0 0 0\n1 0 0\n0 1 0\n5 0 0\n6 0 0\n5 1 0\n3 0 1 2\n3 3 4 5\n' });
+    assert.equal(upload.status, 200, await upload.clone().text());
+    await postJson('/api/constraints', { fixed: [0, 1], handle: [] });
+    await expectError(postJson('/api/solve', { gravity: [0, -1, 0] }), 422, /gravity \/ forces: connected component 1 \(3 vertices, e\.g\. vertex 3\) has no constrained vertex/);
+    assert.equal((await postJson('/api/solve', {})).status, 200); // without forces it is pinned, as before
+    assert.equal((await postJson('/api/load', { mesh: 'bunny.off' })).status, 200);
+  });
+});

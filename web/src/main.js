@@ -15,6 +15,7 @@ const $ = (id) => document.getElementById(id);
 const viewer = new Viewer($('viewport'), $('labels'));
 const app = {
   labels: new Uint8Array(0), mesh: null, revision: 0, limits: { max_iterations: 1000 },
+  soft: { dragged: [], count: 0 }, // a loaded file's soft constraints (setSoft)
   cellEnergy: {}, energyColors: {}, scale: null, curves: {},
   history: new UndoHistory(), cancelling: false, converge: false, solves: 0, errors: 0,
   answers: [], frames: [], // the last solve answers' and refinement frames' headers, for tests/web
@@ -97,7 +98,8 @@ function repaint() {
   $('colorbar').hidden = !(showEnergy && app.scale);
   const fixed = indicesWith(app.labels, FIXED).length;
   const handle = indicesWith(app.labels, HANDLE).length;
-  $('selection-info').textContent = `${fixed} fixed, ${handle} handle vertices`;
+  const soft = app.soft.count ? `, ${app.soft.count} soft (from the file)` : '';
+  $('selection-info').textContent = `${fixed} fixed, ${handle} handle vertices${soft}`;
   $('undo').disabled = !app.history.canUndo();
   $('redo').disabled = !app.history.canRedo();
 }
@@ -136,7 +138,7 @@ async function cancelSolve() {
 async function solveShown() {
   const fixed = indicesWith(app.labels, FIXED);
   const handle = indicesWith(app.labels, HANDLE);
-  if (fixed.length + handle.length === 0) return;
+  if (fixed.length + handle.length + app.soft.count === 0) return;
   let count, budget, stopAt;
   try {
     count = iterations();
@@ -231,7 +233,21 @@ function record() {
   repaint();
 }
 
+// The soft constraints of a loaded file, kept by the server (they are not labels: a selection never holds
+// them): the weighted handles' vertices, which the gizmo drags with the handle, and how many there are.
+function setSoft(state) {
+  const soft = state.soft ?? { vertices: [], dragged: [], face_points: 0, hard_face_points: 0 };
+  app.soft = {
+    dragged: soft.vertices.filter((_, k) => soft.dragged[k]),
+    count: soft.vertices.length + soft.face_points + soft.hard_face_points,
+  };
+}
+
+// The vertices the gizmo moves: the handle and the dragged soft vertices.
+const gizmoVertices = () => [...indicesWith(app.labels, HANDLE), ...app.soft.dragged];
+
 function setLabels(state) {
+  setSoft(state);
   app.labels = new Uint8Array(state.mesh.vertices);
   for (const i of state.fixed) app.labels[i] = FIXED;
   for (const i of state.handle) app.labels[i] = HANDLE;
@@ -277,7 +293,7 @@ async function loadMesh(state) {
   uvPanel.setMesh(faces);
   await showPositions(shownMethods());
   setLabels(state);
-  viewer.placeGizmo(state.handle);
+  viewer.placeGizmo(gizmoVertices());
   app.history.reset(snapshot());
   repaint();
   await refreshIntrinsic();
@@ -292,7 +308,7 @@ async function commitSelection() {
   refinement.stop();
   const handle = indicesWith(app.labels, HANDLE);
   app.revision = (await api.setConstraints(indicesWith(app.labels, FIXED), handle)).revision;
-  viewer.placeGizmo(handle);
+  viewer.placeGizmo(gizmoVertices());
   record();
   solver.request();
 }
@@ -303,8 +319,13 @@ async function travel(state) {
   if (!state) return;
   await solver.idle();
   refinement.stop(); // a frame still on its way would undo the undo
-  if (state.revision === 0) app.revision = (await api.setConstraints([], [])).revision;
-  else if (state.revision !== app.revision) app.revision = (await api.restoreConstraints(state.revision)).revision;
+  let answer = null;
+  if (state.revision === 0) answer = await api.setConstraints([], []);
+  else if (state.revision !== app.revision) answer = await api.restoreConstraints(state.revision);
+  if (answer) {
+    app.revision = answer.revision;
+    setSoft(answer); // an undo past a file's load takes its soft constraints away
+  }
   app.labels.set(state.labels);
   viewer.setGizmoState(state.gizmo);
   repaint();
@@ -315,7 +336,7 @@ async function changeLayout() {
   await solver.idle();
   const methods = shownMethods();
   viewer.setLayout(methods, await fetchPositions(methods));
-  viewer.placeGizmo(indicesWith(app.labels, HANDLE), false);
+  viewer.placeGizmo(gizmoVertices(), false);
   viewer.fitCamera();
   updateEnergyColors();
   repaint();
@@ -420,7 +441,7 @@ function setupPanel(state) {
     refinement.stop();
     app.revision = (await api.reset()).revision ?? app.revision;
     await showPositions(shownMethods());
-    viewer.placeGizmo(indicesWith(app.labels, HANDLE));
+    viewer.placeGizmo(gizmoVertices());
     clearResults();
     record();
   }));
@@ -447,10 +468,10 @@ function setupPanel(state) {
     setLabels(loaded);
     clearResults();
     await showPositions(shownMethods()); // the server went back to the rest shape
-    viewer.placeGizmo(loaded.handle);
+    viewer.placeGizmo(gizmoVertices());
     solver.request(); // the anchors are the file's targets: a solve with M = identity reaches them
     await solver.idle();
-    viewer.placeGizmo(loaded.handle);
+    viewer.placeGizmo(gizmoVertices());
     record();
     setStatus(`loaded ${file.name}${loaded.warnings.length ? `\n${loaded.warnings.join('\n')}` : ''}`);
   }));
