@@ -1,9 +1,9 @@
 #include "serve_state.h"
 
 #include "../explain_error.h"
-#include "../external_force_options.h"
 #include "../soft_constraint_sets.h"
 #include "http_error.h"
+#include "iarap/jobs/deform_job.h"
 
 #include "iarap/core/errors.h"
 #include "iarap/core/stopwatch.h"
@@ -473,7 +473,7 @@ Eigen::MatrixXd ServeState::soft_targets_for(const MethodState& state, const Sol
   return targets;
 }
 
-// As `iarap deform`'s statics (scaled_forces on the mesh in its own units, s = 1), with every connected
+// As `iarap deform`'s statics (static_forces on the mesh in its own units, s = 1), with every connected
 // component held by a constrained vertex or a soft point: a free body under a net force has no minimum.
 Eigen::MatrixXd ServeState::forces_for(const SolveRequest& request) const {
   if (!request.gravity && !request.forces) return Eigen::MatrixXd();
@@ -491,15 +491,15 @@ Eigen::MatrixXd ServeState::forces_for(const SolveRequest& request) const {
   Eigen::VectorXi faces(soft_.soft.faces.size() + soft_.soft.hard_faces.size()); // a hard point holds too
   faces << soft_.soft.faces, soft_.soft.hard_faces;
   try {
-    cli::require_held_components(mesh_->F, static_cast<int>(V.rows()), constrained_, soft_.soft.vertices,
-                                 faces);
+    require_held_components(mesh_->F, static_cast<int>(V.rows()), constrained_, soft_.soft.vertices, faces);
   } catch (const InputError& e) {
     throw HttpError(422, std::string("gravity / forces: ") + e.what());
   }
-  cli::ExternalForceArguments args;
-  if (request.gravity) args.gravity = {request.gravity->x(), request.gravity->y(), request.gravity->z()};
-  args.density = request.density;
-  return cli::scaled_forces(args, V, mesh_->F, request.method, 1.0, file_forces);
+  StaticForces statics;
+  statics.present = true;
+  if (request.gravity) statics.gravity = *request.gravity;
+  statics.density = request.density;
+  return static_forces(V, mesh_->F, request.method, statics, file_forces, 1.0);
 }
 
 // The method's data for the session's sets: built on first use and for new soft constraints (with them),

@@ -65,9 +65,7 @@ std::string farthest_target(const ConstraintSet& constraints, const Eigen::Matri
   return text.str();
 }
 
-// The forces of a solve on the mesh divided by s (V_scaled = V / s, a power of two): in those units a
-// mass is density s^2 x area (the file's mass) and a force f / s, so that the minimizer is the file's
-// divided by s and energies are the file's / s^2. m_i g / s + per-vertex forces / s; 0 x 0 without forces.
+// The solve's forces (static_forces), 0 x 0 without; every body held unless pinned.
 Eigen::MatrixXd scaled_forces(const DeformScene& scene, const StaticForces& forces,
                               const ArapSoftConstraints& soft, const Eigen::MatrixXd& V_scaled,
                               const ArapOptions& options, double s) {
@@ -78,12 +76,7 @@ Eigen::MatrixXd scaled_forces(const DeformScene& scene, const StaticForces& forc
     require_held_components(scene.mesh.F, static_cast<int>(scene.mesh.V.rows()), scene.constraints.fixed,
                             soft.vertices, faces);
   }
-  Eigen::MatrixXd f = Eigen::MatrixXd::Zero(V_scaled.rows(), 3);
-  if (forces.gravity != Eigen::Vector3d::Zero())
-    f = gravity_forces(arap_vertex_masses(V_scaled, scene.mesh.F, options.method, forces.density * s * s),
-                       forces.gravity / s);
-  if (scene.forces.rows() > 0) f += scene.forces / s;
-  return f;
+  return static_forces(V_scaled, scene.mesh.F, options.method, forces, scene.forces, s);
 }
 
 // The report of a solve on the mesh divided by s, in the input's units: energies scale with length^2,
@@ -172,6 +165,15 @@ DeformResult solve_deform(const DeformScene& scene, ArapOptions options, ArapSol
   result.U *= s;
   to_input_units(result.report, s);
   return result;
+}
+
+Eigen::MatrixXd static_forces(const Eigen::MatrixXd& V_scaled, const Eigen::MatrixXi& F, ArapMethod method,
+                              const StaticForces& forces, const Eigen::MatrixXd& per_vertex, double s) {
+  Eigen::MatrixXd f = Eigen::MatrixXd::Zero(V_scaled.rows(), 3);
+  if (forces.gravity != Eigen::Vector3d::Zero())
+    f = gravity_forces(arap_vertex_masses(V_scaled, F, method, forces.density * s * s), forces.gravity / s);
+  if (per_vertex.rows() > 0) f += per_vertex / s;
+  return f;
 }
 
 void require_held_components(const Eigen::MatrixXi& F, int num_vertices, const Eigen::VectorXi& fixed,
