@@ -1,8 +1,8 @@
 // `iarap bench MESH...`: precomputation and per-iteration timings of the three ARAP variants.
 #include "bench_converge.h"
 #include "command_registry.h"
+#include "common/json_text.h"
 #include "cpu_name.h"
-#include "json_text.h"
 #include "write_text_file.h"
 
 #include "iarap/core/errors.h"

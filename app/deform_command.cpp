@@ -1,8 +1,8 @@
 // `iarap deform MESH`: one ARAP deformation from a constraints or scenario file, written to a mesh file.
 #include "command_registry.h"
-#include "explain_error.h"
+#include "common/explain_error.h"
+#include "common/json_text.h"
 #include "external_force_options.h"
-#include "json_text.h"
 #include "same_file.h"
 #include "solve_option_flags.h"
 #include "solve_report_json.h"

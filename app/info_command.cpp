@@ -1,6 +1,6 @@
 // `iarap info MESH`: what check_mesh finds, and what the intrinsic Delaunay triangulation looks like.
 #include "command_registry.h"
-#include "json_text.h"
+#include "common/json_text.h"
 #include "mesh_report_json.h"
 
 #include "iarap/core/errors.h"

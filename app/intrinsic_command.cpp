@@ -1,7 +1,7 @@
 // `iarap intrinsic MESH`: the intrinsic Delaunay triangulation's figures, its traced edges as polylines
 // (paper Fig. 14) and, for the performance target of the preprocess, a CHOLMOD factorization to compare.
 #include "command_registry.h"
-#include "json_text.h"
+#include "common/json_text.h"
 #include "mesh_report_json.h"
 #include "write_text_file.h"
 

@@ -1,11 +1,11 @@
 // `iarap laplacian MESH`: writes one Laplace-Beltrami operator as a Matrix Market file and/or reports the
 // properties of the operators (paper Section 6, Table 3) as a table or JSON.
 #include "command_registry.h"
+#include "common/json_text.h"
 #include "iarap/core/errors.h"
 #include "iarap/io/read_mesh.h"
 #include "iarap/laplacian/laplacian_properties.h"
 #include "iarap/laplacian/laplacians.h"
-#include "json_text.h"
 
 #include <nlohmann/json.hpp>
 

@@ -1,6 +1,6 @@
 #include "mesh_report_json.h"
 
-#include "explain_error.h"
+#include "common/explain_error.h"
 
 #include <algorithm>
 

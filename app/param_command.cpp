@@ -1,8 +1,8 @@
 // `iarap param MESH --out OUT.obj`: an ARAP parameterization (UV map) of a disk-like mesh, flip-free by
 // default, written as an OBJ with texture coordinates or as `u v` lines, and on request pictured in a PNG.
 #include "command_registry.h"
-#include "json_text.h"
-#include "param_report_json.h"
+#include "common/json_text.h"
+#include "common/param_report_json.h"
 #include "same_file.h"
 #include "solve_option_flags.h"
 #include "write_text_file.h"

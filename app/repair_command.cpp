@@ -2,8 +2,8 @@
 // repair `deform --repair` runs before its solve, written out so that constraints can be given on the
 // repaired mesh (soft constraints and hard points cannot be carried over a repair).
 #include "command_registry.h"
-#include "explain_error.h"
-#include "json_text.h"
+#include "common/explain_error.h"
+#include "common/json_text.h"
 #include "same_file.h"
 #include "write_text_file.h"
 

@@ -1,11 +1,11 @@
 // `iarap simulate MESH`: implicit-Euler dynamics of the ARAP elastic energy (iarap/dynamics/simulation.h),
 // the handles of a constraints or scenario file moving to their targets, written as numbered frames.
 #include "command_registry.h"
-#include "explain_error.h"
+#include "common/explain_error.h"
+#include "common/json_text.h"
 #include "external_force_options.h"
-#include "json_text.h"
+#include "iarap/jobs/soft_constraints.h"
 #include "number_validators.h"
-#include "soft_constraint_sets.h"
 #include "solve_option_flags.h"
 #include "solve_report_json.h"
 #include "write_text_file.h"

@@ -1,6 +1,6 @@
 #include "param_route.h"
 
-#include "../param_report_json.h"
+#include "../common/param_report_json.h"
 #include "binary_frame.h"
 #include "http_error.h"
 #include "json_input.h"

@@ -1,9 +1,9 @@
 #include "serve_state.h"
 
-#include "../explain_error.h"
-#include "../soft_constraint_sets.h"
+#include "../common/explain_error.h"
 #include "http_error.h"
 #include "iarap/jobs/deform_job.h"
+#include "iarap/jobs/soft_constraints.h"
 
 #include "iarap/core/errors.h"
 #include "iarap/core/stopwatch.h"
@@ -385,7 +385,7 @@ int ServeState::load_constraints(const Eigen::VectorXi& fixed, const Eigen::Vect
   if (soft_.soft.size() > 0 || soft.soft.size() > 0) ++soft_version_; // rebuilt at the next solve
   soft_ = soft;
   new_generation();
-  const Eigen::MatrixXd soft_targets = cli::soft_targets_of(soft.soft);
+  const Eigen::MatrixXd soft_targets = soft_targets_of(soft.soft);
   for (MethodState& state : methods_) {
     state.U = mesh_->V;
     state.anchor = targets;
@@ -515,7 +515,7 @@ void ServeState::prepare_data(MethodState& state, ArapMethod method, SolveResult
     state.data.reset(); // a throw leaves no data, rebuilt next time
     state.data = soft_.soft.size() == 0 ? arap_precompute(mesh_->V, mesh_->F, constrained_, options)
                                         : arap_precompute(mesh_->V, mesh_->F, constrained_,
-                                                          cli::soft_constraints_of(soft_.soft), options);
+                                                          soft_constraints_of(soft_.soft), options);
     state.data_soft_version = soft_version_;
     result.precompute_ms = ms_since(precompute_start);
   } else if (state.data->fixed.size() != constrained_.size() || state.data->fixed != constrained_) {
@@ -546,7 +546,7 @@ SolveResult ServeState::solve(const SolveRequest& request) {
   try {
     result.report = solve_with_progress(*state.data, targets, soft_targets, forces, U, request, progress_);
   } catch (const HardPointConflict& e) {
-    throw InputError(cli::hard_point_conflict_message(e, soft_.soft));
+    throw InputError(hard_point_conflict_message(e, soft_.soft));
   }
   result.cancelled = result.report.stop_reason == ArapStopReason::Callback; // not a time budget
   result.solve_ms = ms_since(solve_start);

@@ -1,7 +1,7 @@
 // The tool's wording of the library's solver errors (issue 20, item 5): each names the cause and the flag
 // that fixes it. The library messages below are the ones arap_precompute / SparseCholesky / the tracer
 // throw; the conditions behind the last three are hard to build on purpose, so the wording is tested here.
-#include "../app/explain_error.h" // the tool's sources: tests/ is on the include path, app/ is not
+#include "../app/common/explain_error.h" // the tool's sources: tests/ is on the include path, app/ is not
 
 #include <gtest/gtest.h>
 

@@ -2,5 +2,5 @@
 if(IARAP_BUILD_APP)
   list(APPEND IARAP_TEST_SOURCES app/cli_test.cpp app/robustness_cli_test.cpp app/explain_error_test.cpp app/simulate_cli_test.cpp
     app/repair_cli_test.cpp app/solve_option_flags_test.cpp
-    ../app/explain_error.cpp)
+    ../app/common/explain_error.cpp)
 endif()

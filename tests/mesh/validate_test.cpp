@@ -108,7 +108,8 @@ TEST(CheckMesh, SoupWarnsAboutCoincidentVertices) {
 }
 
 // Issue 36: the library names its own repair (repair_mesh and the option that does it), never a flag of
-// the tool; `iarap info`, `deform` and the viewer put their own words in its place (app/explain_error.h).
+// the tool; `iarap info`, `deform` and the viewer put their own words in its place
+// (app/common/explain_error.h).
 TEST(CheckMesh, WarningsNameTheLibraryRepair) {
   auto soup = iarap::test::as_soup(iarap::test::octahedron());
   soup.V.conservativeResize(soup.V.rows() + 1, 3);
