@@ -111,17 +111,10 @@ py::tuple deform_file_py(const BoundArguments& arguments) {
 } // namespace
 
 void bind_deform_job(py::module_& m) {
-  const auto signature = std::make_shared<const KeywordSignature>(deform_file_signature());
-  py::options options; // the docstring's first line is the signature, from the schema
-  options.disable_function_signatures();
-  m.def(
-      "deform_file",
-      [signature](const py::args& args, const py::kwargs& kwargs) {
-        return deform_file_py(signature->bind(args, kwargs));
-      },
-      (signature->text() + R"(
-
-The job of `iarap deform MESH --scenario FILE | --constraints FILE`, in the library (prepare_deform,
+  def_with_signature(
+      m, deform_file_signature(), &deform_file_py,
+      std::string(
+          R"(The job of `iarap deform MESH --scenario FILE | --constraints FILE`, in the library (prepare_deform,
 solve_deform): the same numbers as the tool for the same files and options. Returns (U (#V, 3) float64,
 F (#F, 3) of the mesh as solved: repaired when repair=True, else the file's, report dict).
 
@@ -130,11 +123,10 @@ mesh, scenario, constraints, forces: file paths (exactly one of scenario and con
 over; pin_unconstrained_components. gravity (3,) with density: the statics of m_i g (and of the forces file),
 every body held. The solve options:
 )" + solve_option_docs() +
-       R"(The report: ARAP.report's fields (in the file's units) with planar, vertices, faces, constrained, soft,
+          R"(The report: ARAP.report's fields (in the file's units) with planar, vertices, faces, constrained, soft,
 pinned, repair (what the repair did), warnings, energy (E_ARAP + penalty + potential), precompute_ms, max_displacement, bbox_diagonal.
 Raises InputError, TopologyError (a mesh not usable: the checks' messages) and SolverError as the tool's
-exit code 1 does.)")
-          .c_str());
+exit code 1 does.)"));
 }
 
 } // namespace iarap::python

@@ -84,17 +84,9 @@ py::tuple parameterize_py(const BoundArguments& arguments) {
 } // namespace
 
 void bind_param(py::module_& m) {
-  const auto signature = std::make_shared<const KeywordSignature>(parameterize_signature());
-  py::options options; // the docstring's first line is the signature, from the schema
-  options.disable_function_signatures();
-  m.def(
-      "parameterize",
-      [signature](const py::args& args, const py::kwargs& kwargs) {
-        return parameterize_py(signature->bind(args, kwargs));
-      },
-      (signature->text() + R"(
-
-ARAP parameterization (Liu et al. 2008) of a disk-like mesh: (UV (#V, 2), report dict).
+  def_with_signature(
+      m, parameterize_signature(), &parameterize_py,
+      std::string(R"(ARAP parameterization (Liu et al. 2008) of a disk-like mesh: (UV (#V, 2), report dict).
 
 V: (#V, 3) positions. F: (#F, 3) faces of a topological disk (one component, one boundary loop, genus 0).
 energy: "triangle" (per-triangle rotations, as libigl and CGAL), or per vertex with 2x2 rotations on
@@ -110,7 +102,7 @@ sqrt(area / pi)). Flip-free, pins that fold the start raise InputError (move the
 The solve runs on the engine of ARAP.solve, with its options (100 iterations here; every accelerator keeps
 the map flip-free unless allow_flips):
 )" + solve_option_docs() +
-       R"(
+                  R"(
 The report: energy = sum_f area_f ||J_f - R_f||_F^2 of the result whatever energy_kind was minimized
 (squared mesh units; initial_energy and energies are the minimized one's, with the barrier when flip-free,
 barrier its final value), scaled_energy at the best uniform
@@ -120,8 +112,7 @@ accelerator, iterations, converged, stop_reason, initial_energy, energies, initi
 gradient_norms, rejected, solves, elapsed_ms (as ARAP.solve's report), requested_init, init, init_flipped,
 init_fallback, pinned, check_ms, init_ms, cells_ms, factor_ms, iterate_ms, parameterize_ms.
 Raises InputError for bad arrays or options, TopologyError for a mesh that is not a disk (saying what it has:
-components, boundary loops, genus) or has degenerate triangles.)")
-          .c_str());
+components, boundary loops, genus) or has degenerate triangles.)"));
 }
 
 } // namespace iarap::python

@@ -5,6 +5,7 @@
 #pragma once
 #include "bindings.h"
 
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -65,5 +66,19 @@ private:
   std::string function_, returns_;
   std::vector<Parameter> parameters_;
 };
+
+// m.def(name) of a function taking (*args, **kwargs) bound by `signature` and passed to f as BoundArguments;
+// its docstring is the signature line, a blank line and `doc` (pybind11's own signature line is off).
+template <typename Function>
+void def_with_signature(py::module_& m, KeywordSignature signature, Function f, const std::string& doc) {
+  const auto bound = std::make_shared<const KeywordSignature>(std::move(signature));
+  py::options options;
+  options.disable_function_signatures();
+  const std::string text = bound->text() + "\n\n" + doc;
+  m.def(
+      bound->function().c_str(),
+      [bound, f](const py::args& args, const py::kwargs& kwargs) { return f(bound->bind(args, kwargs)); },
+      text.c_str());
+}
 
 } // namespace iarap::python
