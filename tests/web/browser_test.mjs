@@ -120,11 +120,21 @@ try {
       await page.mouse.move(g.x + 16 * k, g.y);
       await page.waitForTimeout(30);
     }
-    await page.mouse.up();
+    // The page's clock just before the pointer-up: a lower bound of the last input's time. Read after
+    // mouse.up() returned, it could come after the whole refinement on a loaded machine (the page handles
+    // the event, the answer and a converging Newton refinement of ~200 ms before the call returns), and
+    // the wait below then timed out (1 run of 15 under ctest -j2).
     const lastInput = await page.evaluate(() => performance.now());
+    await page.mouse.up();
     await idle();
     const generation = (await viewer('answers')).at(-1).generation;
-    await page.waitForFunction(([t, gen]) => window.iarapViewer.frames().some((f) => f.receivedAt > t && f.generation === gen && !f.refining), [lastInput, generation], { timeout: 60000 });
+    try {
+      await page.waitForFunction(([t, gen]) => window.iarapViewer.frames().some((f) => f.receivedAt > t && f.generation === gen && !f.refining), [lastInput, generation], { timeout: 60000 });
+    } catch (e) {
+      const seen = (await viewer('frames')).map((f) => `${f.generation}:${f.refining ? 'r' : 'final'}:${f.iterations}:${(f.receivedAt - lastInput).toFixed(0)}`);
+      const answers = (await viewer('answers')).map((a) => `${a.generation}`);
+      throw new Error(`no final frame of generation ${generation} after the last input; frames ${seen.slice(-12).join(' ')}; answers ${answers.slice(-6).join(' ')}; ${e.message}`);
+    }
     const frames = (await viewer('frames')).filter((f) => f.generation === generation);
     const last = frames.at(-1);
     console.log(`refinement after the drag: ${frames.length} frames, the first ${(frames[0].receivedAt - lastInput).toFixed(0)} ms and the last ${(last.receivedAt - lastInput).toFixed(0)} ms after the last pointer event, ${last.iterations} iterations, converged ${last.converged}`);
