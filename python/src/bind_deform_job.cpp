@@ -73,9 +73,7 @@ py::tuple deform_file_py(const BoundArguments& arguments) {
   ArapSolveOptions solve;
   set_solve_options(solve, arguments);
   StaticForces statics;
-  statics.density = arguments.as<double>("density");
-  if (!(statics.density > 0) || !std::isfinite(statics.density))
-    throw InputError("density must be a finite number > 0; got " + std::to_string(statics.density));
+  statics.density = arguments.as<double>("density"); // checked by the job (static_forces)
   statics.present = !arguments["gravity"].is_none() || !arguments["forces"].is_none();
   if (!arguments["gravity"].is_none()) statics.gravity = to_vector3(arguments["gravity"], "gravity");
   DeformPrepareOptions prepare;

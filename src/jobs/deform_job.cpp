@@ -11,6 +11,7 @@
 #include "iarap/scene/remap_scenario.h"
 #include "iarap/solver/solve_option_fields.h"
 
+#include <cmath>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -169,6 +170,8 @@ DeformResult solve_deform(const DeformScene& scene, ArapOptions options, ArapSol
 
 Eigen::MatrixXd static_forces(const Eigen::MatrixXd& V_scaled, const Eigen::MatrixXi& F, ArapMethod method,
                               const StaticForces& forces, const Eigen::MatrixXd& per_vertex, double s) {
+  if (!(forces.density > 0) || !std::isfinite(forces.density))
+    throw InputError("density must be a finite number > 0; got " + std::to_string(forces.density));
   Eigen::MatrixXd f = Eigen::MatrixXd::Zero(V_scaled.rows(), 3);
   if (forces.gravity != Eigen::Vector3d::Zero())
     f = gravity_forces(arap_vertex_masses(V_scaled, F, method, forces.density * s * s), forces.gravity / s);

@@ -19,6 +19,11 @@ public:
 
   // Solves for the free rows of x (n x k) given its fixed rows and b (n x k); the fixed rows of x are kept.
   void solve(const Eigen::MatrixXd& b, Eigen::MatrixXd& x);
+  // A_ff^{-1} r for r #free x k in the order of free() (an iteration on the free unknowns alone).
+  Eigen::MatrixXd solve_free(const Eigen::MatrixXd& r) const { return cholesky_.solve(r); }
+  // The free unknowns, increasing.
+  const std::vector<int>& free() const { return free_; }
+  FactorizationKind kind() const { return cholesky_.kind(); }
 
 private:
   std::vector<int> free_;            // the free unknowns in order

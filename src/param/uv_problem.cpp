@@ -13,55 +13,23 @@
 #include <utility>
 
 namespace iarap::param_detail {
-namespace {
-
-// M's rows and columns at `keep` (sorted).
-Eigen::SparseMatrix<double> submatrix(const Eigen::SparseMatrix<double>& M, const std::vector<int>& keep) {
-  std::vector<int> slot(static_cast<std::size_t>(M.rows()), -1);
-  for (std::size_t p = 0; p < keep.size(); ++p) slot[static_cast<std::size_t>(keep[p])] = static_cast<int>(p);
-  std::vector<Eigen::Triplet<double>> entries;
-  entries.reserve(static_cast<std::size_t>(M.nonZeros()));
-  for (int col = 0; col < M.outerSize(); ++col) {
-    const int c = slot[static_cast<std::size_t>(col)];
-    if (c < 0) continue;
-    for (Eigen::SparseMatrix<double>::InnerIterator it(M, col); it; ++it) {
-      const int r = slot[static_cast<std::size_t>(it.row())];
-      if (r >= 0) entries.emplace_back(r, c, it.value());
-    }
-  }
-  const auto n = static_cast<Eigen::Index>(keep.size());
-  Eigen::SparseMatrix<double> sub(n, n);
-  sub.setFromTriplets(entries.begin(), entries.end());
-  return sub;
-}
-
-} // namespace
-
 UvProblem::UvProblem(const DiskMesh& disk, std::unique_ptr<UvElasticEnergy> energy,
                      const std::vector<int>& pinned, std::optional<InjectivityBarrier> barrier,
                      Eigen::MatrixXd& U)
-    : disk_(disk), energy_(std::move(energy)), barrier_(std::move(barrier)), U_(U) {
-  std::vector<unsigned char> held(static_cast<std::size_t>(U.rows()), 0);
-  for (int v : pinned) held[static_cast<std::size_t>(v)] = 1;
-  for (Eigen::Index v = 0; v < U.rows(); ++v)
-    if (!held[static_cast<std::size_t>(v)]) free_.push_back(static_cast<int>(v));
-  try {
-    cholesky_.factorize(submatrix(energy_->system(), free_));
-  } catch (const SolverError& e) {
-    throw SolverError("the ARAP parameterization system (" + std::to_string(free_.size()) +
-                      " free vertices) cannot be factorized: " + e.what());
-  }
-}
+    : disk_(disk), energy_(std::move(energy)), barrier_(std::move(barrier)), U_(U),
+      system_(energy_->system(), pinned, "the ARAP parameterization system") {}
 
 Eigen::MatrixXd UvProblem::free_rows(const Eigen::MatrixXd& all) const {
+  const std::vector<int>& free = system_.free();
   Eigen::MatrixXd x(free_count(), 2);
-  for (std::size_t p = 0; p < free_.size(); ++p) x.row(static_cast<Eigen::Index>(p)) = all.row(free_[p]);
+  for (std::size_t p = 0; p < free.size(); ++p) x.row(static_cast<Eigen::Index>(p)) = all.row(free[p]);
   return x;
 }
 
 Eigen::MatrixXd UvProblem::full(const Eigen::MatrixXd& x) const {
+  const std::vector<int>& free = system_.free();
   Eigen::MatrixXd all = Eigen::MatrixXd::Zero(U_.rows(), 2);
-  for (std::size_t p = 0; p < free_.size(); ++p) all.row(free_[p]) = x.row(static_cast<Eigen::Index>(p));
+  for (std::size_t p = 0; p < free.size(); ++p) all.row(free[p]) = x.row(static_cast<Eigen::Index>(p));
   return all;
 }
 
@@ -72,7 +40,8 @@ Eigen::MatrixXd UvProblem::positions() const {
 void UvProblem::set_positions(const Eigen::MatrixXd& x) {
   // The plain step evaluates the map it returns, which the loops then set again: keep that evaluation.
   if (evaluated_ && x == positions()) return;
-  for (std::size_t p = 0; p < free_.size(); ++p) U_.row(free_[p]) = x.row(static_cast<Eigen::Index>(p));
+  const std::vector<int>& free = system_.free();
+  for (std::size_t p = 0; p < free.size(); ++p) U_.row(free[p]) = x.row(static_cast<Eigen::Index>(p));
   evaluated_ = false;
 }
 
@@ -125,7 +94,7 @@ const Eigen::MatrixXd& UvProblem::plain_step() {
 
 Eigen::MatrixXd UvProblem::solve(const Eigen::MatrixXd& r) const {
   ++solves_;
-  return 0.5 * cholesky_.solve(r);
+  return 0.5 * system_.solve_free(r);
 }
 
 void UvProblem::prepare_hessian() {
@@ -163,8 +132,9 @@ Eigen::MatrixXd UvProblem::hessian_product(const Eigen::MatrixXd& v) {
 
 double UvProblem::step_limit(const Eigen::MatrixXd& x, const Eigen::MatrixXd& d) const {
   if (!barrier_) return std::numeric_limits<double>::infinity();
+  const std::vector<int>& free = system_.free();
   Eigen::MatrixXd at = U_, J;
-  for (std::size_t p = 0; p < free_.size(); ++p) at.row(free_[p]) = x.row(static_cast<Eigen::Index>(p));
+  for (std::size_t p = 0; p < free.size(); ++p) at.row(free[p]) = x.row(static_cast<Eigen::Index>(p));
   face_jacobians(disk_.frames, disk_.F, at, J);
   return step_limit_from(J, d);
 }

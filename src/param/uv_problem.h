@@ -8,9 +8,9 @@
 // every iterate of every accelerator is injective. Internal to the param module.
 #pragma once
 #include "iarap/param/disk_mesh.h"
-#include "iarap/solver/sparse_cholesky.h"
 
 #include "../solver/problem.h"
+#include "constrained_system.h"
 #include "injectivity_barrier.h"
 #include "uv_elastic_energy.h"
 
@@ -30,7 +30,7 @@ public:
   UvProblem(const DiskMesh& disk, std::unique_ptr<UvElasticEnergy> energy, const std::vector<int>& pinned,
             std::optional<InjectivityBarrier> barrier, Eigen::MatrixXd& U);
 
-  Eigen::Index free_count() const override { return static_cast<Eigen::Index>(free_.size()); }
+  Eigen::Index free_count() const override { return static_cast<Eigen::Index>(system_.free().size()); }
   Eigen::Index dimension() const override { return 2; }
   Eigen::MatrixXd positions() const override;
   void set_positions(const Eigen::MatrixXd& x) override;
@@ -46,7 +46,7 @@ public:
 
   // E (without the barrier) at the last local step.
   double elastic_energy() const { return E_; }
-  FactorizationKind factorization() const { return cholesky_.kind(); }
+  FactorizationKind factorization() const { return system_.kind(); }
 
 private:
   Eigen::MatrixXd full(const Eigen::MatrixXd& x) const; // #V x 2, zero at the pinned rows
@@ -58,8 +58,7 @@ private:
   std::unique_ptr<UvElasticEnergy> energy_;
   std::optional<InjectivityBarrier> barrier_;
   Eigen::MatrixXd& U_;
-  std::vector<int> free_;   // the free vertices, increasing
-  SparseCholesky cholesky_; // M_ff
+  ConstrainedSystem system_; // M with the pinned vertices held: M_ff factorized, the free vertices
   // The state at the last local step: Jacobians, covariances, rotations, E and W; whether U is still there.
   Eigen::MatrixXd J_, S_, R_;
   double E_ = 0, W_ = 0;

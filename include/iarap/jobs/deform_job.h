@@ -82,7 +82,7 @@ DeformResult solve_deform(const DeformScene& scene, ArapOptions options, ArapSol
 // The statics' forces on the mesh divided by s (V_scaled = V / s, a power of two; s = 1: the mesh as it
 // is): in those units a mass is density s^2 x area and a force f / s, so that the minimizer is the mesh's
 // divided by s. m_i g / s (masses of `method`, arap_vertex_masses; none for g = 0) + per_vertex / s
-// (#V x 3, or 0 x 0: none). #V x 3.
+// (#V x 3, or 0 x 0: none). #V x 3. Throws InputError for a density that is not finite and > 0.
 Eigen::MatrixXd static_forces(const Eigen::MatrixXd& V_scaled, const Eigen::MatrixXi& F, ArapMethod method,
                               const StaticForces& forces, const Eigen::MatrixXd& per_vertex, double s);
 
