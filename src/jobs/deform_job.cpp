@@ -80,21 +80,6 @@ Eigen::MatrixXd scaled_forces(const DeformScene& scene, const StaticForces& forc
   return static_forces(V_scaled, scene.mesh.F, options.method, forces, scene.forces, s);
 }
 
-// The report of a solve on the mesh divided by s, in the input's units: energies scale with length^2,
-// gradients (L U - rhs) and Newton's trust radius (the L_ff norm of a displacement) with length.
-void to_input_units(ArapReport& report, double s) {
-  const double energy_unit = s * s;
-  report.initial_energy *= energy_unit;
-  for (double& e : report.energies) e *= energy_unit;
-  report.penalty *= energy_unit;
-  report.arap_energy *= energy_unit;
-  report.potential *= energy_unit;
-  report.initial_gradient_norm *= s;
-  for (double& g : report.gradient_norms) g *= s;
-  report.newton_trust_radius *= s;
-  report.newton_reference_gradient *= s;
-}
-
 } // namespace
 
 DeformScene prepare_deform(MeshData mesh, const DeformConstraints& constraints,
@@ -164,7 +149,7 @@ DeformResult solve_deform(const DeformScene& scene, ArapOptions options, ArapSol
   }
   result.max_displacement = (result.U - V).rowwise().norm().maxCoeff() * s; // no overflow at 1e300
   result.U *= s;
-  to_input_units(result.report, s);
+  rescale_report(result.report, s);
   return result;
 }
 

@@ -6,6 +6,7 @@
 #include "iarap/param/disk_mesh.h"
 #include "iarap/param/fixed_boundary_map.h"
 #include "iarap/param/lscm.h"
+#include "iarap/solver/arap.h"
 #include "iarap/solver/solve_option_fields.h"
 
 #include "../solver/local_global_loops.h"
@@ -209,13 +210,7 @@ ParamResult arap_parameterize(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F
   scale_length_options(scaled.solve, s);
   scaled.solve.newton_reference_gradient /= s;
   UV = iterate(disk, UV, scaled, pins, report, total_start);
-  ArapReport& solve = report.solve;
-  solve.newton_trust_radius *= s;
-  solve.newton_reference_gradient *= s;
-  solve.initial_energy *= s * s;
-  for (double& e : solve.energies) e *= s * s;
-  solve.initial_gradient_norm *= s; // d(s^2 E) / d(s U)
-  for (double& g : solve.gradient_norms) g *= s;
+  rescale_report(report.solve, s);
   report.barrier *= s * s;
 
   report.distortion = map_distortion(disk.frames, disk.F, UV);

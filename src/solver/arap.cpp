@@ -383,6 +383,19 @@ const Eigen::SparseMatrix<double>& arap_system_matrix(const ArapData& data) {
   return data.L;
 }
 
+void rescale_report(ArapReport& report, double s) {
+  const double energy_unit = s * s;
+  report.initial_energy *= energy_unit;
+  for (double& e : report.energies) e *= energy_unit;
+  report.penalty *= energy_unit;
+  report.arap_energy *= energy_unit;
+  report.potential *= energy_unit;
+  report.initial_gradient_norm *= s;
+  for (double& g : report.gradient_norms) g *= s;
+  report.newton_trust_radius *= s;
+  report.newton_reference_gradient *= s;
+}
+
 FactorizationKind arap_factorization(const ArapData& data) {
   return data.solver.kind();
 }

@@ -103,6 +103,11 @@ const std::vector<Eigen::Matrix3d>& arap_rotations(const ArapData& data);
 const Eigen::SparseMatrix<double>& arap_system_matrix(const ArapData& data);
 
 // Which factorization L_ff got (CHOLMOD LLT, or LDLT when L_ff is not positive definite).
+// The report of a solve run on a mesh divided by s (normalizing_scale), in the mesh's own units: energies
+// (initial, per iteration, penalty, potential, arap_energy) times s^2, gradient norms and Newton's trust
+// radius and reference gradient (the L_ff norm of a displacement) times s.
+void rescale_report(ArapReport& report, double s);
+
 FactorizationKind arap_factorization(const ArapData& data);
 
 } // namespace iarap
