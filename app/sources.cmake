@@ -2,7 +2,7 @@ list(APPEND IARAP_APP_SOURCES main.cpp)
 list(APPEND IARAP_APP_SOURCES info_command.cpp deform_command.cpp bench_command.cpp bench_converge.cpp cpu_name.cpp
   write_text_file.cpp common/explain_error.cpp omp_wait_policy.cpp malloc_settings.cpp
   mesh_report_json.cpp same_file.cpp number_validators.cpp
-  iteration_options.cpp external_force_options.cpp simulate_command.cpp
+  external_force_options.cpp simulate_command.cpp
   solve_option_flags.cpp solve_report_json.cpp)
 list(APPEND IARAP_APP_SOURCES intrinsic_command.cpp)
 list(APPEND IARAP_APP_SOURCES laplacian_command.cpp)
