@@ -14,6 +14,7 @@
 #include "constraint_layout.h"
 #include "local_global_loops.h"
 #include "local_global_problem.h"
+#include "quadratic_terms.h"
 #include "soft_terms.h"
 #include "traced_elements.h"
 
@@ -266,20 +267,6 @@ void arap_set_soft_weights(ArapData& data, const Eigen::VectorXd& vertex_weights
 
 namespace {
 
-// P(U) of data's soft points for U #V x 3.
-double penalty_of(const ArapData& data, const Eigen::MatrixXd& soft_targets, const Eigen::MatrixXd& U) {
-  if (data.soft.size() == 0) return 0.0;
-  const ArapElements::ValueRows U_rows = U; // row-major, as soft_penalty reads it
-  return detail::soft_penalty(detail::soft_points(data.soft, data.F), soft_targets, U_rows.data(), nullptr,
-                              static_cast<size_t>(data.soft.soft_size()));
-}
-
-// -f . (U - V) for forces f #V x 3 (0 x 0: none).
-double potential_of(const ArapData& data, const Eigen::MatrixXd& forces, const Eigen::MatrixXd& U) {
-  if (forces.rows() == 0) return 0.0;
-  return forces.cwiseProduct(data.V).sum() - forces.cwiseProduct(U).sum();
-}
-
 ArapReport solve_checked(ArapData& data, const Eigen::MatrixXd& targets, const Eigen::MatrixXd& soft_targets,
                          const Eigen::MatrixXd& forces, Eigen::MatrixXd& U, const ArapSolveOptions& options,
                          Clock::time_point start) {
@@ -288,8 +275,11 @@ ArapReport solve_checked(ArapData& data, const Eigen::MatrixXd& targets, const E
     detail::LocalGlobalProblem problem(data, targets, U, soft_targets, forces);
     report = detail::run_local_global(problem, options, data.solver.kind(), start);
   } // U holds the result in the file's order from here
-  report.penalty = penalty_of(data, soft_targets, U);
-  report.potential = potential_of(data, forces, U);
+  // The terms' energies at the result, in the file's order.
+  const ArapElements::ValueRows U_rows = U;
+  for (const auto& term : detail::quadratic_terms(data, soft_targets, forces, nullptr))
+    (term->kind() == detail::QuadraticTerm::Kind::Penalty ? report.penalty : report.potential) =
+        term->energy(U_rows);
   report.arap_energy = (report.energies.empty() ? report.initial_energy : report.energies.back()) -
                        report.penalty - report.potential;
   return report;
@@ -328,8 +318,10 @@ ArapReport arap_solve(ArapData& data, const Eigen::MatrixXd& targets, const Eige
 double arap_penalty(const ArapData& data, const Eigen::MatrixXd& soft_targets, const Eigen::MatrixXd& U) {
   check_solver_positions(data, soft_targets, data.soft.size(), "soft targets");
   check_solver_positions(data, U, data.V.rows(), "positions U");
-  return penalty_of(data, soft_targets.cols() == 2 ? embedded(soft_targets) : soft_targets,
-                    U.cols() == 2 ? embedded(U) : U);
+  if (data.soft.size() == 0) return 0.0;
+  const detail::SoftPointTerm penalty(data, soft_targets.cols() == 2 ? embedded(soft_targets) : soft_targets,
+                                      nullptr);
+  return penalty.energy(U.cols() == 2 ? embedded(U) : U);
 }
 
 Eigen::MatrixXd arap_penalty_gradient(const ArapData& data, const Eigen::MatrixXd& soft_targets,
