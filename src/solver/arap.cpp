@@ -11,6 +11,7 @@
 
 #include "../core/run_beside.h"
 #include "../intrinsic/intrinsic_phases.h"
+#include "cell_stiffness.h"
 #include "constraint_layout.h"
 #include "local_global_loops.h"
 #include "local_global_problem.h"
@@ -157,8 +158,8 @@ void take_traced_elements(const Eigen::MatrixXd& V, std::optional<detail::Traced
 // the pattern and the cotan Laplacian read the first two, the signpost triangulation all three; each drops
 // its references when done with them.
 void build_intrinsic_elements(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
-                              const IntrinsicOptions& intrinsic, const detail::ConstraintLayout& layout,
-                              ArapData& data, SystemBuild& system) {
+                              const IntrinsicOptions& intrinsic, bool cotan_identity,
+                              const detail::ConstraintLayout& layout, ArapData& data, SystemBuild& system) {
   std::optional<detail::TracedTriangulation> traced;
   double intrinsic_ms = 0.0, elements_ms = 0.0, cotan_ms = 0.0;
   const auto start = Clock::now();
@@ -171,7 +172,8 @@ void build_intrinsic_elements(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F
         system.pattern = system_pattern(F, static_cast<int>(V.rows()), *topology);
         topology.reset();
         analyze(layout, system);
-        if (!C->allFinite()) return; // degenerate faces: mollified lengths, the identity does not hold
+        // Degenerate faces (mollified lengths) or stiffness: the identity does not hold.
+        if (!cotan_identity || !C->allFinite()) return;
         data.L = timed(cotan_ms, [&] { return cotan_system_matrix(F, *C, system.pattern); });
         C.reset();
         factorize(data.L, layout, system);
@@ -189,7 +191,7 @@ void build_intrinsic_elements(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F
   data.timings.assembly_ms = elements_ms + cotan_ms;
   // What the intrinsic and element build did not hide of the analysis and factorization.
   data.timings.factor_ms = std::max(0.0, ms_since(start) - intrinsic_ms - elements_ms - cotan_ms);
-  if (data.intrinsic.mollify_delta != 0.0) system.factorized = false;
+  if (data.intrinsic.mollify_delta != 0.0 || !cotan_identity) system.factorized = false;
 }
 
 // L from the elements (Eq. 17) and its factorization, where the element build did not factorize it.
@@ -201,6 +203,16 @@ void factorize_element_system(const Eigen::MatrixXi& F, const detail::Constraint
 }
 
 } // namespace
+
+void check_arap_stiffness(const Eigen::VectorXd& s, Eigen::Index n) {
+  if (s.size() != n)
+    throw InputError("ARAP: stiffness has " + std::to_string(s.size()) + " entries for a mesh of " +
+                     std::to_string(n) + " vertices");
+  for (Eigen::Index v = 0; v < n; ++v)
+    if (!(std::isfinite(s(v)) && s(v) > 0))
+      throw InputError("ARAP: stiffness of vertex " + std::to_string(v) + " is " + std::to_string(s(v)) +
+                       "; it must be finite and > 0");
+}
 
 ArapData arap_precompute(const Eigen::MatrixXd& V_in, const Eigen::MatrixXi& F, const Eigen::VectorXi& fixed,
                          const ArapOptions& options) {
@@ -215,13 +227,17 @@ ArapData arap_precompute(const Eigen::MatrixXd& V_in, const Eigen::MatrixXi& F, 
   data.planar = options.planar || V_in.cols() == 2;
   // Bad constraints fail before any heavy work.
   detail::check_soft_constraints(soft, static_cast<int>(V.rows()), F, fixed);
+  if (options.stiffness.size() > 0) check_arap_stiffness(options.stiffness, V.rows());
+  const bool stiffness = !detail::is_unit_stiffness(options.stiffness);
   detail::ConstraintLayout layout = detail::constraint_layout(data, fixed, soft);
   SystemBuild system;
   system.Q = detail::soft_system_matrix(detail::soft_points(soft, F), static_cast<int>(V.rows()));
   if (options.method == ArapMethod::Iarap)
-    build_intrinsic_elements(V, F, options.intrinsic, layout, data, system);
+    build_intrinsic_elements(V, F, options.intrinsic, !stiffness, layout, data, system);
   else
     build_cotan_elements(V, F, options.method, layout, data, system);
+  if (stiffness)
+    detail::apply_cell_stiffness(data.elements, detail::cell_stiffness_of(data.elements, options.stiffness));
   if (!system.factorized) factorize_element_system(F, layout, data, system);
   data.elements.planar = data.planar;
   data.timings.analyze_ms = system.analyze_ms;
