@@ -1,11 +1,9 @@
-#include "serve_state.h"
+#include "session.h"
 
 #include "../common/explain_error.h"
-#include "http_error.h"
 #include "iarap/jobs/deform_job.h"
 #include "iarap/jobs/soft_constraints.h"
 
-#include "iarap/core/errors.h"
 #include "iarap/core/stopwatch.h"
 #include "iarap/mesh/validate.h"
 
@@ -18,14 +16,6 @@ namespace {
 
 // The viewer loads a mesh as it is; the repair a warning names runs in the tool, before serving.
 const std::string viewer_repair = std::string("outside the viewer, ") + cli::deform_repair_flag;
-
-std::vector<float> to_float_rows(const Eigen::MatrixXd& X) {
-  std::vector<float> out(static_cast<std::size_t>(X.rows() * X.cols()));
-  for (Eigen::Index i = 0; i < X.rows(); ++i)
-    for (Eigen::Index k = 0; k < X.cols(); ++k)
-      out[static_cast<std::size_t>(i * X.cols() + k)] = static_cast<float>(X(i, k));
-  return out;
-}
 
 Eigen::MatrixXd gather_rows(const Eigen::MatrixXd& X, const Eigen::VectorXi& rows) {
   Eigen::MatrixXd out(rows.size(), X.cols());
@@ -64,18 +54,6 @@ Eigen::MatrixXd soft_points_at(const SoftConstraintSet& soft, const Eigen::Matri
   return P;
 }
 
-// (E_prev - E) / |E_prev| of the report's last iteration: what the energy tolerance compares.
-double last_relative_decrease(const ArapReport& report) {
-  if (report.energies.empty()) return 0;
-  const double previous =
-      report.energies.size() > 1 ? report.energies[report.energies.size() - 2] : report.initial_energy;
-  return previous != 0 ? (previous - report.energies.back()) / std::abs(previous) : 0;
-}
-
-double last_energy(const ArapReport& report) {
-  return report.energies.empty() ? report.initial_energy : report.energies.back();
-}
-
 // One arap_solve call that publishes its progress after every iteration and stops when a cancel is
 // requested (the callback returns false). One call, not chunks: the accelerators keep their history, so the
 // page's result equals `iarap deform`'s with the same options bit for bit.
@@ -102,130 +80,25 @@ ArapReport solve_with_progress(ArapData& data, const Eigen::MatrixXd& targets,
   return arap_solve(data, targets, soft_targets, U, options);
 }
 
+// Every row of X (#rows x 3, or 0 x 0) in the plane z = 0.
+bool in_plane(const Eigen::MatrixXd& X) {
+  return X.rows() == 0 || (X.col(2).array() == 0.0).all();
+}
+
 } // namespace
 
-ServeState::SessionLock::SessionLock(const ServeState& state) : state_(state) {
-  ++state_.waiting_;
-  lock_ = std::unique_lock<std::mutex>(state_.mutex_);
-  --state_.waiting_;
-}
-
-ServeState::SessionLock::~SessionLock() {
-  state_.last_release_ = Clock::now();
-  lock_.unlock();
-  state_.refine_wake_.notify_one();
-}
-
-ServeState::ServeState() : refiner_([this] { refine_in_background(); }) {}
-
-ServeState::~ServeState() {
-  {
-    std::lock_guard<std::mutex> lock(mutex_); // stopping_ is read under it by the refiner's wait
-    stopping_ = true;
-  }
-  refine_wake_.notify_one();
-  refiner_.join();
-  frames_.close();
-}
-
-void ServeState::new_generation() {
+void Session::new_generation() {
   ++generation_;
   refine_job_.reset();
 }
 
-// Waits, with the mutex released, until there is a job, nobody queues for the mutex and the last caller
-// left refine_delay_ms ago; then one chunk.
-void ServeState::refine_in_background() {
-  std::unique_lock<std::mutex> lock(mutex_);
-  for (;;) {
-    refine_wake_.wait(lock, [this] { return stopping_ || (refine_job_ && waiting_.load() == 0); });
-    if (stopping_) return;
-    const auto start = last_release_ + std::chrono::duration_cast<Clock::duration>(
-                                           std::chrono::duration<double, std::milli>(refine_delay_ms));
-    if (Clock::now() < start) {
-      refine_wake_.wait_until(lock, start); // then everything is checked again
-      continue;
-    }
-    refine_chunk();
-  }
-}
-
-void ServeState::refine_chunk() {
-  RefineJob& job = *refine_job_;
-  MethodState& state = state_of(job.method);
-  ArapSolveOptions options = job.options;
-  options.time_budget_ms = refine_frame_ms;
-  if (job.gradient_target > 0) options.gradient_tolerance = job.gradient_target / job.gradient_now;
-  options.newton_trust_radius = job.trust_radius;
-  options.newton_reference_gradient = job.reference_gradient;
-  const bool plain = job.options.accelerator == ArapAccelerator::None || job.options.window == 0;
-  bool energy_rule = false;
-  // The iteration boundary where a caller of the session takes over (or the server stops), and the
-  // energy rule on accelerated iterates.
-  options.on_iteration = [&](const ArapReport& report) {
-    energy_rule = job.tolerance >= 0 && (plain || report.accepted.back() != 0) &&
-                  last_relative_decrease(report) <= job.tolerance;
-    return !energy_rule && waiting_.load() == 0 && !stopping_.load();
-  };
-  SessionFrame frame;
-  frame.generation = generation_;
-  frame.method = job.method;
-  frame.refined = true;
-  frame.tolerance = job.tolerance;
-  try {
-    Eigen::MatrixXd U = state.U;
-    const ArapReport report = state.data->soft.size() == 0
-                                  ? arap_solve(*state.data, job.targets, U, options)
-                                  : arap_solve(*state.data, job.targets, job.soft_targets, U, options);
-    state.U = std::move(U);
-    job.iterations_done += report.iterations;
-    job.options.max_iterations -= report.iterations;
-    if (!report.gradient_norms.empty()) job.gradient_now = report.gradient_norms.back();
-    job.trust_radius = report.newton_trust_radius;
-    job.reference_gradient = report.newton_reference_gradient;
-    frame.energy = last_energy(report);
-    frame.relative_decrease = last_relative_decrease(report);
-    frame.converged = report.converged || energy_rule;
-    frame.refining = !frame.converged && job.options.max_iterations > 0;
-  } catch (const std::exception& e) { // the solver's refusal ends the refinement; U stays the last iterate
-    frame.error = e.what();
-  }
-  frame.iterations = job.iterations_done;
-  frame.positions = to_float_rows(state.U);
-  if (!frame.refining) refine_job_.reset();
-  frames_.publish(std::move(frame));
-}
-
-bool ServeState::stop_refinement() {
-  const SessionLock lock(*this);
-  if (!refine_job_) return false;
-  const RefineJob job = std::move(*refine_job_);
-  refine_job_.reset();
-  SessionFrame frame;
-  frame.generation = generation_;
-  frame.method = job.method;
-  frame.refined = true;
-  frame.iterations = job.iterations_done;
-  frame.tolerance = job.tolerance;
-  const MethodState& state = state_of(job.method);
-  // The energy the solves report: E_ARAP + P - f . (U - V), as the refinement's other frames.
-  frame.energy = arap_energy(*state.data, state.U);
-  if (state.data->soft.size() > 0) frame.energy += arap_penalty(*state.data, job.soft_targets, state.U);
-  if (job.options.forces.rows() > 0)
-    frame.energy -= (job.options.forces.array() * (state.U - mesh_->V).array()).sum();
-  frame.positions = to_float_rows(state.U);
-  frames_.publish(std::move(frame));
-  return true;
-}
-
-void ServeState::load_mesh(const std::string& name, MeshData mesh) {
+void Session::load_mesh(const std::string& name, MeshData mesh) {
   const MeshReport report = check_mesh(mesh.V, mesh.F);
   if (!report.usable()) {
     std::string message = name + ": mesh not usable for ARAP:";
     for (const auto& error : report.errors) message += "\n  " + cli::name_repair(error, viewer_repair);
     throw TopologyError(message);
   }
-  const SessionLock lock(*this);
   summary_ = MeshSummary{name,
                          static_cast<int>(mesh.V.rows()),
                          static_cast<int>(mesh.F.rows()),
@@ -249,50 +122,41 @@ void ServeState::load_mesh(const std::string& name, MeshData mesh) {
   mesh_ = std::move(mesh);
 }
 
-bool ServeState::has_mesh() const {
-  const SessionLock lock(*this);
-  return mesh_.has_value();
+void Session::require_mesh() const {
+  if (!mesh_) throw SessionConflict("no mesh loaded; load one of the server's meshes or upload one first");
 }
 
-void ServeState::require_mesh() const {
-  if (!mesh_) throw HttpError(409, "no mesh loaded; load one of the server's meshes or upload one first");
-}
-
-MeshSummary ServeState::mesh_summary() const {
-  const SessionLock lock(*this);
+const MeshSummary& Session::mesh_summary() const {
   require_mesh();
   return summary_;
 }
 
-Eigen::VectorXi ServeState::fixed() const {
-  const SessionLock lock(*this);
+const Eigen::VectorXi& Session::fixed() const {
   require_mesh();
   return fixed_;
 }
 
-Eigen::VectorXi ServeState::handle() const {
-  const SessionLock lock(*this);
+const Eigen::VectorXi& Session::handle() const {
   require_mesh();
   return handle_;
 }
 
-SoftSession ServeState::soft() const {
-  const SessionLock lock(*this);
+const SoftSession& Session::soft() const {
   require_mesh();
   return soft_;
 }
 
 // ArapMethod counts 0, 1, 2 in the order of all_methods.
-ServeState::MethodState& ServeState::state_of(ArapMethod method) {
+Session::MethodState& Session::state_of(ArapMethod method) {
   return methods_[static_cast<std::size_t>(method)];
 }
 
-const ServeState::MethodState& ServeState::state_of(ArapMethod method) const {
+const Session::MethodState& Session::state_of(ArapMethod method) const {
   return methods_[static_cast<std::size_t>(method)];
 }
 
-void ServeState::check_sets(const Eigen::VectorXi& fixed, const Eigen::VectorXi& handle,
-                            const SoftConstraintSet& soft) const {
+void Session::check_sets(const Eigen::VectorXi& fixed, const Eigen::VectorXi& handle,
+                         const SoftConstraintSet& soft) const {
   const int vertex_count = static_cast<int>(mesh_->V.rows());
   std::unordered_map<int, std::string> seen;
   for (Eigen::Index k = 0; k < soft.vertices.size(); ++k) {
@@ -305,26 +169,23 @@ void ServeState::check_sets(const Eigen::VectorXi& fixed, const Eigen::VectorXi&
   check_index_set(handle, "handle", vertex_count, seen);
 }
 
-void ServeState::use_sets(const Eigen::VectorXi& fixed, const Eigen::VectorXi& handle) {
+void Session::use_sets(const Eigen::VectorXi& fixed, const Eigen::VectorXi& handle) {
   fixed_ = fixed;
   handle_ = handle;
   constrained_.resize(fixed.size() + handle.size());
   constrained_ << fixed, handle;
 }
 
-int ServeState::record_revision() {
-  Revision revision{next_revision_++, fixed_, handle_, {}, {}, soft_, soft_version_};
+int Session::record_revision() {
+  Revision revision{0, fixed_, handle_, {}, {}, soft_, soft_version_};
   for (std::size_t m = 0; m < methods_.size(); ++m) {
     revision.anchors[m] = methods_[m].anchor;
     revision.soft_anchors[m] = methods_[m].soft_anchor;
   }
-  history_.push_back(std::move(revision));
-  if (history_.size() > history_limit) history_.pop_front();
-  return history_.back().id;
+  return history_.record(std::move(revision));
 }
 
-int ServeState::set_constraints(const Eigen::VectorXi& fixed, const Eigen::VectorXi& handle) {
-  const SessionLock lock(*this);
+int Session::set_constraints(const Eigen::VectorXi& fixed, const Eigen::VectorXi& handle) {
   require_mesh();
   check_sets(fixed, handle, soft_.soft);
   use_sets(fixed, handle);
@@ -340,37 +201,25 @@ int ServeState::set_constraints(const Eigen::VectorXi& fixed, const Eigen::Vecto
   return record_revision();
 }
 
-void ServeState::restore_constraints(int revision) {
-  const SessionLock lock(*this);
+void Session::restore_constraints(int revision) {
   require_mesh();
-  const auto it = std::find_if(history_.begin(), history_.end(),
-                               [revision](const Revision& r) { return r.id == revision; });
-  if (it == history_.end()) {
-    throw HttpError(409, "constraint revision " + std::to_string(revision) + " is not kept (the last " +
-                             std::to_string(history_limit) + " of this mesh are)");
+  const Revision* restored = history_.restore(revision);
+  if (restored == nullptr) {
+    throw SessionConflict("constraint revision " + std::to_string(revision) + " is not kept (the last " +
+                          std::to_string(ConstraintHistory::limit) + " of this mesh are)");
   }
-  use_sets(it->fixed, it->handle);
-  soft_ = it->soft;
-  soft_version_ = it->soft_version;
+  use_sets(restored->fixed, restored->handle);
+  soft_ = restored->soft;
+  soft_version_ = restored->soft_version;
   new_generation();
   for (std::size_t m = 0; m < methods_.size(); ++m) {
-    methods_[m].anchor = it->anchors[m];
-    methods_[m].soft_anchor = it->soft_anchors[m];
+    methods_[m].anchor = restored->anchors[m];
+    methods_[m].soft_anchor = restored->soft_anchors[m];
   }
-  // The restored state becomes the newest, so that it outlives the revisions undone past it.
-  Revision restored = *it;
-  history_.erase(it);
-  history_.push_back(std::move(restored));
 }
 
-int ServeState::revision() const {
-  const SessionLock lock(*this);
-  return history_.empty() ? 0 : history_.back().id;
-}
-
-int ServeState::load_constraints(const Eigen::VectorXi& fixed, const Eigen::VectorXi& handle,
-                                 const Eigen::MatrixXd& targets, const SoftSession& soft) {
-  const SessionLock lock(*this);
+int Session::load_constraints(const Eigen::VectorXi& fixed, const Eigen::VectorXi& handle,
+                              const Eigen::MatrixXd& targets, const SoftSession& soft) {
   require_mesh();
   check_sets(fixed, handle, soft.soft);
   if (soft.dragged.size() != static_cast<std::size_t>(soft.soft.vertices.size()))
@@ -394,11 +243,10 @@ int ServeState::load_constraints(const Eigen::VectorXi& fixed, const Eigen::Vect
   return record_revision();
 }
 
-ConstraintTargets ServeState::constraint_targets(ArapMethod method, const SolveRequest& request) const {
-  const SessionLock lock(*this);
+ConstraintTargets Session::constraint_targets(ArapMethod method, const SolveRequest& request) const {
   require_mesh();
   if (constrained_.size() == 0 && soft_.soft.size() == 0)
-    throw HttpError(409, "no fixed or handle vertices; select some first");
+    throw SessionConflict("no fixed or handle vertices; select some first");
   const MethodState& state = state_of(method);
   ConstraintTargets out;
   out.fixed = fixed_;
@@ -419,7 +267,7 @@ ConstraintTargets ServeState::constraint_targets(ArapMethod method, const SolveR
   return out;
 }
 
-Eigen::MatrixXd ServeState::targets_for(const MethodState& state, const SolveRequest& request) const {
+Eigen::MatrixXd Session::targets_for(const MethodState& state, const SolveRequest& request) const {
   Eigen::MatrixXd targets = state.anchor;
   const Eigen::Index first_handle = fixed_.size();
   const Eigen::Index handle_count = handle_.size();
@@ -456,7 +304,7 @@ Eigen::MatrixXd ServeState::targets_for(const MethodState& state, const SolveReq
 
 // The soft points' targets for request: the anchors, the dragged soft vertices moved by its transform like
 // the handle. Explicit handle_targets cannot say where a dragged soft vertex goes: refused.
-Eigen::MatrixXd ServeState::soft_targets_for(const MethodState& state, const SolveRequest& request) const {
+Eigen::MatrixXd Session::soft_targets_for(const MethodState& state, const SolveRequest& request) const {
   Eigen::MatrixXd targets = state.soft_anchor;
   const auto dragged = static_cast<Eigen::Index>(std::count(soft_.dragged.begin(), soft_.dragged.end(), 1));
   if (request.handle_targets && dragged > 0)
@@ -475,7 +323,7 @@ Eigen::MatrixXd ServeState::soft_targets_for(const MethodState& state, const Sol
 
 // As `iarap deform`'s statics (static_forces on the mesh in its own units, s = 1), with every connected
 // component held by a constrained vertex or a soft point: a free body under a net force has no minimum.
-Eigen::MatrixXd ServeState::forces_for(const SolveRequest& request) const {
+Eigen::MatrixXd Session::forces_for(const SolveRequest& request) const {
   if (!request.gravity && !request.forces) return Eigen::MatrixXd();
   const Eigen::MatrixXd& V = mesh_->V;
   Eigen::MatrixXd file_forces;
@@ -492,8 +340,8 @@ Eigen::MatrixXd ServeState::forces_for(const SolveRequest& request) const {
   faces << soft_.soft.faces, soft_.soft.hard_faces;
   try {
     require_held_components(mesh_->F, static_cast<int>(V.rows()), constrained_, soft_.soft.vertices, faces);
-  } catch (const InputError& e) {
-    throw HttpError(422, std::string("gravity / forces: ") + e.what());
+  } catch (const InputError& e) { // the request is well formed; the mesh cannot take it (422)
+    throw TopologyError(std::string("gravity / forces: ") + e.what());
   }
   StaticForces statics;
   statics.present = true;
@@ -502,14 +350,15 @@ Eigen::MatrixXd ServeState::forces_for(const SolveRequest& request) const {
   return static_forces(V, mesh_->F, request.method, statics, file_forces, 1.0);
 }
 
-// The method's data for the session's sets: built on first use and for new soft constraints (with them),
-// refactorized when only the constrained set changed.
-void ServeState::prepare_data(MethodState& state, ArapMethod method, SolveResult& result) {
+// The method's data for the session's sets: built on first use, for new soft constraints (with them) and
+// for a change of planar mode, refactorized when only the constrained set changed.
+void Session::prepare_data(MethodState& state, ArapMethod method, bool planar, SolveResult& result) {
   const auto precompute_start = Clock::now();
-  if (!state.data || state.data_soft_version != soft_version_ ||
+  if (!state.data || state.data_soft_version != soft_version_ || state.data->planar != planar ||
       (soft_.soft.size() > 0 && state.data->fixed != constrained_)) {
     ArapOptions options;
     options.method = method;
+    options.planar = planar;
     // Uploaded meshes may have pieces the user did not select; pin them rather than refuse to solve.
     options.pin_unconstrained_components = true;
     state.data.reset(); // a throw leaves no data, rebuilt next time
@@ -524,27 +373,27 @@ void ServeState::prepare_data(MethodState& state, ArapMethod method, SolveResult
   }
 }
 
-SolveResult ServeState::solve(const SolveRequest& request) {
-  const auto arrival = Clock::now();
-  const SessionLock lock(*this);
-  const double wait_ms = ms_since(arrival);
+SolveResult Session::solve(const SolveRequest& request, SolveProgress& progress) {
   require_mesh();
   if (constrained_.size() == 0 && soft_.soft.size() == 0)
-    throw HttpError(409, "no fixed or handle vertices; select some before solving");
+    throw SessionConflict("no fixed or handle vertices; select some before solving");
   MethodState& state = state_of(request.method);
   const Eigen::MatrixXd targets = targets_for(state, request);
   const Eigen::MatrixXd soft_targets = soft_targets_for(state, request);
   const Eigen::MatrixXd forces = forces_for(request);
   SolveResult result;
-  result.wait_ms = wait_ms;
   result.refinement_preempted = refine_job_.has_value();
   new_generation();
-  prepare_data(state, request.method, result);
+  // `iarap deform`'s rule (solve_deform): a mesh and targets in z = 0 deform in their plane. Its initial
+  // guess is the rest mesh; the session's is the method's U, which must lie in the plane too.
+  result.planar = in_plane(mesh_->V) && in_plane(state.U) && in_plane(targets) && in_plane(soft_targets) &&
+                  in_plane(forces);
+  prepare_data(state, request.method, result.planar, result);
 
   Eigen::MatrixXd U = state.U; // commit only a successful solve
   const auto solve_start = Clock::now();
   try {
-    result.report = solve_with_progress(*state.data, targets, soft_targets, forces, U, request, progress_);
+    result.report = solve_with_progress(*state.data, targets, soft_targets, forces, U, request, progress);
   } catch (const HardPointConflict& e) {
     throw InputError(hard_point_conflict_message(e, soft_.soft));
   }
@@ -560,42 +409,30 @@ SolveResult ServeState::solve(const SolveRequest& request) {
   state.U = std::move(U);
   result.generation = generation_;
   result.refining = request.refine_iterations > 0 && !result.report.converged && !result.cancelled;
-  if (result.refining) {
-    RefineJob job;
-    job.method = request.method;
-    job.targets = targets;
-    job.soft_targets = soft_targets;
-    job.options.forces = forces;
-    job.options.max_iterations = request.refine_iterations;
-    job.options.tolerance = -1; // the job's own rules, in refine_chunk
-    job.options.accelerator = request.refine_accelerator;
-    job.options.window = request.solve.window;
-    job.tolerance = request.solve.tolerance;
-    job.gradient_target = request.solve.gradient_tolerance * result.report.initial_gradient_norm;
-    if (request.refine_accelerator == request.solve.accelerator) { // Newton's state goes on (same targets)
-      job.trust_radius = result.report.newton_trust_radius;
-      job.reference_gradient = result.report.newton_reference_gradient;
-    }
-    job.gradient_now = result.report.gradient_norms.empty() ? result.report.initial_gradient_norm
-                                                            : result.report.gradient_norms.back();
-    refine_job_ = std::move(job); // the refiner starts when this call releases the mutex
-  }
-  SessionFrame frame;
-  frame.generation = generation_;
-  frame.method = request.method;
-  frame.iterations = result.report.iterations;
-  frame.energy = last_energy(result.report);
-  frame.relative_decrease = last_relative_decrease(result.report);
-  frame.tolerance = request.solve.tolerance;
-  frame.refining = result.refining;
-  frame.converged = result.report.converged;
-  frame.positions = result.positions;
-  result.sequence = frames_.publish(std::move(frame));
+  if (result.refining) refine_job_ = refine_job_after(request, result.report, targets, soft_targets, forces);
   return result;
 }
 
-void ServeState::reset() {
-  const SessionLock lock(*this);
+SessionFrame Session::refine_chunk(double budget_ms, const std::function<bool()>& keep_going) {
+  RefineJob& job = *refine_job_;
+  MethodState& state = state_of(job.method);
+  SessionFrame frame = serve::refine_chunk(job, *state.data, state.U, budget_ms, keep_going);
+  frame.generation = generation_;
+  if (!frame.refining) refine_job_.reset();
+  return frame;
+}
+
+std::optional<SessionFrame> Session::stop_refinement() {
+  if (!refine_job_) return std::nullopt;
+  const RefineJob job = std::move(*refine_job_);
+  refine_job_.reset();
+  const MethodState& state = state_of(job.method);
+  SessionFrame frame = stopped_refinement_frame(job, *state.data, state.U, mesh_->V);
+  frame.generation = generation_;
+  return frame;
+}
+
+void Session::reset() {
   require_mesh();
   new_generation();
   for (MethodState& state : methods_) {
@@ -606,14 +443,12 @@ void ServeState::reset() {
   if (constrained_.size() > 0 || soft_.soft.size() > 0) record_revision();
 }
 
-std::vector<float> ServeState::positions(std::optional<ArapMethod> method) const {
-  const SessionLock lock(*this);
+std::vector<float> Session::positions(std::optional<ArapMethod> method) const {
   require_mesh();
   return to_float_rows(method ? state_of(*method).U : mesh_->V);
 }
 
-std::vector<std::uint32_t> ServeState::faces() const {
-  const SessionLock lock(*this);
+std::vector<std::uint32_t> Session::faces() const {
   require_mesh();
   const Eigen::MatrixXi& F = mesh_->F;
   std::vector<std::uint32_t> out(static_cast<std::size_t>(F.rows() * 3));
@@ -623,28 +458,15 @@ std::vector<std::uint32_t> ServeState::faces() const {
   return out;
 }
 
-MeshSnapshot ServeState::snapshot(std::optional<ArapMethod> method) const {
-  const SessionLock lock(*this);
+MeshSnapshot Session::snapshot(std::optional<ArapMethod> method) const {
   require_mesh();
   return {method ? state_of(*method).U : mesh_->V, mesh_->F, summary_.name};
 }
 
-std::shared_ptr<const IntrinsicOverlay> ServeState::intrinsic_overlay() {
-  const SessionLock lock(*this);
+std::shared_ptr<const IntrinsicOverlay> Session::intrinsic_overlay() {
   require_mesh();
-  if (overlay_) return overlay_;
-  const IntrinsicDelaunay intrinsic = intrinsic_delaunay(mesh_->V, mesh_->F);
-  const TracedEdges& traces = intrinsic.traces;
-  auto overlay = std::make_shared<IntrinsicOverlay>();
-  overlay->start.assign(traces.start.begin(), traces.start.end());
-  overlay->a.assign(traces.a.begin(), traces.a.end());
-  overlay->c.assign(traces.c.begin(), traces.c.end());
-  overlay->t.assign(traces.t.begin(), traces.t.end());
-  const Eigen::VectorXi& original = intrinsic.triangulation.original_edge;
-  overlay->original.resize(static_cast<std::size_t>(original.size()));
-  for (Eigen::Index e = 0; e < original.size(); ++e)
-    overlay->original[static_cast<std::size_t>(e)] = original[e] >= 0 ? 1 : 0;
-  overlay_ = std::move(overlay);
+  if (!overlay_)
+    overlay_ = std::make_shared<const IntrinsicOverlay>(make_intrinsic_overlay(mesh_->V, mesh_->F));
   return overlay_;
 }
 
