@@ -21,14 +21,21 @@ ArapAccelerator accelerator_field(const json& body, const char* field, ArapAccel
   }
 }
 
+// body[field]: exactly count finite numbers (what they mean, for the message); HttpError 400 otherwise.
+std::vector<double> numbers_of_count(const json& body, const char* field, std::size_t count,
+                                     const char* meaning) {
+  std::vector<double> values = number_array_field(body, field);
+  if (values.size() != count)
+    throw HttpError(400, std::string(field) + " has " + std::to_string(values.size()) +
+                             " numbers; expected " + std::to_string(count) + " (" + meaning + ")");
+  return values;
+}
+
 // Statics (`iarap deform --gravity --density --forces`): gravity [gx, gy, gz], density > 0, forces 3 x #V
 // numbers (their count is checked against the mesh by Session::solve).
 void read_statics_fields(const json& body, SolveRequest& request) {
   if (body.contains("gravity")) {
-    const std::vector<double> g = number_array_field(body, "gravity");
-    if (g.size() != 3)
-      throw HttpError(400, "gravity has " + std::to_string(g.size()) +
-                               " numbers; expected 3 (gx, gy, gz in mesh units / time^2)");
+    const std::vector<double> g = numbers_of_count(body, "gravity", 3, "gx, gy, gz in mesh units / time^2");
     request.gravity = Eigen::Vector3d(g[0], g[1], g[2]);
   }
   if (body.contains("density")) {
@@ -44,10 +51,7 @@ void read_statics_fields(const json& body, SolveRequest& request) {
 // transform (16 numbers, column-major 4 x 4) and handle_targets (x y z per handle vertex).
 void read_target_fields(const json& body, SolveRequest& request) {
   if (body.contains("transform")) {
-    const std::vector<double> m = number_array_field(body, "transform");
-    if (m.size() != 16)
-      throw HttpError(400, "transform has " + std::to_string(m.size()) +
-                               " numbers; expected 16 (a column-major 4 x 4 matrix)");
+    const std::vector<double> m = numbers_of_count(body, "transform", 16, "a column-major 4 x 4 matrix");
     request.transform = Eigen::Map<const Eigen::Matrix4d>(m.data()); // Eigen is column-major too
   }
   if (body.contains("handle_targets")) {
