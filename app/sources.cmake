@@ -14,7 +14,7 @@ list(APPEND IARAP_APP_SOURCES serve/session.cpp serve/constraint_history.cpp ser
   serve/shared_session.cpp serve/intrinsic_overlay.cpp serve/client_names.cpp serve/http_reply.cpp
   serve/http_policy.cpp serve/solve_request_json.cpp serve/state_json.cpp serve/mesh_routes.cpp
   serve/constraint_routes.cpp serve/solve_routes.cpp serve/frame_route.cpp serve/scenario_routes.cpp
-  serve/static_route.cpp)
+  serve/static_route.cpp serve/request_targets.cpp)
 list(APPEND IARAP_APP_SOURCES param_command.cpp common/param_report_json.cpp serve/param_route.cpp)
 list(APPEND IARAP_APP_SOURCES batch_command.cpp)
 list(APPEND IARAP_APP_SOURCES repair_command.cpp)

@@ -1,7 +1,8 @@
 #include "session.h"
 
+#include "request_targets.h"
+
 #include "../common/explain_error.h"
-#include "iarap/jobs/deform_job.h"
 #include "iarap/jobs/soft_constraints.h"
 
 #include "iarap/core/stopwatch.h"
@@ -251,9 +252,9 @@ ConstraintTargets Session::constraint_targets(ArapMethod method, const SolveRequ
   ConstraintTargets out;
   out.fixed = fixed_;
   out.handle = handle_;
-  out.targets = targets_for(state, request);
+  out.targets = constrained_targets(state.anchor, handle_.size(), request);
   out.soft = soft_.soft;
-  const Eigen::MatrixXd soft_targets = soft_targets_for(state, request);
+  const Eigen::MatrixXd soft_targets = soft_point_targets(state.soft_anchor, soft_, request);
   const Eigen::Index sv = out.soft.vertices.size(), sb = out.soft.faces.size();
   out.soft.vertex_targets = soft_targets.topRows(sv);
   out.soft.face_targets = soft_targets.middleRows(sv, sb);
@@ -265,89 +266,6 @@ ConstraintTargets Session::constraint_targets(ArapMethod method, const SolveRequ
   out.anchored_at_rest =
       rest.size() == 0 || (state.anchor - rest).cwiseAbs().maxCoeff() <= 1e-9 * summary_.bbox_diagonal;
   return out;
-}
-
-Eigen::MatrixXd Session::targets_for(const MethodState& state, const SolveRequest& request) const {
-  Eigen::MatrixXd targets = state.anchor;
-  const Eigen::Index first_handle = fixed_.size();
-  const Eigen::Index handle_count = handle_.size();
-  if (request.transform && request.handle_targets)
-    throw InputError("give either transform or handle_targets, not both");
-  if (request.transform) {
-    const Eigen::Matrix4d& M = *request.transform;
-    if (!M.allFinite()) throw InputError("transform has a non-finite entry");
-    const double scale =
-        M.topLeftCorner<3, 3>().cwiseAbs().maxCoeff() + M.topRightCorner<3, 1>().cwiseAbs().maxCoeff();
-    // The last row of an affine map is exactly 0 0 0 1 up to the rounding of the client's float maths.
-    if ((M.row(3) - Eigen::RowVector4d(0, 0, 0, 1)).cwiseAbs().maxCoeff() > 1e-9 * std::max(1.0, scale))
-      throw InputError(
-          "transform must be affine: its last row (column-major elements 3, 7, 11, 15) must be 0 0 0 1");
-    for (Eigen::Index i = 0; i < handle_count; ++i) {
-      const Eigen::Vector3d p = targets.row(first_handle + i).transpose();
-      targets.row(first_handle + i) = (M.topLeftCorner<3, 3>() * p + M.topRightCorner<3, 1>()).transpose();
-    }
-  } else if (request.handle_targets) {
-    const Eigen::MatrixXd& H = *request.handle_targets;
-    if (H.rows() != handle_count || H.cols() != 3) {
-      throw InputError("handle_targets has " + std::to_string(H.rows() * H.cols()) +
-                       " numbers; expected 3 x " + std::to_string(handle_count) +
-                       " handle vertices = " + std::to_string(3 * handle_count));
-    }
-    for (Eigen::Index i = 0; i < H.rows(); ++i) {
-      if (!H.row(i).allFinite())
-        throw InputError("handle_targets row " + std::to_string(i) + " is not finite");
-    }
-    targets.bottomRows(handle_count) = H;
-  }
-  return targets;
-}
-
-// The soft points' targets for request: the anchors, the dragged soft vertices moved by its transform like
-// the handle. Explicit handle_targets cannot say where a dragged soft vertex goes: refused.
-Eigen::MatrixXd Session::soft_targets_for(const MethodState& state, const SolveRequest& request) const {
-  Eigen::MatrixXd targets = state.soft_anchor;
-  const auto dragged = static_cast<Eigen::Index>(std::count(soft_.dragged.begin(), soft_.dragged.end(), 1));
-  if (request.handle_targets && dragged > 0)
-    throw InputError(
-        "handle_targets: this session has " + std::to_string(dragged) +
-        " weighted handle (soft) vertices, which handle_targets cannot move; drag with transform");
-  if (!request.transform) return targets;
-  const Eigen::Matrix4d& M = *request.transform; // checked by targets_for
-  for (Eigen::Index k = 0; k < soft_.soft.vertices.size(); ++k) {
-    if (!soft_.dragged[static_cast<std::size_t>(k)]) continue;
-    const Eigen::Vector3d p = targets.row(k).transpose();
-    targets.row(k) = (M.topLeftCorner<3, 3>() * p + M.topRightCorner<3, 1>()).transpose();
-  }
-  return targets;
-}
-
-// As `iarap deform`'s statics (static_forces on the mesh in its own units, s = 1), with every connected
-// component held by a constrained vertex or a soft point: a free body under a net force has no minimum.
-Eigen::MatrixXd Session::forces_for(const SolveRequest& request) const {
-  if (!request.gravity && !request.forces) return Eigen::MatrixXd();
-  const Eigen::MatrixXd& V = mesh_->V;
-  Eigen::MatrixXd file_forces;
-  if (request.forces) {
-    const std::vector<double>& f = *request.forces;
-    if (f.size() != static_cast<std::size_t>(3 * V.rows()))
-      throw InputError("forces has " + std::to_string(f.size()) + " numbers; expected 3 x " +
-                       std::to_string(V.rows()) + " vertices = " + std::to_string(3 * V.rows()) +
-                       " (fx fy fz per vertex)");
-    file_forces =
-        Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>>(f.data(), V.rows(), 3);
-  }
-  Eigen::VectorXi faces(soft_.soft.faces.size() + soft_.soft.hard_faces.size()); // a hard point holds too
-  faces << soft_.soft.faces, soft_.soft.hard_faces;
-  try {
-    require_held_components(mesh_->F, static_cast<int>(V.rows()), constrained_, soft_.soft.vertices, faces);
-  } catch (const InputError& e) { // the request is well formed; the mesh cannot take it (422)
-    throw TopologyError(std::string("gravity / forces: ") + e.what());
-  }
-  StaticForces statics;
-  statics.present = true;
-  if (request.gravity) statics.gravity = *request.gravity;
-  statics.density = request.density;
-  return static_forces(V, mesh_->F, request.method, statics, file_forces, 1.0);
 }
 
 // The method's data for the session's sets: built on first use, for new soft constraints (with them) and
@@ -378,9 +296,9 @@ SolveResult Session::solve(const SolveRequest& request, SolveProgress& progress)
   if (constrained_.size() == 0 && soft_.soft.size() == 0)
     throw SessionConflict("no fixed or handle vertices; select some before solving");
   MethodState& state = state_of(request.method);
-  const Eigen::MatrixXd targets = targets_for(state, request);
-  const Eigen::MatrixXd soft_targets = soft_targets_for(state, request);
-  const Eigen::MatrixXd forces = forces_for(request);
+  const Eigen::MatrixXd targets = constrained_targets(state.anchor, handle_.size(), request);
+  const Eigen::MatrixXd soft_targets = soft_point_targets(state.soft_anchor, soft_, request);
+  const Eigen::MatrixXd forces = request_forces(*mesh_, constrained_, soft_.soft, request);
   SolveResult result;
   result.refinement_preempted = refine_job_.has_value();
   new_generation();

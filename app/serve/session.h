@@ -147,9 +147,6 @@ private:
   int record_revision();
   MethodState& state_of(ArapMethod method);
   const MethodState& state_of(ArapMethod method) const;
-  Eigen::MatrixXd targets_for(const MethodState& state, const SolveRequest& request) const;
-  Eigen::MatrixXd soft_targets_for(const MethodState& state, const SolveRequest& request) const;
-  Eigen::MatrixXd forces_for(const SolveRequest& request) const; // 0 x 0 without gravity and forces
   void prepare_data(MethodState& state, ArapMethod method, bool planar, SolveResult& result);
   void new_generation(); // ends the refinement; a new state for frames
 
