@@ -81,7 +81,8 @@ ArapReport solve_with_progress(ArapData& data, const Eigen::MatrixXd& targets,
   return arap_solve(data, targets, soft_targets, U, options);
 }
 
-// Every row of X (#rows x 3, or 0 x 0) in the plane z = 0.
+// Every row of X (#rows x 3, or 0 x 0) in the plane z = 0. TODO(issue 43): the library has this rule only
+// inside solve_deform; once deform_job.h exports it (deforms_in_plane), call that here instead.
 bool in_plane(const Eigen::MatrixXd& X) {
   return X.rows() == 0 || (X.col(2).array() == 0.0).all();
 }
