@@ -13,6 +13,7 @@
 #include "iarap/core/errors.h"
 #include "iarap/core/threads.h"
 #include "iarap/dynamics/simulation.h"
+#include "iarap/dynamics/simulation_report_fields.h"
 #include "iarap/io/read_mesh.h"
 #include "iarap/io/write_mesh.h"
 #include "iarap/mesh/normalize_scale.h"
@@ -180,7 +181,6 @@ void run_simulate(const SimulateArguments& args) {
   }
   FrameFolder frames(args.out_dir, args.format); // after every input check: a bad input writes nothing
   const int ramp = args.ramp > 0 ? args.ramp : args.steps;
-  const double energy_unit = s * s;
   nlohmann::json steps = nlohmann::json::array(), names = nlohmann::json::array();
   names.push_back(frames.write(0, sim->positions() * s, mesh.F));
   for (int n = 1; n <= args.steps; ++n) {
@@ -191,21 +191,17 @@ void run_simulate(const SimulateArguments& args) {
     } catch (const HardPointConflict& e) {
       throw InputError(hard_point_conflict_message(e, c.soft));
     }
-    const double kinetic = r.kinetic_energy * energy_unit, elastic = r.elastic_energy * energy_unit,
-                 potential = r.potential_energy * energy_unit;
-    steps.push_back({{"step", n},
-                     {"time", r.time},
-                     {"kinetic_energy", kinetic},
-                     {"elastic_energy", elastic},
-                     {"potential_energy", potential},
-                     {"total_energy", kinetic + elastic + potential},
-                     {"iterations", r.iterations},
-                     {"converged", r.converged}});
+    r.kinetic_energy *= s * s; // the file's units, as the solve's report below
+    rescale_report(r.solve, s);
+    nlohmann::json row;
+    visit_simulation_step_report(r, [&row](const char* name, const auto& value) { row[name] = value; });
+    steps.push_back(std::move(row));
     if (n % args.every == 0 || n == args.steps) {
       names.push_back(frames.write(n, sim->positions() * s, mesh.F));
       if (!args.quiet)
-        std::cerr << "simulate: step " << n << "/" << args.steps << " t " << r.time << " kinetic " << kinetic
-                  << " elastic " << elastic << " (" << r.iterations << " iterations)\n";
+        std::cerr << "simulate: step " << n << "/" << args.steps << " t " << r.time << " kinetic "
+                  << r.kinetic_energy << " elastic " << r.solve.arap_energy << " (" << r.solve.iterations
+                  << " iterations)\n";
     }
   }
   nlohmann::json j;

@@ -128,7 +128,8 @@ SimulationStepReport Simulation::step(const Eigen::MatrixXd& targets, const Eige
   all_targets.bottomRows(user_soft) = soft_targets;
   ArapSolveOptions solve = options_.solve;
   solve.forces = forces_;
-  const ArapReport report = arap_solve(data_, targets, all_targets, U, solve); // throws before any change
+  SimulationStepReport out;
+  out.solve = arap_solve(data_, targets, all_targets, U, solve); // throws before any change
   velocity_ = (U - X_) / h;
   for (Eigen::Index v = 0; v < U.rows(); ++v)
     if (!is_fixed_[static_cast<size_t>(v)]) velocity_.row(v) *= 1.0 - options_.damping;
@@ -137,14 +138,9 @@ SimulationStepReport Simulation::step(const Eigen::MatrixXd& targets, const Eige
   soft_targets_ = soft_targets;
   ++steps_;
   time_ = steps_ * h;
-  SimulationStepReport out;
   out.step = steps_;
   out.time = time_;
   out.kinetic_energy = kinetic_energy();
-  out.elastic_energy = report.arap_energy;
-  out.potential_energy = report.potential;
-  out.iterations = report.iterations;
-  out.converged = report.converged;
   return out;
 }
 

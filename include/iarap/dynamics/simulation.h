@@ -54,15 +54,15 @@ struct SimulationOptions {
   }
 };
 
-// What one step did.
+// What one step did: the step's own figures and the report of its solve (simulation_report_fields.h
+// names them for the front-ends).
 struct SimulationStepReport {
-  int step = 0;                // 1 for the first step
-  double time = 0;             // step x dt
-  double kinetic_energy = 0;   // sum_i m_i |v_i|^2 / 2 after the step (damped velocities)
-  double elastic_energy = 0;   // E_ARAP(x_{n+1})
-  double potential_energy = 0; // -f . (x_{n+1} - V)
-  int iterations = 0;          // of the step's solve
-  bool converged = false;
+  int step = 0;              // 1 for the first step
+  double time = 0;           // step x dt
+  double kinetic_energy = 0; // sum_i m_i |v_i|^2 / 2 after the step (damped velocities)
+  // The step's arap_solve: iterations, converged, stop_reason, energies (of Phi), times, ...; arap_energy is
+  // E_ARAP(x_{n+1}), potential -f . (x_{n+1} - V) and penalty the inertia term (plus any soft points').
+  ArapReport solve;
 };
 
 class Simulation {
