@@ -3,6 +3,7 @@
 #include "request_targets.h"
 
 #include "../common/explain_error.h"
+#include "iarap/jobs/deform_job.h"
 #include "iarap/jobs/soft_constraints.h"
 
 #include "iarap/core/stopwatch.h"
@@ -79,12 +80,6 @@ ArapReport solve_with_progress(ArapData& data, const Eigen::MatrixXd& targets,
   options.forces = forces;
   if (data.soft.size() == 0) return arap_solve(data, targets, U, options);
   return arap_solve(data, targets, soft_targets, U, options);
-}
-
-// Every row of X (#rows x 3, or 0 x 0) in the plane z = 0. TODO(issue 43): the library has this rule only
-// inside solve_deform; once deform_job.h exports it (deforms_in_plane), call that here instead.
-bool in_plane(const Eigen::MatrixXd& X) {
-  return X.rows() == 0 || (X.col(2).array() == 0.0).all();
 }
 
 } // namespace
@@ -305,8 +300,8 @@ SolveResult Session::solve(const SolveRequest& request, SolveProgress& progress)
   new_generation();
   // `iarap deform`'s rule (solve_deform): a mesh and targets in z = 0 deform in their plane. Its initial
   // guess is the rest mesh; the session's is the method's U, which must lie in the plane too.
-  result.planar = in_plane(mesh_->V) && in_plane(state.U) && in_plane(targets) && in_plane(soft_targets) &&
-                  in_plane(forces);
+  result.planar = deforms_in_plane(mesh_->V, targets, soft_targets, forces) &&
+                  deforms_in_plane(state.U, Eigen::MatrixXd(), Eigen::MatrixXd(), Eigen::MatrixXd());
   prepare_data(state, request.method, result.planar, result);
 
   Eigen::MatrixXd U = state.U; // commit only a successful solve

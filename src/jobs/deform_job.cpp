@@ -139,11 +139,8 @@ DeformResult solve_deform(const DeformScene& scene, ArapOptions options, ArapSol
   const ArapSoftConstraints soft = soft_constraints_of(constraints.soft);
   const Eigen::MatrixXd soft_targets = soft_targets_of(constraints.soft) / s;
   solve.forces = scaled_forces(scene, forces, soft, V, options, s);
-  // A mesh in the plane z = 0 whose targets stay in it deforms in its plane, with rotations about z (a cell
-  // squeezed through a reflection keeps a 2x2 rotation); targets off the plane make it a 3D deformation.
-  options.planar = (V.col(2).array() == 0.0).all() && (targets.col(2).array() == 0.0).all() &&
-                   (soft_targets.rows() == 0 || (soft_targets.col(2).array() == 0.0).all()) &&
-                   (solve.forces.rows() == 0 || (solve.forces.col(2).array() == 0.0).all());
+  // In the plane, a cell squeezed through a reflection keeps a 2x2 rotation.
+  options.planar = deforms_in_plane(V, targets, soft_targets, solve.forces);
   if (scene.stiffness.size() > 0) options.stiffness = scene.stiffness; // a ratio: no unit to scale
   DeformResult result;
   result.planar = options.planar;
@@ -168,6 +165,14 @@ DeformResult solve_deform(const DeformScene& scene, ArapOptions options, ArapSol
   result.U *= s;
   rescale_report(result.report, s);
   return result;
+}
+
+bool deforms_in_plane(const Eigen::MatrixXd& V, const Eigen::MatrixXd& targets,
+                      const Eigen::MatrixXd& soft_targets, const Eigen::MatrixXd& forces) {
+  const auto in_plane = [](const Eigen::MatrixXd& X) {
+    return X.rows() == 0 || (X.col(2).array() == 0.0).all();
+  };
+  return in_plane(V) && in_plane(targets) && in_plane(soft_targets) && in_plane(forces);
 }
 
 Eigen::MatrixXd static_forces(const Eigen::MatrixXd& V_scaled, const Eigen::MatrixXi& F, ArapMethod method,

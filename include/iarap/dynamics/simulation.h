@@ -95,7 +95,8 @@ public:
   double potential_energy() const;
   double time() const { return time_; }
   int steps() const { return steps_; }
-  const ArapData& data() const { return data_; }
+  const ArapData& data() const { return data_; } // of the rest mesh divided by scale()
+  double scale() const { return s_; }
 
 private:
   SimulationOptions options_;
@@ -103,7 +104,8 @@ private:
   Eigen::MatrixXd forces_, X_, velocity_, targets_, soft_targets_;
   Eigen::VectorXi inertial_; // the free vertices with mass, the soft vertices of the inertia term
   std::vector<char> is_fixed_;
-  ArapData data_;
+  ArapData data_;  // of V / s_
+  double s_ = 1.0; // normalizing_scale(V): the solves run on the mesh divided by it
   double time_ = 0;
   int steps_ = 0;
 };

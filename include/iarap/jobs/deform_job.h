@@ -84,6 +84,12 @@ struct DeformResult {
 DeformResult solve_deform(const DeformScene& scene, ArapOptions options, ArapSolveOptions solve,
                           const StaticForces& forces = {});
 
+// `iarap deform`'s rule for the planar mode (ArapOptions::planar): a mesh V whose rows, and those of the
+// targets, soft targets and forces (each #rows x 3, or 0 x 0), all lie in the plane z = 0 deforms in its
+// plane, with rotations about z; anything off the plane makes it a 3D deformation.
+bool deforms_in_plane(const Eigen::MatrixXd& V, const Eigen::MatrixXd& targets,
+                      const Eigen::MatrixXd& soft_targets, const Eigen::MatrixXd& forces);
+
 // The statics' forces on the mesh divided by s (V_scaled = V / s, a power of two; s = 1: the mesh as it
 // is): in those units a mass is density s^2 x area and a force f / s, so that the minimizer is the mesh's
 // divided by s. m_i g / s (masses of `method`, arap_vertex_masses; none for g = 0) + per_vertex / s
