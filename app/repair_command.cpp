@@ -1,6 +1,6 @@
-// `iarap repair MESH --out FILE [--map FILE] [--json]`: repair_mesh as a job of its own (issue 43), the
-// repair `deform --repair` runs before its solve, written out so that constraints can be given on the
-// repaired mesh (soft constraints and hard points cannot be carried over a repair).
+// `iarap repair MESH --out FILE [--map FILE] [--report FILE] [--json]`: repair_mesh as a job of its own
+// (issue 43), the repair `deform --repair` runs before its solve, written out with the vertex map so that
+// data keyed on the input's vertices can follow it.
 #include "command_registry.h"
 #include "common/explain_error.h"
 #include "common/json_text.h"
@@ -26,7 +26,7 @@ namespace iarap::cli {
 namespace {
 
 struct RepairArguments {
-  std::string mesh, out, map;
+  std::string mesh, out, map, report;
   bool json = false;
 };
 
@@ -35,9 +35,13 @@ void check_paths(const RepairArguments& args) {
     throw CLI::ValidationError("--out " + args.out + " is the input mesh; refusing to overwrite it");
   if (!args.map.empty() && (same_file(args.map, args.mesh) || same_file(args.map, args.out)))
     throw CLI::ValidationError("--map " + args.map + " is the input or output mesh");
+  if (!args.report.empty() && (same_file(args.report, args.mesh) || same_file(args.report, args.out) ||
+                               (!args.map.empty() && same_file(args.report, args.map))))
+    throw CLI::ValidationError("--report " + args.report + " is the input mesh, the output or the map");
   // Before the repair: a bad output path fails now, and nothing is written.
   check_mesh_output_path(args.out);
   if (!args.map.empty()) check_output_path(args.map);
+  if (!args.report.empty()) check_output_path(args.report);
 }
 
 // The vertex map: a line `OLD NEW` per vertex of the file (NEW -1: removed; a welded vertex gets the vertex
@@ -61,17 +65,9 @@ std::string vertex_map_text(const RepairResult& repaired) {
 }
 
 nlohmann::json counts_json(const RepairCounts& c) {
-  return {{"welded_vertices", c.welded_vertices},
-          {"collapsed_faces", c.collapsed_faces},
-          {"repeated_vertex_faces", c.repeated_vertex_faces},
-          {"zero_area_faces", c.zero_area_faces},
-          {"duplicate_faces", c.duplicate_faces},
-          {"split_edges", c.split_edges},
-          {"split_vertices", c.split_vertices},
-          {"vertex_copies", c.vertex_copies},
-          {"flipped_faces", c.flipped_faces},
-          {"non_orientable_pieces", c.non_orientable_pieces},
-          {"unreferenced_vertices", c.unreferenced_vertices}};
+  nlohmann::json j = nlohmann::json::object();
+  visit_repair_counts(c, [&j](const char* name, int value) { j[name] = value; });
+  return j;
 }
 
 void print_text(const nlohmann::json& j) {
@@ -121,6 +117,7 @@ void run_repair(const RepairArguments& args) {
                      : std::to_string(copies) + " copies of split vertices sit") +
         " exactly at its vertex's position, by design: `info` and `deform` report coincident "
         "vertices there, and welding them (`deform --repair`) splits them again");
+  if (!args.report.empty()) write_text_file(args.report, json_text(j));
   if (args.json)
     std::cout << json_text(j);
   else
@@ -137,6 +134,7 @@ const bool registered = register_command(
        sub->add_option("MESH", args->mesh, "Mesh file (.obj .off .ply .stl)")->required();
        sub->add_option("--out", args->out, "The repaired mesh (.obj .off .ply), written atomically")
            ->required();
+       sub->add_option("--report", args->report, "Also write the JSON report to this file (atomically)");
        sub->add_option("--map", args->map,
                        "Also write the vertex map: `OLD NEW` per line, NEW -1 for a removed vertex");
        sub->add_flag("--json", args->json, "Print the report as one JSON object instead of text");

@@ -1,9 +1,10 @@
-// Mesh files and mesh validation: read_mesh, write_mesh, check_mesh.
+// Mesh files, validation and repair: read_mesh, write_mesh, check_mesh, repair_mesh.
 #include "bindings.h"
 #include "numpy_arrays.h"
 
 #include "iarap/io/read_mesh.h"
 #include "iarap/io/write_mesh.h"
+#include "iarap/mesh/repair.h"
 #include "iarap/mesh/validate.h"
 
 #include <pybind11/stl.h>
@@ -67,6 +68,27 @@ py::dict check_mesh_py(const py::object& V, const py::object& F) {
   return report_to_dict(report);
 }
 
+// repair_mesh as `iarap repair` and `deform --repair` run it (zero-area faces removed).
+py::tuple repair_mesh_py(const py::object& V, const py::object& F, double weld_tolerance,
+                         bool split_open_fans) {
+  const Eigen::MatrixXd positions = to_points(V, "V");
+  const Eigen::MatrixXi faces = to_faces(F, "F", positions.rows());
+  RepairOptions options;
+  options.remove_zero_area = true;
+  options.weld_tolerance = weld_tolerance;
+  options.split_open_fans = split_open_fans;
+  RepairResult repaired;
+  {
+    py::gil_scoped_release release;
+    repaired = repair_mesh(positions, faces, options);
+  }
+  py::dict report;
+  report["actions"] = repaired.actions;
+  visit_repair_counts(repaired.counts, [&report](const char* name, int value) { report[name] = value; });
+  report["old_to_new"] = to_numpy(repaired.old_to_new);
+  return py::make_tuple(to_numpy(repaired.V), to_numpy(repaired.F), to_numpy(repaired.new_to_old), report);
+}
+
 } // namespace
 
 void bind_io(py::module_& m) {
@@ -90,6 +112,21 @@ non_manifold_vertices, zero_area_faces, unreferenced_vertices, non_delaunay_edge
 inconsistently_oriented_edges, repeated_vertex_faces, out_of_range_indices, non_finite_coordinates,
 coincident_vertices, boundary_edges, bbox_diagonal (mesh units), errors and warnings (lists of messages
 naming the first offending element).)");
+  m.def("repair_mesh", &repair_mesh_py, py::arg("V"), py::arg("F"), py::kw_only(),
+        py::arg("weld_tolerance") = 1e-12, py::arg("split_open_fans") = false,
+        R"(Repairs a triangle mesh as `iarap repair` and `deform --repair` do: weld vertices closer than
+weld_tolerance x the bounding-box diagonal, drop faces that collapse, repeat a vertex, have zero area or repeat
+another face, separate non-manifold edges into sheets and split non-manifold vertices (split_open_fans: also
+where only open fans touch), orient every orientable piece consistently, drop unreferenced vertices.
+
+Returns (V, F, new_to_old, report): the repaired float64 (#V', 3) and int64 (#F', 3) arrays (vertices that
+stay in input order, then the copies of split ones, each at its vertex's position), new_to_old (#V',) the
+input vertex each output vertex stands for (copies share one), and a dict: actions (one line per kind of
+change), the counts (welded_vertices, collapsed_faces, repeated_vertex_faces, zero_area_faces,
+duplicate_faces, split_edges, split_vertices, vertex_copies, flipped_faces, non_orientable_pieces,
+unreferenced_vertices) and old_to_new (#V,) the output index of each input vertex (its first copy), -1 where
+removed. A non-orientable piece (Moebius strip) is left as it is: check_mesh names it.
+Raises ValueError for bad arrays (indices out of range, non-finite coordinates).)");
 }
 
 } // namespace iarap::python

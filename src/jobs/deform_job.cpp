@@ -20,32 +20,6 @@
 namespace iarap {
 namespace {
 
-// A constrained vertex that the repair split (one copy per fan or sheet) gets every copy constrained to its
-// target: a copy left free would leave its sheet hanging. Copies a geometric region already selected (they
-// sit at the vertex's position) stay as they are.
-void constrain_split_copies(ConstraintSet& constraints, const RepairResult& repaired) {
-  const Eigen::Index n = repaired.V.rows(), count = constraints.fixed.size();
-  std::vector<Eigen::Index> row_of(static_cast<std::size_t>(n), -1);
-  for (Eigen::Index k = 0; k < count; ++k) row_of[static_cast<std::size_t>(constraints.fixed(k))] = k;
-  std::vector<std::pair<int, Eigen::Index>> added; // (copy, row of its constrained first copy)
-  for (Eigen::Index v = 0; v < n; ++v) {
-    const int first = repaired.old_to_new(repaired.new_to_old(v));
-    if (first != v && row_of[static_cast<std::size_t>(v)] < 0 && row_of[static_cast<std::size_t>(first)] >= 0)
-      added.emplace_back(static_cast<int>(v), row_of[static_cast<std::size_t>(first)]);
-  }
-  if (added.empty()) return;
-  const auto extra = static_cast<Eigen::Index>(added.size());
-  constraints.fixed.conservativeResize(count + extra);
-  constraints.targets.conservativeResize(count + extra, 3);
-  const bool named = static_cast<Eigen::Index>(constraints.origins.size()) == count;
-  for (Eigen::Index i = 0; i < extra; ++i) {
-    const auto& [copy, row] = added[static_cast<std::size_t>(i)];
-    constraints.fixed(count + i) = copy;
-    constraints.targets.row(count + i) = constraints.targets.row(row);
-    if (named) constraints.origins.push_back(constraints.origins[static_cast<std::size_t>(row)]);
-  }
-}
-
 // The constraint whose target lies farthest from its rest position, named by where it came from: when
 // the energy overflows, this is the target to fix.
 std::string farthest_target(const ConstraintSet& constraints, const Eigen::MatrixXd& V) {
@@ -108,11 +82,14 @@ DeformScene prepare_deform(MeshData mesh, const DeformConstraints& constraints,
     RepairOptions repair_options;
     repair_options.remove_zero_area = true;
     RepairResult repaired = repair_mesh(mesh.V, mesh.F, repair_options);
-    scene.constraints =
-        constraints.scenario
-            ? resolve_scenario(remap_scenario(*constraints.scenario, repaired.old_to_new), repaired.V)
-            : remap_constraints(constraints.set, repaired.old_to_new);
-    constrain_split_copies(scene.constraints, repaired);
+    if (constraints.scenario) {
+      scene.constraints =
+          resolve_scenario(remap_scenario(*constraints.scenario, repaired.old_to_new), repaired.V);
+      constrain_split_copies(scene.constraints, repaired.new_to_old);
+    } else {
+      scene.constraints =
+          remap_constraints(constraints.set, {repaired.old_to_new, repaired.new_to_old, mesh.F, repaired.F});
+    }
     if (forces.rows() > 0) {
       scene.forces = Eigen::MatrixXd::Zero(repaired.V.rows(), 3);
       for (Eigen::Index v = 0; v < forces.rows(); ++v)

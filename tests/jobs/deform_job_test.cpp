@@ -6,6 +6,7 @@
 #include "iarap/core/errors.h"
 #include "iarap/io/read_mesh.h"
 #include "iarap/scene/read_scenario.h"
+#include "mesh/small_meshes.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>
@@ -83,6 +84,73 @@ TEST(DeformJob, RepairCarriesTheConstraintsOver) {
   EXPECT_EQ(scene.constraints.fixed(0), 0);
   const DeformResult result = solve_deform(scene, ArapOptions{}, plain(3));
   EXPECT_LT((result.U.row(0) - constraints.set.targets.row(0)).norm(), 1e-12);
+}
+
+// Soft constraints carried over a repair (issue 47 item 2): two closed cones touching at their tips (the
+// repair splits the tip into two copies), one side face given reversed (the repair turns it back, which
+// permutes its corners) and one given twice (the duplicate goes).
+TEST(DeformJob, RepairCarriesSoftConstraintsAndFacePointsOver) {
+  const test::SmallMesh cones = test::two_cones_sharing_a_tip();
+  MeshData mesh;
+  mesh.V = cones.V;
+  mesh.F.resize(13, 3);
+  mesh.F << cones.F, cones.F.row(8);
+  mesh.F.row(2) = Eigen::RowVector3i(cones.F(2, 0), cones.F(2, 2), cones.F(2, 1)); // reversed
+  DeformConstraints constraints;
+  ConstraintSet& c = constraints.set;
+  c.fixed = Eigen::Vector2i(1, 5); // one base vertex of each cone
+  c.targets = Eigen::MatrixXd(2, 3);
+  c.targets << mesh.V.row(1), mesh.V.row(5);
+  SoftConstraintSet& soft = c.soft;
+  soft.vertices = Eigen::VectorXi::Constant(1, 0); // the tip: split in two
+  soft.vertex_weights = Eigen::VectorXd::Constant(1, 4.0);
+  soft.vertex_targets = Eigen::RowVector3d(0.1, 0.2, 0.05);
+  soft.faces = Eigen::Vector3i(2, 12, 7); // the reversed face, the duplicate, a face on the tip's copy
+  soft.barycentric = Eigen::MatrixXd(3, 3);
+  soft.barycentric << 0.2, 0.3, 0.5, 0.6, 0.3, 0.1, 0.1, 0.1, 0.8;
+  soft.face_weights = Eigen::Vector3d(1, 2, 3);
+  soft.face_targets = Eigen::MatrixXd::Zero(3, 3);
+  soft.origins = {"c.txt:3", "c.txt:4", "c.txt:5", "c.txt:6"};
+  DeformPrepareOptions repair;
+  repair.repair = true;
+  const DeformScene scene = prepare_deform(mesh, constraints, repair);
+  ASSERT_EQ(scene.mesh.V.rows(), 10);
+  const SoftConstraintSet& out = scene.constraints.soft;
+  // W = 4 shared by the tip's two copies, each at the tip.
+  ASSERT_EQ(out.vertices.size(), 2);
+  for (Eigen::Index k = 0; k < 2; ++k) {
+    EXPECT_EQ(scene.mesh.V.row(out.vertices(k)), mesh.V.row(0));
+    EXPECT_EQ(out.vertex_weights(k), 2.0);
+    EXPECT_EQ(out.vertex_targets.row(k), soft.vertex_targets.row(0));
+  }
+  // Each face point is the same point of space on the face that stands for its face.
+  ASSERT_EQ(out.faces.size(), 3);
+  for (Eigen::Index k = 0; k < 3; ++k) {
+    Eigen::RowVector3d before = Eigen::RowVector3d::Zero(), after = Eigen::RowVector3d::Zero();
+    for (int j = 0; j < 3; ++j) {
+      before += soft.barycentric(k, j) * mesh.V.row(mesh.F(soft.faces(k), j));
+      after += out.barycentric(k, j) * scene.mesh.V.row(scene.mesh.F(out.faces(k), j));
+    }
+    EXPECT_LT((after - before).norm(), 1e-15) << k;
+    EXPECT_EQ(out.face_weights(k), soft.face_weights(k));
+  }
+  // Each copy of the tip names the line it came from.
+  EXPECT_EQ(out.origins, (std::vector<std::string>{"c.txt:3", "c.txt:3", "c.txt:4", "c.txt:5", "c.txt:6"}));
+  const DeformResult result = solve_deform(scene, ArapOptions{}, plain(20));
+  EXPECT_TRUE(result.U.allFinite());
+
+  // A point on a face the repair removes (degenerate: two corners the same) is named.
+  MeshData collapsed = mesh;
+  collapsed.F.conservativeResize(14, 3);
+  collapsed.F.row(13) = Eigen::RowVector3i(1, 1, 2);
+  soft.faces(1) = 13;
+  try {
+    prepare_deform(collapsed, constraints, repair);
+    FAIL() << "a point on a removed face was carried over";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("c.txt:5"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("face 13 was removed"), std::string::npos) << e.what();
+  }
 }
 
 TEST(DeformJob, ForcesNeedEveryBodyHeld) {

@@ -46,6 +46,22 @@ struct RepairCounts {
   int unreferenced_vertices = 0; // removed
 };
 
+// Calls visit(name, value) for every count, in the order above: the one list the front-ends' reports (the
+// repair command's JSON, Python's dict) are written from.
+template <class Visit> void visit_repair_counts(const RepairCounts& c, Visit&& visit) {
+  visit("welded_vertices", c.welded_vertices);
+  visit("collapsed_faces", c.collapsed_faces);
+  visit("repeated_vertex_faces", c.repeated_vertex_faces);
+  visit("zero_area_faces", c.zero_area_faces);
+  visit("duplicate_faces", c.duplicate_faces);
+  visit("split_edges", c.split_edges);
+  visit("split_vertices", c.split_vertices);
+  visit("vertex_copies", c.vertex_copies);
+  visit("flipped_faces", c.flipped_faces);
+  visit("non_orientable_pieces", c.non_orientable_pieces);
+  visit("unreferenced_vertices", c.unreferenced_vertices);
+}
+
 struct RepairResult {
   Eigen::MatrixXd V; // #V_new x 3: the vertices that stay in input order, then the copies of split ones
   Eigen::MatrixXi F; // #F_new x 3: the faces that stay, in input order
