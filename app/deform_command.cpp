@@ -36,7 +36,7 @@ struct DeformArguments {
   std::string mesh, constraints, scenario, stiffness, method = "iarap", boundary = "refine", out, report;
   ArapSolveOptions solve; // the flags of solve_option_flags.h; forces are set from `forces` below
   int threads = 0;
-  bool json = false, repair = false, pin_unconstrained = false, quiet = false;
+  bool json = false, repair = false, keep_numbering = false, pin_unconstrained = false, quiet = false;
   ExternalForceArguments forces; // statics under gravity / per-vertex forces (none: the plain deformation)
 };
 
@@ -160,6 +160,19 @@ DeformResult solve_explained(const DeformArguments& args, const DeformScene& sce
   }
 }
 
+// The deformed mesh, or with --keep-numbering the input's vertices and faces at their copies' mean.
+void write_result(const DeformArguments& args, const DeformScene& scene, const DeformResult& result,
+                  nlohmann::json& j) {
+  if (!args.keep_numbering) return write_mesh(args.out, result.U, scene.mesh.F);
+  double spread = 0.0;
+  write_mesh(args.out, in_input_numbering(scene, result.U, &spread), scene.input.F);
+  j["keep_numbering"] = true;
+  j["copies_spread"] = spread;
+  if (!args.quiet && spread > 0)
+    std::cerr << "deform: --keep-numbering: the copies of split vertices lie up to " << spread
+              << " from their mean (" << spread / scene.check.bbox_diagonal << " of the diagonal)\n";
+}
+
 void run_deform(const DeformArguments& args) {
   check_arguments(args);
   const auto total_start = Clock::now();
@@ -188,7 +201,7 @@ void run_deform(const DeformArguments& args) {
   const ArapData& arap = result.data;
   if (!args.quiet) print_progress(args, options.method, mesh, constraints, report);
   if (options.method == ArapMethod::Arap) warn_about_original_energy(report, scene.check);
-  write_mesh(args.out, result.U, mesh.F);
+  write_result(args, scene, result, j);
 
   j["method"] = arap_method_name(options.method);
   j["planar"] = result.planar;
@@ -253,10 +266,15 @@ const bool registered = register_command(
        sub->add_option("--out", args->out, "Output mesh (.obj .off .ply), written atomically")->required();
        sub->add_flag("--json", args->json, "Print the run's report as one JSON object on stdout");
        sub->add_option("--report", args->report, "Also write the JSON report to this file (atomically)");
-       sub->add_flag(
+       auto* repair_flag = sub->add_flag(
            "--repair", args->repair,
            "Repair the mesh first: weld, drop unreferenced vertices and degenerate or duplicate faces, split "
            "non-manifold edges and vertices, orient faces consistently (constraint indices are mapped)");
+       sub->add_flag(
+              "--keep-numbering", args->keep_numbering,
+              "With --repair: write the input's vertices (each at the mean of its copies) and faces, so "
+              "that the output keys on the input's numbering; the report gives the copies' spread")
+           ->needs(repair_flag);
        sub->add_flag("--pin-unconstrained", args->pin_unconstrained,
                      "Pin one vertex of each connected component that has no constraint (else an error)");
        sub->add_flag("--quiet", args->quiet, "No progress lines on stderr");

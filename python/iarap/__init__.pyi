@@ -150,6 +150,7 @@ def deform_file(
     method: str = "iarap",
     refine_boundary: bool = True,
     repair: bool = False,
+    keep_numbering: bool = False,
     pin_unconstrained_components: bool = False,
     gravity: npt.ArrayLike | None = None,
     density: float = 1.0,

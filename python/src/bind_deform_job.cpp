@@ -30,6 +30,7 @@ KeywordSignature deform_file_signature() {
                                        {"method", "str", py::str("iarap"), true},
                                        {"refine_boundary", "bool", py::bool_(true), true},
                                        {"repair", "bool", py::bool_(false), true},
+                                       {"keep_numbering", "bool", py::bool_(false), true},
                                        {"pin_unconstrained_components", "bool", py::bool_(false), true},
                                        {"gravity", "npt.ArrayLike | None", py::none(), true},
                                        {"density", "float", py::float_(1.0), true},
@@ -80,6 +81,9 @@ py::tuple deform_file_py(const BoundArguments& arguments) {
   if (!arguments["gravity"].is_none()) statics.gravity = to_vector3(arguments["gravity"], "gravity");
   DeformPrepareOptions prepare;
   prepare.repair = arguments.as<bool>("repair");
+  if (arguments.as<bool>("keep_numbering") && !prepare.repair)
+    throw InputError("deform_file: keep_numbering=True needs repair=True (without a repair the numbering is "
+                     "the file's already)");
   const std::string mesh_path = path_text(arguments["mesh"]);
   const std::string scenario_path = scenario.is_none() ? "" : path_text(scenario);
   const std::string constraints_path = constraints.is_none() ? "" : path_text(constraints);
@@ -109,7 +113,13 @@ py::tuple deform_file_py(const BoundArguments& arguments) {
     }
     result = solve_deform(scene, options, solve, statics);
   }
-  return py::make_tuple(to_numpy(result.U), to_numpy(scene.mesh.F), result_dict(scene, result));
+  if (!arguments.as<bool>("keep_numbering"))
+    return py::make_tuple(to_numpy(result.U), to_numpy(scene.mesh.F), result_dict(scene, result));
+  double spread = 0.0;
+  const Eigen::MatrixXd U = in_input_numbering(scene, result.U, &spread);
+  py::dict report = result_dict(scene, result);
+  report["copies_spread"] = spread;
+  return py::make_tuple(to_numpy(U), to_numpy(scene.input.F), report);
 }
 
 } // namespace
@@ -124,7 +134,8 @@ F (#F, 3) of the mesh as solved: repaired when repair=True, else the file's, rep
 
 mesh, scenario, constraints, forces: file paths (exactly one of scenario and constraints). method: "iarap",
 "arap" or "spokes-rims"; refine_boundary (iARAP only); repair: repair the mesh first, the constraints carried
-over; pin_unconstrained_components. gravity (3,) with density: the statics of m_i g (and of the forces file),
+over; keep_numbering (with repair): U and F in the file's numbering, each vertex at the mean of its copies
+(the report's copies_spread: their largest distance from it); pin_unconstrained_components. gravity (3,) with density: the statics of m_i g (and of the forces file),
 every body held. stiffness: a stiffness file ('index s' lines, `iarap deform --stiffness`). The solve options:
 )" + solve_option_docs() +
           R"(The report: ARAP.report's fields (in the file's units) with planar, vertices, faces, constrained, soft,

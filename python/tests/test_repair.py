@@ -65,3 +65,27 @@ def test_deform_repair_carries_soft_constraints(cli, tmp_path):
     assert report["soft"] == 3  # the tip's two copies and the face point
     # Both copies of the tip are pulled toward x = 0.2 (they moved; the bases stayed).
     assert U[0, 0] > 0.01 and U[9, 0] > 0.01
+
+
+def test_keep_numbering_gives_the_input_numbering(cli, tmp_path):
+    V, F = cones()
+    mesh = tmp_path / "cones.off"
+    iarap.write_mesh(mesh, V, F)
+    constraints = tmp_path / "c.txt"
+    constraints.write_text("1 1 0 1\n5 1 0 -1\n0 0.2 0 0 4\n")
+    out = tmp_path / "out.off"
+    run = subprocess.run([str(cli), "deform", str(mesh), "--constraints", str(constraints), "--repair",
+                          "--keep-numbering", "--out", str(out), "--json", "--quiet"], capture_output=True, text=True)
+    assert run.returncode == 0, run.stderr
+    U, F_out = iarap.read_mesh(out)
+    assert U.shape == V.shape and np.array_equal(F_out, F)
+    # The tip is the mean of its two copies; the report gives how far they lie from it.
+    U_split, _, _ = iarap.deform_file(mesh, constraints=constraints, repair=True)
+    assert np.allclose(U[0], (U_split[0] + U_split[9]) / 2, rtol=0, atol=1e-15)
+    spread = json.loads(run.stdout)["copies_spread"]
+    assert abs(spread - np.linalg.norm(U_split[0] - U_split[9]) / 2) < 1e-15
+    U_py, F_py, report = iarap.deform_file(mesh, constraints=constraints, repair=True, keep_numbering=True)
+    assert np.array_equal(U_py, U) and np.array_equal(F_py, F) and report["copies_spread"] == spread
+    refused = subprocess.run([str(cli), "deform", str(mesh), "--constraints", str(constraints), "--keep-numbering",
+                              "--out", str(out)], capture_output=True, text=True)
+    assert refused.returncode == 2 and "--repair" in refused.stderr

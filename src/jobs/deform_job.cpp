@@ -96,6 +96,9 @@ DeformScene prepare_deform(MeshData mesh, const DeformConstraints& constraints,
         if (repaired.old_to_new(v) >= 0) scene.forces.row(repaired.old_to_new(v)) += forces.row(v);
     }
     if (stiffness.size() > 0) scene.stiffness = carried_stiffness(stiffness, repaired);
+    scene.input = mesh;
+    scene.old_to_new = std::move(repaired.old_to_new);
+    scene.new_to_old = std::move(repaired.new_to_old);
     mesh.V = std::move(repaired.V);
     mesh.F = std::move(repaired.F);
     scene.repairs = std::move(repaired.actions);
@@ -142,6 +145,32 @@ DeformResult solve_deform(const DeformScene& scene, ArapOptions options, ArapSol
   result.U *= s;
   rescale_report(result.report, s);
   return result;
+}
+
+Eigen::MatrixXd in_input_numbering(const DeformScene& scene, const Eigen::MatrixXd& U, double* spread) {
+  if (spread) *spread = 0.0;
+  if (scene.old_to_new.size() == 0) return U;
+  // The mean of each input vertex's copies (new vertices standing for it).
+  const Eigen::Index n = scene.input.V.rows();
+  Eigen::MatrixXd sum = Eigen::MatrixXd::Zero(n, 3);
+  Eigen::VectorXi count = Eigen::VectorXi::Zero(n);
+  for (Eigen::Index v = 0; v < scene.new_to_old.size(); ++v) {
+    sum.row(scene.new_to_old(v)) += U.row(v);
+    ++count(scene.new_to_old(v));
+  }
+  Eigen::MatrixXd mean = sum;
+  for (Eigen::Index o = 0; o < n; ++o)
+    if (count(o) > 0) mean.row(o) /= count(o);
+  if (spread)
+    for (Eigen::Index v = 0; v < scene.new_to_old.size(); ++v)
+      *spread = std::max(*spread, (U.row(v) - mean.row(scene.new_to_old(v))).norm());
+  // Each input vertex: the vertex standing for its new index (itself, or its weld target).
+  Eigen::MatrixXd out(n, 3);
+  for (Eigen::Index o = 0; o < n; ++o)
+    out.row(o) = scene.old_to_new(o) < 0
+                     ? Eigen::RowVector3d(scene.input.V.row(o))
+                     : Eigen::RowVector3d(mean.row(scene.new_to_old(scene.old_to_new(o))));
+  return out;
 }
 
 bool deforms_in_plane(const Eigen::MatrixXd& V, const Eigen::MatrixXd& targets,

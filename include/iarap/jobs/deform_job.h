@@ -54,6 +54,10 @@ struct DeformScene {
   Eigen::VectorXd stiffness;        // #V per-vertex stiffness on mesh (empty: none; ArapOptions::stiffness)
   std::vector<std::string> repairs; // RepairResult::actions (empty without repair)
   MeshReport check;                 // check_mesh(mesh): a front-end refuses it when !check.usable()
+  // With repair: the input mesh and the maps between its numbering and mesh's (RepairResult's), for
+  // in_input_numbering. Empty without repair.
+  MeshData input;
+  Eigen::VectorXi old_to_new, new_to_old;
 };
 
 // Repairs on request and carries the constraints, forces and stiffness over. forces: #V x 3 per-vertex
@@ -83,6 +87,14 @@ struct DeformResult {
 // naming the farthest target.
 DeformResult solve_deform(const DeformScene& scene, ArapOptions options, ArapSolveOptions solve,
                           const StaticForces& forces = {});
+
+// Positions U on scene.mesh (#V x 3) written back in the input's numbering (#V_input x 3), to be written
+// with scene.input.F (`deform --repair --keep-numbering`): each input vertex at the mean of the copies of
+// the vertex that stands for it (a split vertex's copies, a weld's target), or at its input position where
+// the repair removed it (an unreferenced vertex). spread (optional): the largest distance of a copy from
+// its mean, 0 where nothing was split. Without repair: U.
+Eigen::MatrixXd in_input_numbering(const DeformScene& scene, const Eigen::MatrixXd& U,
+                                   double* spread = nullptr);
 
 // `iarap deform`'s rule for the planar mode (ArapOptions::planar): a mesh V whose rows, and those of the
 // targets, soft targets and forces (each #rows x 3, or 0 x 0), all lie in the plane z = 0 deforms in its
