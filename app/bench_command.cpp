@@ -3,6 +3,7 @@
 #include "command_registry.h"
 #include "common/json_text.h"
 #include "cpu_name.h"
+#include "solve_report_json.h"
 #include "write_text_file.h"
 
 #include "iarap/core/errors.h"
@@ -144,6 +145,7 @@ nlohmann::json bench_one(const std::string& path, const Eigen::MatrixXd& V, cons
   j["measured_iterations"] = std::max(report.iterations - 1, 0);
   j["factorization"] = factorization_name(arap_factorization(data));
   j["final_energy"] = report.energies.empty() ? report.initial_energy : report.energies.back();
+  j["memory"] = memory_json(data);
   return j;
 }
 
@@ -152,6 +154,25 @@ double median_paired_ratio(const nlohmann::json& a, const nlohmann::json& b) {
   std::vector<double> ratio;
   for (std::size_t k = 0; k < a.size(); ++k) ratio.push_back(a[k].get<double>() / b[k].get<double>());
   return median_after(ratio, 0);
+}
+
+// What each precomputation holds, by part, and the process's resident set (issue 44).
+void print_memory(const nlohmann::json& results) {
+  const auto mb = [](const nlohmann::json& bytes) { return bytes.get<double>() / 1048576.0; };
+  for (const auto& r : results) {
+    if (r.contains("error") || !r.contains("memory")) continue;
+    const nlohmann::json& m = r["memory"];
+    const double n = r["vertices"].get<double>();
+    std::printf("%s: %s: memory held %.1f MB (%.0f B/vertex: factor %.0f, kept matrix %.0f, system %.0f, "
+                "elements %.0f, streamed %.0f, rotations %.0f, mesh %.0f); resident %.1f MB, process peak "
+                "%.1f MB (%.0f B/vertex)\n",
+                r["mesh"].get<std::string>().c_str(), r["method"].get<std::string>().c_str(), mb(m["total"]),
+                m["bytes_per_vertex"].get<double>(), m["factor"].get<double>() / n,
+                m["kept_matrix"].get<double>() / n, m["system_matrix"].get<double>() / n,
+                m["elements"].get<double>() / n, m["streamed_layout"].get<double>() / n,
+                m["rotations"].get<double>() / n, m["mesh"].get<double>() / n, mb(m["resident_bytes"]),
+                mb(m["peak_resident_bytes"]), m["peak_resident_bytes"].get<double>() / n);
+  }
 }
 
 void print_table(const nlohmann::json& results) {
@@ -193,6 +214,7 @@ void print_table(const nlohmann::json& results) {
               (r["solve_floor_ms"].get<double>() + r["element_pass_ms"].get<double>()),
           r["iteration_ms"].get<double>() /
               (r["solve_ms"].get<double>() + r["element_pass_ms"].get<double>()));
+  print_memory(results);
   // Ratios to original ARAP on the same mesh, from this one run: fastest to fastest, and with several rounds
   // also the median of the per-round ratios (round k of each method ran back to back, so a burst of other
   // load mostly cancels out of its ratio: the steadier figure on a shared machine).

@@ -223,6 +223,7 @@ void run_deform(const DeformArguments& args) {
   j["factor_ms"] = arap.timings.factor_ms;
   j["analyze_ms"] = arap.timings.analyze_ms; // overlapped with intrinsic + assembly when threads > 1
   j["factorization"] = factorization_name(arap_factorization(arap));
+  j["memory"] = memory_json(arap);
   j["max_displacement"] = result.max_displacement;
   j["bbox_diagonal"] = scene.check.bbox_diagonal;
   j["output"] = args.out;

@@ -1,2 +1,2 @@
 # Sources of the core module, relative to src/.
-list(APPEND IARAP_SOURCES core/threads.cpp core/run_beside.cpp core/version.cpp)
+list(APPEND IARAP_SOURCES core/threads.cpp core/run_beside.cpp core/version.cpp core/resident_memory.cpp)

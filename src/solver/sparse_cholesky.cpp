@@ -284,6 +284,38 @@ FactorizationKind SparseCholesky::kind() const {
   return impl_ ? impl_->kind : FactorizationKind::None;
 }
 
+namespace {
+std::size_t sparse_bytes(const Eigen::SparseMatrix<double>& A) {
+  return static_cast<std::size_t>(A.nonZeros()) * (sizeof(double) + sizeof(int)) +
+         static_cast<std::size_t>(A.outerSize() + 1) * sizeof(int);
+}
+
+// CHOLMOD's factor: its values, the supernodes' row indices, and the per-column and per-supernode arrays.
+std::size_t cholmod_factor_bytes(const cholmod_factor* L) {
+  const std::size_t index = L->itype == CHOLMOD_LONG ? sizeof(SuiteSparse_long) : sizeof(int);
+  std::size_t bytes = L->xsize * sizeof(double) + 3 * L->n * index; // x; Perm, ColCount, IPerm
+  if (L->is_super)
+    bytes += L->ssize * index + 3 * (L->nsuper + 1) * index; // s; super, pi, px
+  else
+    bytes += L->nzmax * index + 4 * (L->n + 2) * index; // i; p, nz, next, prev
+  return bytes;
+}
+} // namespace
+
+std::size_t SparseCholesky::factor_bytes() const {
+  if (!impl_) return 0;
+  std::size_t bytes = 0;
+  if (impl_->llt && impl_->llt->factor()) bytes += cholmod_factor_bytes(impl_->llt->factor());
+  if (impl_->ldlt)
+    bytes += sparse_bytes(impl_->ldlt->matrixL()) + impl_->ldlt->vectorD().size() * sizeof(double);
+  if (impl_->supernodal) bytes += impl_->supernodal->memory_bytes();
+  return bytes;
+}
+
+std::size_t SparseCholesky::kept_matrix_bytes() const {
+  return impl_ ? sparse_bytes(impl_->A) + sparse_bytes(impl_->analyzed) : 0;
+}
+
 Eigen::Index SparseCholesky::rows() const {
   return impl_ ? impl_->A.rows() : 0;
 }

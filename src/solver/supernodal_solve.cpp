@@ -532,4 +532,12 @@ void SupernodalSolve::solve(const Eigen::MatrixXd& B, Eigen::MatrixXd& X, int th
   supernodal_solve(L_, make_schedule(threads), B, X, ws);
 }
 
+std::size_t SupernodalSolve::memory_bytes() const {
+  std::size_t bytes = parent_.capacity() * sizeof(int) + work_.capacity() * sizeof(double);
+  for (const auto& bin : schedule_.bin_supernodes) bytes += bin.capacity() * sizeof(int);
+  bytes += (schedule_.top.capacity() + schedule_.inside_rows.capacity() + schedule_.top_slot.capacity()) *
+           sizeof(int);
+  return bytes;
+}
+
 } // namespace iarap::detail

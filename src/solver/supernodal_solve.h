@@ -17,6 +17,7 @@
 #pragma once
 #include <Eigen/Core>
 
+#include <cstddef>
 #include <optional>
 #include <vector>
 
@@ -86,6 +87,8 @@ public:
   bool usable() const { return usable_; }
   // The schedule in use (for tests and diagnostics).
   const SupernodalSchedule& schedule() const { return schedule_; }
+  // Bytes of the plan (tree, costs, schedule); the factor it reads is the caller's.
+  std::size_t memory_bytes() const;
 
 private:
   SupernodalSchedule make_schedule(int threads) const;

@@ -2,6 +2,7 @@
 #pragma once
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <cstddef>
 #include <memory>
 #include <string>
 
@@ -64,6 +65,12 @@ public:
 
   FactorizationKind kind() const;
   Eigen::Index rows() const;
+
+  // Bytes held: the factor (CHOLMOD's supernodal L with its permutation and column structure, or the LDL^T
+  // fallback's L and D) and its solve plan; the copies of the factorized matrix and of the analyzed
+  // pattern kept for refactorization.
+  std::size_t factor_bytes() const;
+  std::size_t kept_matrix_bytes() const;
 
 private:
   struct Impl;
