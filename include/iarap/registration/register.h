@@ -1,0 +1,123 @@
+// Non-rigid registration (issue 46): deforms a source triangle mesh onto a target surface or point cloud by
+// iterative closest points with the ARAP energy as the regularizer (non-rigid ICP):
+//
+//   RegistrationTarget target = read_registration_target("scan.xyz");     // or make_registration_target
+//   RegistrationResult fit = register_to_target(V, F, target, landmarks);  // fit.U: V deformed, same rows
+//
+// 1. Pre-alignment: a rigid (or similarity) transform from the landmarks (>= 3) or the centroids, then
+//    refined by rigid ICP (closest points, rejection, robust weights, fit_similarity) until it settles.
+// 2. Stages from stiff to soft: stage s pulls every source vertex toward its correspondence with weight
+//    w_s a_i (a_i the vertex's area over the mean, w_s growing geometrically from initial_data_weight to
+//    final_data_weight), against E_ARAP of the pre-aligned source; the landmarks pull with their own weight.
+// 3. Rounds within a stage: closest points both ways (correspondences.cpp), rejection by distance (over
+//    reject_distance times the median) and normal angle, Welsch weights on the residual, then one
+//    warm-started arap_solve. The per-vertex weights change every round (robust weights):
+//    arap_set_soft_weights, a numeric refactorization only; the symbolic analysis and the precomputation are
+//    made once. A stage ends when the mean distance changes by less than stage_tolerance, or after
+//    rounds_per_stage rounds.
+#pragma once
+#include "iarap/registration/registration_target.h"
+#include "iarap/registration/rigid_alignment.h"
+#include "iarap/solver/arap_types.h"
+
+#include <Eigen/Core>
+
+#include <functional>
+#include <vector>
+
+namespace iarap {
+
+// Points of the source held near given positions, each with its own weight W (penalty W |x - target|^2).
+struct RegistrationLandmarks {
+  Eigen::VectorXi vertices;       // #lv source vertices, distinct
+  Eigen::MatrixXd vertex_targets; // #lv x 3
+  Eigen::VectorXd vertex_weights; // #lv, > 0 (empty: RegistrationOptions::landmark_weight each)
+  Eigen::VectorXi faces;          // #lb source faces
+  Eigen::MatrixXd barycentric;    // #lb x 3, rows summing to 1
+  Eigen::MatrixXd face_targets;   // #lb x 3
+  Eigen::VectorXd face_weights;   // #lb, > 0 (empty: landmark_weight each)
+  Eigen::Index size() const { return vertices.size() + faces.size(); }
+};
+
+enum class Prealignment { None, Rigid, Similarity };
+
+struct RegistrationRound {
+  int stage = 0, round = 0;   // 0-based
+  double data_weight = 0;     // w_s
+  double mean_distance = 0;   // source -> target closest-point distance at the round's start, mean (units)
+  double median_distance = 0; // ... and median
+  Eigen::Index forward_used = 0, backward_used = 0; // correspondences kept after rejection, both ways
+  int solver_iterations = 0;
+  double energy = 0;     // E_ARAP + P after the solve
+  double closest_ms = 0; // closest-point queries, rejection and robust weights
+  double factor_ms = 0;  // arap_set_soft_weights (numeric refactorization)
+  double solve_ms = 0;   // arap_solve
+};
+
+// Distances of the result's vertices to the target (closest point), as fractions of the target's diagonal.
+struct DistanceStatistics {
+  double mean = 0, median = 0, p90 = 0, max = 0;
+};
+
+struct RegistrationReport {
+  SimilarityTransform prealignment; // source -> target, applied before the non-rigid stages
+  int prealign_rounds = 0;
+  std::vector<RegistrationRound> rounds;
+  DistanceStatistics initial_distance; // after the pre-alignment
+  DistanceStatistics final_distance;
+  double target_diagonal = 0;
+  double prealign_ms = 0, precompute_ms = 0, closest_ms = 0, factor_ms = 0, solve_ms = 0, total_ms = 0;
+};
+
+struct RegistrationOptions {
+  ArapMethod method = ArapMethod::Iarap;
+  // Per round (warm-started); a few iterations suffice since the targets move little between rounds.
+  ArapSolveOptions solve = default_round_solve();
+  Prealignment prealignment = Prealignment::Rigid;
+  int prealign_rounds = 50;
+  int stages = 5;
+  int rounds_per_stage = 15;
+  double initial_data_weight = 0.02; // w_0 (stiff: ARAP dominates, the fit is nearly rigid)
+  double final_data_weight = 1.0;    // w_{stages-1} (soft; higher fits the target's noise)
+  double landmark_weight = 100.0;
+  // Soft target of a correspondence (p on the source, q on the target with normal n):
+  // (1 - point_to_plane) q + point_to_plane (p - ((p - q) . n) n), a blend of point-to-point and of the
+  // projection onto q's tangent plane (point-to-plane as a moved soft target, lets the source slide along
+  // the surface).
+  double point_to_plane = 0.95;
+  // Weight of the target -> source correspondences against the forward ones. Measured on the bunny bent by
+  // ARAP, sampled as 12000 noisy points (tests/registration/register_test.cpp): mean vertex error 0.00246 of
+  // the diagonal at 0.1, 0.00240 at 0, 0.00284 at 0.5 (their spread over the corners blurs); kept small for
+  // the parts of a target the forward search does not reach.
+  double backward_weight = 0.1;
+  double reject_distance = 3.0;     // reject correspondences farther than this times the median distance
+  double reject_angle_degrees = 60; // ... and those whose normals differ by more than this
+  double robust_scale = 2.0;        // Welsch's sigma = this times the median distance of the kept ones
+  double stage_tolerance = 2e-3;    // relative change of the mean distance that ends a stage
+  std::function<void(const RegistrationRound&)> on_round; // optional progress callback
+
+  static ArapSolveOptions default_round_solve() {
+    ArapSolveOptions solve;
+    solve.max_iterations = 8;
+    solve.tolerance = 1e-5;
+    return solve;
+  }
+};
+
+struct RegistrationResult {
+  Eigen::MatrixXd U; // #V x 3: the source deformed onto the target, same vertex order as V
+  RegistrationReport report;
+};
+
+// Registers the source mesh (V #V x 3, F #F x 3, a mesh arap_precompute accepts) to `target`. Throws
+// InputError for a landmark out of range (naming it and the source's size), a bad landmark weight or
+// barycentric row, bad options (naming the field); what arap_precompute and arap_solve throw.
+RegistrationResult register_to_target(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
+                                      const RegistrationTarget& target,
+                                      const RegistrationLandmarks& landmarks = {},
+                                      const RegistrationOptions& options = {});
+
+// The distance statistics of points U (#U x 3) to the target, as fractions of target.diagonal.
+DistanceStatistics distance_statistics(const Eigen::MatrixXd& U, const RegistrationTarget& target);
+
+} // namespace iarap
