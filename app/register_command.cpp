@@ -81,24 +81,18 @@ RegistrationLandmarks read_landmarks(const std::string& path, const MeshData& so
 }
 
 nlohmann::json statistics_json(const DistanceStatistics& s) {
-  return {{"mean", s.mean}, {"median", s.median}, {"p90", s.p90}, {"max", s.max}};
+  nlohmann::json j;
+  visit_distance_statistics(s, [&j](const char* name, double value) { j[name] = value; });
+  return j;
 }
 
 nlohmann::json rounds_json(const RegistrationReport& report) {
   nlohmann::json rounds = nlohmann::json::array();
   for (const RegistrationRound& r : report.rounds) {
-    rounds.push_back({{"stage", r.stage},
-                      {"round", r.round},
-                      {"data_weight", r.data_weight},
-                      {"mean_distance", r.mean_distance / report.target_diagonal},
-                      {"median_distance", r.median_distance / report.target_diagonal},
-                      {"forward_used", r.forward_used},
-                      {"backward_used", r.backward_used},
-                      {"solver_iterations", r.solver_iterations},
-                      {"energy", r.energy},
-                      {"closest_ms", r.closest_ms},
-                      {"factor_ms", r.factor_ms},
-                      {"solve_ms", r.solve_ms}});
+    nlohmann::json j;
+    visit_registration_round(r, report.target_diagonal,
+                             [&j](const char* name, auto value) { j[name] = value; });
+    rounds.push_back(std::move(j));
   }
   return rounds;
 }
@@ -122,9 +116,7 @@ void run_register(RegisterArguments args) {
 
   RegistrationOptions& options = args.options;
   options.method = parse_arap_method(args.method);
-  options.prealignment = args.prealign == "none"    ? Prealignment::None
-                         : args.prealign == "rigid" ? Prealignment::Rigid
-                                                    : Prealignment::Similarity;
+  options.prealignment = parse_prealignment(args.prealign);
   if (!args.quiet) {
     std::cerr << "register: " << args.source << " (" << source.V.rows() << " vertices) onto " << args.target
               << " (" << target.points.rows() << " points, " << target.faces.rows() << " faces), "

@@ -152,6 +152,13 @@ void combine(const VertexPulls& forward, const VertexPulls& backward, double bac
 
 } // namespace
 
+Prealignment parse_prealignment(const std::string& name) {
+  if (name == "none") return Prealignment::None;
+  if (name == "rigid") return Prealignment::Rigid;
+  if (name == "similarity") return Prealignment::Similarity;
+  throw InputError("prealign must be 'none', 'rigid' or 'similarity'; got '" + name + "'");
+}
+
 DistanceStatistics distance_statistics(const Eigen::MatrixXd& U, const RegistrationTarget& target) {
   DistanceStatistics s;
   if (U.rows() == 0 || !(target.diagonal > 0)) return s;

@@ -25,7 +25,7 @@ void write_xyz(const fs::path& path, const Eigen::MatrixXd& P) {
 TEST(RegisterCli, FitsAPointCloudAndWritesTheMeshAndReport) {
   const test::KnownDeformation known = test::bunny_deformation();
   const fs::path dir = test::temp_dir("register_cli");
-  write_xyz(dir / "scan.xyz", test::sample_surface(known.U, known.mesh.F, 6000, 0.001 * known.diagonal));
+  write_xyz(dir / "scan.xyz", sample_surface(known.U, known.mesh.F, 6000, 46, 0.001 * known.diagonal));
   {
     std::ofstream landmarks(dir / "landmarks.txt");
     landmarks << std::setprecision(17);

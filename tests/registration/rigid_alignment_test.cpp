@@ -4,6 +4,7 @@
 #include "registration/prealign.h"
 #include "registration_fixtures.h"
 
+#include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
 namespace iarap {

@@ -23,6 +23,7 @@
 #include <Eigen/Core>
 
 #include <functional>
+#include <string>
 #include <vector>
 
 namespace iarap {
@@ -41,6 +42,9 @@ struct RegistrationLandmarks {
 
 enum class Prealignment { None, Rigid, Similarity };
 
+// "none" | "rigid" | "similarity"; anything else throws InputError naming the value and the choices.
+Prealignment parse_prealignment(const std::string& name);
+
 struct RegistrationRound {
   int stage = 0, round = 0;   // 0-based
   double data_weight = 0;     // w_s
@@ -54,10 +58,36 @@ struct RegistrationRound {
   double solve_ms = 0;   // arap_solve
 };
 
+// Calls f(name, value) for each field of a round, the distances as fractions of `diagonal` (the target's):
+// the one field list the tool's JSON report and the Python report are written from.
+template <class Visitor>
+void visit_registration_round(const RegistrationRound& r, double diagonal, Visitor&& f) {
+  f("stage", r.stage);
+  f("round", r.round);
+  f("data_weight", r.data_weight);
+  f("mean_distance", r.mean_distance / diagonal);
+  f("median_distance", r.median_distance / diagonal);
+  f("forward_used", r.forward_used);
+  f("backward_used", r.backward_used);
+  f("solver_iterations", r.solver_iterations);
+  f("energy", r.energy);
+  f("closest_ms", r.closest_ms);
+  f("factor_ms", r.factor_ms);
+  f("solve_ms", r.solve_ms);
+}
+
 // Distances of the result's vertices to the target (closest point), as fractions of the target's diagonal.
 struct DistanceStatistics {
   double mean = 0, median = 0, p90 = 0, max = 0;
 };
+
+// Calls f(name, value) for mean, median, p90 and max.
+template <class Visitor> void visit_distance_statistics(const DistanceStatistics& s, Visitor&& f) {
+  f("mean", s.mean);
+  f("median", s.median);
+  f("p90", s.p90);
+  f("max", s.max);
+}
 
 struct RegistrationReport {
   SimilarityTransform prealignment; // source -> target, applied before the non-rigid stages
