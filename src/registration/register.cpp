@@ -123,10 +123,10 @@ double data_weight(const RegistrationOptions& o, int stage) {
   return o.initial_data_weight * std::pow(o.final_data_weight / o.initial_data_weight, t);
 }
 
-// The per-vertex soft weights and targets of a round: the data pulls (forward + backward_weight x backward)
-// scaled by w_s a_i, the vertex landmarks, and a floor of 1e-6 w_s toward the current position so that every
-// weight stays > 0 (the solver's contract) for vertices without a kept correspondence.
-void combine(const VertexPulls& forward, const VertexPulls& backward, double backward_weight, double w_s,
+// The per-vertex soft weights and targets of a round: the data pulls (forward scaled by w_s a_i, backward
+// by w_s backward_share), the vertex landmarks, and a floor of 1e-6 w_s toward the current position so that
+// every weight stays > 0 (the solver's contract) for vertices without a kept correspondence.
+void combine(const VertexPulls& forward, const VertexPulls& backward, double backward_share, double w_s,
              const Eigen::VectorXd& areas, const RegistrationLandmarks& landmarks,
              const LandmarkPoints& points, const Eigen::MatrixXd& U, Eigen::VectorXd& W, Eigen::MatrixXd& T) {
   const double floor = 1e-6 * w_s;
@@ -137,7 +137,7 @@ void combine(const VertexPulls& forward, const VertexPulls& backward, double bac
     W(i) += wf;
     T.row(i) += wf * forward.target.row(i);
     if (backward.weight.size() > 0) {
-      const double wb = w_s * areas(i) * backward_weight * backward.weight(i);
+      const double wb = w_s * backward_share * backward.weight(i); // already area-proportional
       W(i) += wb;
       T.row(i) += wb * backward.target.row(i);
     }
@@ -230,6 +230,10 @@ RegistrationResult register_to_target(const Eigen::MatrixXd& V, const Eigen::Mat
   const Eigen::MatrixXd no_fixed(0, 3);
   Eigen::MatrixXd soft_targets(n + nb, 3);
   soft_targets.bottomRows(nb) = points.target.bottomRows(nb);
+  // Each target point spreads a unit of weight over its face's corners: #P / #V per vertex on average. Scaled
+  // by #V / #P, the backward pulls weigh backward_weight times the forward ones whatever the density.
+  const double backward_share =
+      options.backward_weight * static_cast<double>(n) / static_cast<double>(target.points.rows());
   Eigen::VectorXd W;
   Eigen::MatrixXd T;
   for (int stage = 0; stage < options.stages; ++stage) {
@@ -247,7 +251,7 @@ RegistrationResult register_to_target(const Eigen::MatrixXd& V, const Eigen::Mat
         forward = registration_detail::forward_pulls(U, NU, target, rules);
         if (options.backward_weight > 0)
           backward = registration_detail::backward_pulls(U, NU, F, around, target, rules);
-        combine(forward, backward, options.backward_weight, w_s, areas, landmarks, points, U, W, T);
+        combine(forward, backward, backward_share, w_s, areas, landmarks, points, U, W, T);
       }
       r.mean_distance = forward.mean_distance;
       r.median_distance = forward.median_distance;
