@@ -3,6 +3,7 @@
 // refactorization) and new targets (arap_solve, warm-started).
 #include "iarap/registration/register.h"
 
+#include "../core/math_constants.h"
 #include "correspondences.h"
 #include "iarap/core/errors.h"
 #include "iarap/core/stopwatch.h"
@@ -97,9 +98,8 @@ LandmarkPoints landmark_points(const Eigen::MatrixXd& V, const Eigen::MatrixXi& 
     require(l.barycentric.row(k).allFinite() && std::abs(l.barycentric.row(k).sum() - 1) <= 1e-9,
             name + ": barycentric coordinates must be finite and sum to 1");
     require(l.face_targets.row(k).allFinite(), name + ": target not finite");
-    points.source.row(nv + k) =
-        l.barycentric.row(k) * Eigen::Matrix3d(Eigen::Matrix3d::NullaryExpr(
-                                   [&](Eigen::Index r, Eigen::Index c) { return V(F(f, r), c); }));
+    points.source.row(nv + k) = l.barycentric(k, 0) * V.row(F(f, 0)) + l.barycentric(k, 1) * V.row(F(f, 1)) +
+                                l.barycentric(k, 2) * V.row(F(f, 2));
     points.target.row(nv + k) = l.face_targets.row(k);
   }
   return points;
@@ -121,6 +121,30 @@ double data_weight(const RegistrationOptions& o, int stage) {
   if (o.stages == 1) return o.final_data_weight;
   const double t = static_cast<double>(stage) / (o.stages - 1);
   return o.initial_data_weight * std::pow(o.final_data_weight / o.initial_data_weight, t);
+}
+
+CorrespondenceRules correspondence_rules(const RegistrationOptions& options, double diagonal) {
+  CorrespondenceRules rules;
+  rules.point_to_plane = options.point_to_plane;
+  rules.reject_distance = options.reject_distance;
+  rules.cos_reject_angle = std::cos(options.reject_angle_degrees * kPi / 180);
+  rules.robust_scale = options.robust_scale;
+  rules.floor_distance = 1e-12 * diagonal;
+  return rules;
+}
+
+// The solver's soft points: every vertex (weight w0 until the first round sets the data weights), then the
+// face landmarks with their own weights.
+ArapSoftConstraints soft_points(Eigen::Index n, const RegistrationLandmarks& landmarks,
+                                const LandmarkPoints& points, double w0) {
+  const Eigen::Index nb = landmarks.faces.size();
+  ArapSoftConstraints soft;
+  soft.vertices = Eigen::VectorXi::LinSpaced(n, 0, static_cast<int>(n - 1));
+  soft.vertex_weights = Eigen::VectorXd::Constant(n, w0);
+  soft.faces = landmarks.faces;
+  soft.barycentric = nb > 0 ? landmarks.barycentric : Eigen::MatrixXd(0, 3);
+  soft.face_weights = points.weight.tail(nb);
+  return soft;
 }
 
 // The per-vertex soft weights and targets of a round: the data pulls (forward scaled by w_s a_i, backward
@@ -188,12 +212,7 @@ RegistrationResult register_to_target(const Eigen::MatrixXd& V, const Eigen::Mat
   require(target.points.rows() > 0 && target.diagonal > 0, "the target is empty (make_registration_target)");
   const LandmarkPoints points = landmark_points(V, F, landmarks, options.landmark_weight);
 
-  CorrespondenceRules rules;
-  rules.point_to_plane = options.point_to_plane;
-  rules.reject_distance = options.reject_distance;
-  rules.cos_reject_angle = std::cos(options.reject_angle_degrees * 3.14159265358979323846 / 180);
-  rules.robust_scale = options.robust_scale;
-  rules.floor_distance = 1e-12 * target.diagonal;
+  const CorrespondenceRules rules = correspondence_rules(options, target.diagonal);
 
   RegistrationResult result;
   RegistrationReport& report = result.report;
@@ -213,12 +232,7 @@ RegistrationResult register_to_target(const Eigen::MatrixXd& V, const Eigen::Mat
   const Eigen::VectorXd areas = relative_vertex_areas(V0, F);
 
   const Eigen::Index n = V.rows(), nb = landmarks.faces.size();
-  ArapSoftConstraints soft;
-  soft.vertices = Eigen::VectorXi::LinSpaced(n, 0, static_cast<int>(n - 1));
-  soft.vertex_weights = Eigen::VectorXd::Constant(n, data_weight(options, 0));
-  soft.faces = landmarks.faces;
-  soft.barycentric = nb > 0 ? landmarks.barycentric : Eigen::MatrixXd(0, 3);
-  soft.face_weights = points.weight.tail(nb);
+  const ArapSoftConstraints soft = soft_points(n, landmarks, points, data_weight(options, 0));
   ArapOptions arap_options;
   arap_options.method = options.method;
   ArapData data = timed(report.precompute_ms,
