@@ -28,6 +28,7 @@ RegistrationLandmarks spread_landmarks(const Eigen::MatrixXd& U, int count) {
 }
 
 TEST(Register, FindsAKnownDeformationFromANoisyPointCloud) {
+  const test::OneThread one_thread;
   const test::KnownDeformation known = test::bunny_deformation();
   const Eigen::MatrixXd& V = known.mesh.V;
   const Eigen::MatrixXi& F = known.mesh.F;
@@ -91,6 +92,29 @@ TEST(Register, BadTargetsAreRefusedNamingTheFileAndElement) {
   EXPECT_NE(error_of([&] { read_registration_target(mixed); }).find(mixed + ":3: 6 values, but line 2 has 3"),
             std::string::npos)
       << error_of([&] { read_registration_target(mixed); });
+}
+
+// A vertex-only OBJ is a point cloud (PCA normals, compared up to sign), an OFF with faces a mesh target
+// (area-weighted vertex normals), an .xyz with normals keeps them.
+TEST(Register, TargetFilesOfEachKind) {
+  const auto dir = test::temp_dir("register_targets");
+  const std::string obj = (dir / "points.obj").string(), xyz = (dir / "oriented.xyz").string();
+  std::ofstream(obj) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0.1\n";
+  std::ofstream(xyz) << "0 0 0 0 0 2\n1 0 0 0 0 1\n0 1 0 0 0 1\n";
+  const RegistrationTarget cloud = read_registration_target(obj);
+  EXPECT_EQ(cloud.points.rows(), 4);
+  EXPECT_EQ(cloud.faces.rows(), 0);
+  EXPECT_FALSE(cloud.oriented);
+  const RegistrationTarget oriented = read_registration_target(xyz);
+  EXPECT_TRUE(oriented.oriented);
+  EXPECT_TRUE(oriented.normals.row(0).isApprox(Eigen::RowVector3d(0, 0, 1)));
+  const RegistrationTarget mesh = read_registration_target(test::data_path("bunny.off"));
+  EXPECT_EQ(mesh.faces.rows(), 6966);
+  EXPECT_TRUE(mesh.oriented);
+  const std::string empty = (dir / "empty.xyz").string();
+  std::ofstream(empty) << "# nothing\n";
+  EXPECT_NE(error_of([&] { read_registration_target(empty); }).find(empty + ": the point cloud has no point"),
+            std::string::npos);
 }
 
 TEST(Register, LandmarksOutOfRangeAreRefusedNamingThem) {

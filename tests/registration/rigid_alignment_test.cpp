@@ -43,6 +43,7 @@ TEST(FitSimilarity, RejectsBadWeights) {
 // The pre-alignment of `iarap register`: four landmarks give the start, rigid ICP onto the transformed
 // vertices (a point cloud: PCA normals) keeps the exact answer.
 TEST(Prealign, RecoversAKnownRigidMotionOnExactData) {
+  const test::OneThread one_thread;
   const MeshData mesh = read_mesh(test::data_path("bunny.off"));
   const SimilarityTransform want = known_transform(1.0);
   const RegistrationTarget target = make_registration_target(want.apply(mesh.V), {}, {}, "moved bunny");
@@ -60,6 +61,7 @@ TEST(Prealign, RecoversAKnownRigidMotionOnExactData) {
 
 // Without landmarks, from the centroids: a small rotation is found by the ICP rounds alone.
 TEST(Prealign, RecoversASmallRotationFromTheCentroids) {
+  const test::OneThread one_thread;
   const MeshData mesh = read_mesh(test::data_path("bunny.off"));
   SimilarityTransform want;
   want.R = Eigen::AngleAxisd(0.05, Eigen::Vector3d(0, 1, 0)).toRotationMatrix();
