@@ -31,6 +31,11 @@ TEST(RegisterCli, FitsAPointCloudAndWritesTheMeshAndReport) {
     landmarks << std::setprecision(17);
     for (int v : {0, 500, 1000, 1500, 2000, 2500, 3000})
       landmarks << v << " " << known.U(v, 0) << " " << known.U(v, 1) << " " << known.U(v, 2) << "\n";
+    const Eigen::RowVector3d b(0.2, 0.3, 0.5); // and a point on face 10
+    const Eigen::RowVector3d on_face = b(0) * known.U.row(known.mesh.F(10, 0)) +
+                                       b(1) * known.U.row(known.mesh.F(10, 1)) +
+                                       b(2) * known.U.row(known.mesh.F(10, 2));
+    landmarks << "b 10 0.2 0.3 0.5 " << on_face(0) << " " << on_face(1) << " " << on_face(2) << "\n";
   }
   const fs::path out = dir / "fit.off", report = dir / "fit.json";
   const auto run =
@@ -39,7 +44,7 @@ TEST(RegisterCli, FitsAPointCloudAndWritesTheMeshAndReport) {
                 "' --report '" + report.string() + "' --stages 3 --rounds 4 --json --quiet");
   ASSERT_EQ(run.code, 0) << run.out;
   const nlohmann::json j = test::cli::parse_json(run);
-  EXPECT_EQ(j["landmarks"], 7);
+  EXPECT_EQ(j["landmarks"], 8);
   EXPECT_EQ(j["target_normals"], "estimated (PCA)");
   EXPECT_LT(j["final_distance"]["mean"].get<double>(), j["initial_distance"]["mean"].get<double>());
   EXPECT_FALSE(j["rounds"].empty());
