@@ -18,6 +18,7 @@
 #include "iarap/mesh/validate.h"
 #include "iarap/scene/read_constraints.h"
 #include "iarap/scene/read_scenario.h"
+#include "iarap/scene/read_stiffness.h"
 #include "iarap/solver/arap.h"
 
 #include <nlohmann/json.hpp>
@@ -32,7 +33,7 @@ namespace iarap::cli {
 namespace {
 
 struct DeformArguments {
-  std::string mesh, constraints, scenario, method = "iarap", boundary = "refine", out, report;
+  std::string mesh, constraints, scenario, stiffness, method = "iarap", boundary = "refine", out, report;
   ArapSolveOptions solve; // the flags of solve_option_flags.h; forces are set from `forces` below
   int threads = 0;
   bool json = false, repair = false, pin_unconstrained = false, quiet = false;
@@ -41,7 +42,7 @@ struct DeformArguments {
 
 // The mesh to deform and its constraints, read from the files and prepared by the library's job
 // (prepare_deform: with --repair the mesh is repaired, a scenario resolved on the repaired mesh, a
-// constraints file's indices and the forces file's rows carried over).
+// constraints file's indices and the forces and stiffness files' rows carried over).
 DeformScene read_and_prepare(const DeformArguments& args) {
   MeshData mesh = read_mesh(args.mesh);
   DeformConstraints constraints;
@@ -51,9 +52,11 @@ DeformScene read_and_prepare(const DeformArguments& args) {
     constraints.set =
         read_constraints(args.constraints, static_cast<int>(mesh.V.rows()), static_cast<int>(mesh.F.rows()));
   Eigen::MatrixXd forces = file_forces(args.forces, static_cast<int>(mesh.V.rows()));
+  Eigen::VectorXd stiffness;
+  if (!args.stiffness.empty()) stiffness = read_stiffness(args.stiffness, static_cast<int>(mesh.V.rows()));
   DeformPrepareOptions options;
   options.repair = args.repair;
-  return prepare_deform(std::move(mesh), constraints, options, std::move(forces));
+  return prepare_deform(std::move(mesh), constraints, options, std::move(forces), std::move(stiffness));
 }
 
 // Original ARAP's energy is bounded below only with non-negative cotangent weights: on meshes with many
@@ -164,6 +167,7 @@ void run_deform(const DeformArguments& args) {
   j["input"] = args.mesh;
   const DeformScene scene = read_and_prepare(args);
   if (args.repair) j["repair"] = scene.repairs;
+  if (!args.stiffness.empty()) j["stiffness"] = args.stiffness;
   const MeshData& mesh = scene.mesh;
   const ConstraintSet& constraints = scene.constraints;
   require_usable(args, scene.check);
@@ -257,6 +261,11 @@ const bool registered = register_command(
                      "Pin one vertex of each connected component that has no constraint (else an error)");
        sub->add_flag("--quiet", args->quiet, "No progress lines on stderr");
        add_external_force_options(*sub, args->forces);
+       sub->add_option(
+              "--stiffness", args->stiffness,
+              "Stiffness file: 'index s' per line, s > 0 multiplies the energy of that vertex's cell "
+              "(others 1): a stiffer region bends and stretches less")
+           ->check(CLI::ExistingFile);
        sub->callback([args] { run_deform(*args); });
      }});
 

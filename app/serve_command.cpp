@@ -3,7 +3,7 @@
 #include "command_registry.h"
 #include "serve/api_routes.h"
 #include "serve/private_temp_dir.h"
-#include "serve/serve_state.h"
+#include "serve/shared_session.h"
 #include "serve/static_files.h"
 
 #include "iarap/core/errors.h"
@@ -84,10 +84,10 @@ void run_serve(const ServeArguments& args, bool host_given) {
   sigaddset(&signals, SIGTERM);
   pthread_sigmask(SIG_BLOCK, &signals, nullptr);
 
-  serve::ServeState state;
+  serve::SharedSession session;
   if (!config.meshes.empty()) {
-    serve::load_server_mesh(state, config.meshes.front());
-    const serve::MeshSummary summary = state.mesh_summary();
+    serve::load_server_mesh(session, config.meshes.front());
+    const serve::MeshSummary summary = session.read([](const serve::Session& s) { return s.mesh_summary(); });
     std::cerr << "serve: loaded " << summary.name << " (" << summary.vertices << " vertices, "
               << summary.faces << " faces)\n";
   }
@@ -125,12 +125,12 @@ void run_serve(const ServeArguments& args, bool host_given) {
     for (const char* name : {"127.0.0.1", "localhost", "[::1]"})
       config.allowed_hosts.push_back(std::string(name) + ":" + std::to_string(port));
   }
-  serve::register_routes(server, config, state, temp);
+  serve::register_routes(server, config, session, temp);
 
-  std::thread signal_thread([&server, &state, signals] {
+  std::thread signal_thread([&server, &session, signals] {
     int received = 0;
     sigwait(&signals, &received);
-    state.frames().close(); // frame waits answer at once, so that the workers end
+    session.frames().close(); // frame waits answer at once, so that the workers end
     server.stop();
   });
   const std::string shown_host = args.host.find(':') != std::string::npos ? "[" + args.host + "]" : args.host;

@@ -13,9 +13,9 @@
 #include "iarap/core/errors.h"
 #include "iarap/core/threads.h"
 #include "iarap/dynamics/simulation.h"
+#include "iarap/dynamics/simulation_report_fields.h"
 #include "iarap/io/read_mesh.h"
 #include "iarap/io/write_mesh.h"
-#include "iarap/mesh/normalize_scale.h"
 #include "iarap/mesh/validate.h"
 #include "iarap/scene/read_constraints.h"
 #include "iarap/scene/read_scenario.h"
@@ -140,20 +140,17 @@ private:
   std::vector<std::string> names_;
 };
 
-SimulationOptions simulation_options(const SimulateArguments& args, double s, const MeshData& mesh) {
+// In the file's units: the simulation runs on the mesh divided by its normalizing scale itself.
+SimulationOptions simulation_options(const SimulateArguments& args, const MeshData& mesh) {
   SimulationOptions options;
   options.arap.method = parse_arap_method(args.method);
   options.arap.intrinsic.refine_boundary = args.boundary == "refine";
   options.dt = args.dt;
   options.damping = args.damping;
-  // The run is on the mesh divided by s (a power of two): masses stay the file's (density s^2 x the scaled
-  // area), forces and gravity are divided by s, and energies come back multiplied by s^2.
-  options.density = args.forces.density * s * s;
-  options.gravity = args.forces.gravity_vector() / s;
-  const Eigen::MatrixXd f = file_forces(args.forces, static_cast<int>(mesh.V.rows()));
-  if (f.rows() > 0) options.forces = f / s;
+  options.density = args.forces.density;
+  options.gravity = args.forces.gravity_vector();
+  options.forces = file_forces(args.forces, static_cast<int>(mesh.V.rows()));
   options.solve = args.solve;
-  scale_length_options(options.solve, s);
   return options;
 }
 
@@ -170,42 +167,34 @@ void run_simulate(const SimulateArguments& args) {
   const HandlePath path(args, mesh);
   set_thread_count(args.threads == 0 ? automatic_thread_count(static_cast<int>(mesh.V.rows()))
                                      : args.threads);
-  const double s = normalizing_scale(mesh.V);
-  const SimulationOptions options = simulation_options(args, s, mesh);
+  const SimulationOptions options = simulation_options(args, mesh);
   std::optional<Simulation> sim;
   try {
-    sim.emplace(mesh.V / s, mesh.F, path.full().fixed, options, soft_constraints_of(path.full().soft));
+    sim.emplace(mesh.V, mesh.F, path.full().fixed, options, soft_constraints_of(path.full().soft));
   } catch (const SolverError& e) {
     throw SolverError(explain_solver_error(e.what(), ErrorContext{args.mesh, false}));
   }
   FrameFolder frames(args.out_dir, args.format); // after every input check: a bad input writes nothing
   const int ramp = args.ramp > 0 ? args.ramp : args.steps;
-  const double energy_unit = s * s;
   nlohmann::json steps = nlohmann::json::array(), names = nlohmann::json::array();
-  names.push_back(frames.write(0, sim->positions() * s, mesh.F));
+  names.push_back(frames.write(0, sim->positions(), mesh.F));
   for (int n = 1; n <= args.steps; ++n) {
     const ConstraintSet c = path.at(std::min(1.0, static_cast<double>(n) / ramp), mesh.F);
     SimulationStepReport r;
     try {
-      r = sim->step(c.targets / s, soft_targets_of(c.soft) / s);
+      r = sim->step(c.targets, soft_targets_of(c.soft));
     } catch (const HardPointConflict& e) {
       throw InputError(hard_point_conflict_message(e, c.soft));
     }
-    const double kinetic = r.kinetic_energy * energy_unit, elastic = r.elastic_energy * energy_unit,
-                 potential = r.potential_energy * energy_unit;
-    steps.push_back({{"step", n},
-                     {"time", r.time},
-                     {"kinetic_energy", kinetic},
-                     {"elastic_energy", elastic},
-                     {"potential_energy", potential},
-                     {"total_energy", kinetic + elastic + potential},
-                     {"iterations", r.iterations},
-                     {"converged", r.converged}});
+    nlohmann::json row;
+    visit_simulation_step_report(r, [&row](const char* name, const auto& value) { row[name] = value; });
+    steps.push_back(std::move(row));
     if (n % args.every == 0 || n == args.steps) {
-      names.push_back(frames.write(n, sim->positions() * s, mesh.F));
+      names.push_back(frames.write(n, sim->positions(), mesh.F));
       if (!args.quiet)
-        std::cerr << "simulate: step " << n << "/" << args.steps << " t " << r.time << " kinetic " << kinetic
-                  << " elastic " << elastic << " (" << r.iterations << " iterations)\n";
+        std::cerr << "simulate: step " << n << "/" << args.steps << " t " << r.time << " kinetic "
+                  << r.kinetic_energy << " elastic " << r.solve.arap_energy << " (" << r.solve.iterations
+                  << " iterations)\n";
     }
   }
   nlohmann::json j;
@@ -225,7 +214,7 @@ void run_simulate(const SimulateArguments& args) {
   j["forces"] = args.forces.forces;
   j["mass"] = sim->masses().sum(); // file units: density x area
   j["bbox_diagonal"] = check.bbox_diagonal;
-  j["max_displacement"] = (sim->positions() - mesh.V / s).rowwise().norm().maxCoeff() * s;
+  j["max_displacement"] = (sim->positions() - mesh.V).rowwise().norm().maxCoeff();
   j["frames"] = names;
   j["per_step"] = steps;
   frames.commit();

@@ -35,7 +35,7 @@ std::string short_description(const nlohmann::json& value);
 void require_known_fields(const nlohmann::json& object, const std::vector<std::string>& allowed);
 void require_known_fields(const nlohmann::json& object, std::initializer_list<const char*> allowed);
 
-// object[field] as a list of integers (any value range: range checks need the mesh, see ServeState);
+// object[field] as a list of integers (any value range: range checks need the mesh, see Session);
 // an absent field gives an empty list. Throws 400 for a non-array, a non-integer element (naming its
 // position) or an element outside the int range.
 Eigen::VectorXi integer_array_field(const nlohmann::json& object, const char* field);

@@ -1,8 +1,11 @@
 #include "param_route.h"
 
 #include "../common/param_report_json.h"
+#include "api_routes.h"
 #include "binary_frame.h"
 #include "http_error.h"
+#include "http_policy.h"
+#include "http_reply.h"
 #include "json_input.h"
 #include "solve_option_json.h"
 
@@ -44,6 +47,15 @@ std::string param_frame(const MeshSnapshot& rest, const ParamOptions& options) {
   header["boundary"] = param_boundary_name(options.boundary);
   header["allow_flips"] = options.allow_flips;
   return frame.encode(header);
+}
+
+// Runs outside the session lock, on a snapshot of the rest mesh.
+void add_param_route(RouteTable& routes, const ServeConfig& config, SharedSession& session) {
+  routes.post("/api/param", [&](const httplib::Request& req, httplib::Response& res) {
+    const ParamOptions options = parse_param_request(json_body(req, config), config.max_iterations);
+    const MeshSnapshot rest = session.read([](const Session& s) { return s.snapshot(std::nullopt); });
+    send_binary(res, param_frame(rest, options));
+  });
 }
 
 } // namespace iarap::serve

@@ -1,7 +1,7 @@
 // The viewer's UV tab: POST /api/param flattens the session's rest mesh (arap_parameterize) and answers a
 // binary frame, the report as its JSON header and the map as "uv" (float32 #V x 2, row-major).
 #pragma once
-#include "serve_state.h"
+#include "session.h"
 
 #include "iarap/param/param_options.h"
 

@@ -12,7 +12,7 @@
 // drag moves; in a constraints file a vertex whose target is its rest position is fixed and every other one
 // is a handle vertex, likewise a soft vertex stays or is dragged, and points on faces keep their targets.
 #pragma once
-#include "serve_state.h"
+#include "session.h"
 
 #include <Eigen/Core>
 #include <string>
@@ -24,7 +24,7 @@ struct SavedSession {
   bool is_scenario = false; // false: a constraints file
 };
 
-// targets of ServeState::constraint_targets; transform: the request's 4 x 4 affine map, if it had one.
+// targets of Session::constraint_targets; transform: the request's 4 x 4 affine map, if it had one.
 SavedSession save_session(const ConstraintTargets& targets, const std::optional<Eigen::Matrix4d>& transform,
                           const std::string& description);
 

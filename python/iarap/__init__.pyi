@@ -44,6 +44,7 @@ class ARAP:
         soft_face_weights: npt.ArrayLike | None = None,
         hard_faces: npt.ArrayLike | None = None,
         hard_barycentric: npt.ArrayLike | None = None,
+        stiffness: npt.ArrayLike | None = None,
     ) -> None: ...
     def solve(
         self,
@@ -146,6 +147,7 @@ def deform_file(
     gravity: npt.ArrayLike | None = None,
     density: float = 1.0,
     forces: _StrPath | None = None,
+    stiffness: _StrPath | None = None,
     iterations: int = 50,
     tolerance: float = 1e-06,
     accelerator: str = "newton",

@@ -118,7 +118,7 @@ std::unique_ptr<ArapSolver> make_solver(const py::object& V, const py::object& F
                                         const py::object& soft_weights, const py::object& soft_faces,
                                         const py::object& soft_barycentric,
                                         const py::object& soft_face_weights, const py::object& hard_faces,
-                                        const py::object& hard_barycentric) {
+                                        const py::object& hard_barycentric, const py::object& stiffness) {
   // #V x 2: a planar mesh, deformed in its plane (rotations about z); solves then take and give 2 columns.
   const Eigen::MatrixXd positions = to_points(V, "V", true, -1, "", true);
   const Eigen::MatrixXi faces = to_faces(F, "F", positions.rows());
@@ -130,6 +130,7 @@ std::unique_ptr<ArapSolver> make_solver(const py::object& V, const py::object& F
   options.method = parse_arap_method(method);
   options.pin_unconstrained_components = pin_unconstrained_components;
   options.intrinsic.refine_boundary = refine_boundary;
+  options.stiffness = to_weights(stiffness, "stiffness"); // checked by the library, naming the vertex
   py::gil_scoped_release release;
   return std::make_unique<ArapSolver>(positions, faces, constrained, soft, options);
 }
@@ -392,7 +393,7 @@ Energies are in squared mesh units. Methods release the GIL; one solver serves o
            py::arg("soft_vertices") = py::none(), py::arg("soft_weights") = py::none(),
            py::arg("soft_faces") = py::none(), py::arg("soft_barycentric") = py::none(),
            py::arg("soft_face_weights") = py::none(), py::arg("hard_faces") = py::none(),
-           py::arg("hard_barycentric") = py::none(),
+           py::arg("hard_barycentric") = py::none(), py::arg("stiffness") = py::none(),
            R"(Precomputes the elements of `method`, the system matrix L and the factorization of L_ff.
 
 V: (#V, 3) rest positions, or (#V, 2) for a planar mesh, deformed in its plane with rotations about z
@@ -409,6 +410,9 @@ Hard points on faces: hard_faces (#hb,) and hard_barycentric (#hb, 3): the solve
 its target (the last #hb rows of soft_targets), by a Schur complement on the factorized system; a point that
 contradicts others (the same point, or one whose corners are all fixed, sent elsewhere) raises ValueError
 naming both.
+stiffness: (#V,) factors s_i > 0 on the energy of vertex i's rotation cell (issue 45): a stiffer region bends
+and stretches less (None, or 1 everywhere: the energy without it, bit for bit). Ratios above about 100 make
+the iteration converge slowly; L-BFGS and Newton cope best.
 Raises ValueError (InputError, TopologyError) for bad arrays, indices, weights or meshes; SolverError (a
 RuntimeError) for an unconstrained component or a failed factorization.)");
   def_solve(arap);

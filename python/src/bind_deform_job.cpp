@@ -11,6 +11,7 @@
 #include "iarap/scene/read_constraints.h"
 #include "iarap/scene/read_forces.h"
 #include "iarap/scene/read_scenario.h"
+#include "iarap/scene/read_stiffness.h"
 #include "iarap/solver/solve_report_fields.h"
 
 #include <memory>
@@ -32,7 +33,8 @@ KeywordSignature deform_file_signature() {
                                        {"pin_unconstrained_components", "bool", py::bool_(false), true},
                                        {"gravity", "npt.ArrayLike | None", py::none(), true},
                                        {"density", "float", py::float_(1.0), true},
-                                       {"forces", "_StrPath | None", py::none(), true}};
+                                       {"forces", "_StrPath | None", py::none(), true},
+                                       {"stiffness", "_StrPath | None", py::none(), true}};
   for (Parameter& p : solve_option_parameters(ArapSolveOptions{}, 0)) parameters.push_back(std::move(p));
   return KeywordSignature("deform_file", std::move(parameters),
                           "tuple[_FloatArray, _IndexArray, dict[str, Any]]");
@@ -82,6 +84,8 @@ py::tuple deform_file_py(const BoundArguments& arguments) {
   const std::string scenario_path = scenario.is_none() ? "" : path_text(scenario);
   const std::string constraints_path = constraints.is_none() ? "" : path_text(constraints);
   const std::string forces_path = arguments["forces"].is_none() ? "" : path_text(arguments["forces"]);
+  const std::string stiffness_path =
+      arguments["stiffness"].is_none() ? "" : path_text(arguments["stiffness"]);
   DeformScene scene;
   DeformResult result;
   {
@@ -94,7 +98,9 @@ py::tuple deform_file_py(const BoundArguments& arguments) {
     else
       given.set = read_constraints(constraints_path, n, static_cast<int>(mesh.F.rows()));
     Eigen::MatrixXd forces = forces_path.empty() ? Eigen::MatrixXd() : read_forces(forces_path, n);
-    scene = prepare_deform(std::move(mesh), given, prepare, std::move(forces));
+    Eigen::VectorXd stiffness =
+        stiffness_path.empty() ? Eigen::VectorXd() : read_stiffness(stiffness_path, n);
+    scene = prepare_deform(std::move(mesh), given, prepare, std::move(forces), std::move(stiffness));
     if (!scene.check.usable()) {
       std::string message =
           mesh_path + ": mesh not usable for ARAP" + (prepare.repair ? " after repair:" : ":");
@@ -119,7 +125,7 @@ F (#F, 3) of the mesh as solved: repaired when repair=True, else the file's, rep
 mesh, scenario, constraints, forces: file paths (exactly one of scenario and constraints). method: "iarap",
 "arap" or "spokes-rims"; refine_boundary (iARAP only); repair: repair the mesh first, the constraints carried
 over; pin_unconstrained_components. gravity (3,) with density: the statics of m_i g (and of the forces file),
-every body held. The solve options:
+every body held. stiffness: a stiffness file ('index s' lines, `iarap deform --stiffness`). The solve options:
 )" + solve_option_docs() +
           R"(The report: ARAP.report's fields (in the file's units) with planar, vertices, faces, constrained, soft,
 pinned, repair (what the repair did), warnings, energy (E_ARAP + penalty + potential), precompute_ms, max_displacement, bbox_diagonal.

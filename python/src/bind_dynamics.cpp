@@ -6,6 +6,7 @@
 
 #include "iarap/core/errors.h"
 #include "iarap/dynamics/simulation.h"
+#include "iarap/dynamics/simulation_report_fields.h"
 
 #include <memory>
 #include <mutex>
@@ -84,13 +85,8 @@ py::dict step_py(PySimulation& sim, const py::object& targets) {
     r = sim.with([&](Simulation& s) { return s.step(rows, Eigen::MatrixXd(0, 3)); });
   }
   py::dict d;
-  d["step"] = r.step;
-  d["time"] = r.time;
-  d["kinetic_energy"] = r.kinetic_energy;
-  d["elastic_energy"] = r.elastic_energy;
-  d["potential_energy"] = r.potential_energy;
-  d["iterations"] = r.iterations;
-  d["converged"] = r.converged;
+  visit_simulation_step_report(r,
+                               [&d](const char* name, const auto& value) { d[name] = report_value(value); });
   return d;
 }
 
@@ -147,8 +143,9 @@ damping in [0, 1); density > 0; gravity (3,); forces (#V, 3) further constant fo
   simulation
       .def("step", &step_py, py::arg("targets") = py::none(),
            "One step to time + dt; targets (#fixed, 3) where the fixed vertices are then (None: where they "
-           "were). Returns {step, time, kinetic_energy, elastic_energy, potential_energy, iterations, "
-           "converged}.")
+           "were). Returns {step, time, kinetic_energy, elastic_energy, potential_energy, total_energy} and "
+           "the step's solve report as ARAP.report has it (iterations, converged, stop_reason, energies, "
+           "gradient_norms, times, ...).")
       .def_property_readonly("positions", getter([](Simulation& s) { return to_numpy(s.positions()); }),
                              "float64 (#V, 3): the positions now.")
       .def_property(

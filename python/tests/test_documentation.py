@@ -190,7 +190,8 @@ def test_python_readme_snippet_runs(tmp_path):
 
 
 def test_http_api_routes_are_the_servers():
-    source = (REPO / "app" / "serve" / "api_routes.cpp").read_text()
+    # One route file per resource (app/serve/*_route(s).cpp).
+    source = "".join(path.read_text() for path in sorted((REPO / "app" / "serve").glob("*.cpp")))
     implemented = set(re.findall(r'routes\.(get|post)\("(/api/[a-z_/]+)"', source))
     documented = {(m.lower(), p) for m, p in re.findall(r"^\| `(GET|POST) (/api/[a-z_/]+)", HTTP_API, re.M)}
     assert len(implemented) >= 14

@@ -1,7 +1,9 @@
 #include "iarap/dynamics/simulation.h"
 
 #include "iarap/core/errors.h"
+#include "iarap/mesh/normalize_scale.h"
 #include "iarap/solver/arap.h"
+#include "iarap/solver/solve_option_fields.h"
 
 #include <algorithm>
 #include <cfloat>
@@ -89,6 +91,11 @@ Simulation::Simulation(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const
     throw InputError("simulation: V must be #V x 3, got " + std::to_string(V.rows()) + " x " +
                      std::to_string(V.cols()));
   check_options(options, V.rows());
+  // The solves run on V / s, s a power of two that brings the coordinates near 1 (exact: the results are
+  // the same numbers, in the input's units, for a mesh in millimetres or in kilometres). Masses do not
+  // change with it; lengths, forces and solve options measured in mesh units are divided by s.
+  s_ = normalizing_scale(V);
+  scale_length_options(options_.solve, s_);
   masses_ = arap_vertex_masses(V, F, options.arap.method, options.density);
   forces_ = gravity_forces(masses_, options.gravity);
   if (options.forces.size() > 0) forces_ += options.forces;
@@ -99,8 +106,10 @@ Simulation::Simulation(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const
   for (Eigen::Index v = 0; v < V.rows(); ++v)
     if (!is_fixed_[static_cast<size_t>(v)] && masses_(v) > 0) inertial.push_back(static_cast<int>(v));
   inertial_ = Eigen::Map<const Eigen::VectorXi>(inertial.data(), static_cast<Eigen::Index>(inertial.size()));
-  check_time_step(options.dt, masses_, inertial_, V);
-  data_ = arap_precompute(V, F, fixed, with_inertia(soft, inertial_, masses_, options.dt), options.arap);
+  const Eigen::MatrixXd V_scaled = V / s_;
+  check_time_step(options.dt, masses_, inertial_, V_scaled);
+  data_ =
+      arap_precompute(V_scaled, F, fixed, with_inertia(soft, inertial_, masses_, options.dt), options.arap);
   X_ = V;
   velocity_ = Eigen::MatrixXd::Zero(V.rows(), 3);
   targets_.resize(fixed.size(), 3);
@@ -121,14 +130,17 @@ SimulationStepReport Simulation::step(const Eigen::MatrixXd& targets, const Eige
   if (soft_targets.rows() != user_soft || soft_targets.cols() != 3)
     throw InputError("simulation: soft targets must be " + std::to_string(user_soft) + " x 3, got " +
                      std::to_string(soft_targets.rows()) + " x " + std::to_string(soft_targets.cols()));
-  // x_pred = x_n + h v_n: the inertia's targets and the warm start.
-  Eigen::MatrixXd U = X_ + h * velocity_;
+  // x_pred = x_n + h v_n: the inertia's targets and the warm start (on the mesh divided by s).
+  Eigen::MatrixXd U = (X_ + h * velocity_) / s_;
   Eigen::MatrixXd all_targets(k + user_soft, 3);
   for (Eigen::Index i = 0; i < k; ++i) all_targets.row(i) = U.row(inertial_(i));
-  all_targets.bottomRows(user_soft) = soft_targets;
+  all_targets.bottomRows(user_soft) = soft_targets / s_;
   ArapSolveOptions solve = options_.solve;
-  solve.forces = forces_;
-  const ArapReport report = arap_solve(data_, targets, all_targets, U, solve); // throws before any change
+  solve.forces = forces_ / s_;
+  SimulationStepReport out;
+  out.solve = arap_solve(data_, targets / s_, all_targets, U, solve); // throws before any change
+  rescale_report(out.solve, s_);
+  U *= s_;
   velocity_ = (U - X_) / h;
   for (Eigen::Index v = 0; v < U.rows(); ++v)
     if (!is_fixed_[static_cast<size_t>(v)]) velocity_.row(v) *= 1.0 - options_.damping;
@@ -137,14 +149,9 @@ SimulationStepReport Simulation::step(const Eigen::MatrixXd& targets, const Eige
   soft_targets_ = soft_targets;
   ++steps_;
   time_ = steps_ * h;
-  SimulationStepReport out;
   out.step = steps_;
   out.time = time_;
   out.kinetic_energy = kinetic_energy();
-  out.elastic_energy = report.arap_energy;
-  out.potential_energy = report.potential;
-  out.iterations = report.iterations;
-  out.converged = report.converged;
   return out;
 }
 
@@ -167,11 +174,11 @@ double Simulation::kinetic_energy() const {
 }
 
 double Simulation::elastic_energy() const {
-  return arap_energy(data_, X_);
+  return arap_energy(data_, X_ / s_) * (s_ * s_);
 }
 
 double Simulation::potential_energy() const {
-  return forces_.cwiseProduct(data_.V).sum() - forces_.cwiseProduct(X_).sum();
+  return forces_.cwiseProduct(data_.V * s_).sum() - forces_.cwiseProduct(X_).sum();
 }
 
 } // namespace iarap

@@ -80,15 +80,30 @@ Eigen::MatrixXd scaled_forces(const DeformScene& scene, const StaticForces& forc
   return static_forces(V_scaled, scene.mesh.F, options.method, forces, scene.forces, s);
 }
 
+// The input's per-vertex stiffness on the repaired mesh: the stiffest of the vertices welded into one; a
+// split copy (a new vertex no input vertex maps to) takes its source's.
+Eigen::VectorXd carried_stiffness(const Eigen::VectorXd& stiffness, const RepairResult& repaired) {
+  Eigen::VectorXd carried = Eigen::VectorXd::Zero(repaired.V.rows());
+  for (Eigen::Index v = 0; v < stiffness.size(); ++v)
+    if (repaired.old_to_new(v) >= 0)
+      carried(repaired.old_to_new(v)) = std::max(carried(repaired.old_to_new(v)), stiffness(v));
+  for (Eigen::Index v = 0; v < carried.size(); ++v)
+    if (carried(v) == 0.0) carried(v) = stiffness(repaired.new_to_old(v));
+  return carried;
+}
+
 } // namespace
 
 DeformScene prepare_deform(MeshData mesh, const DeformConstraints& constraints,
-                           const DeformPrepareOptions& options, Eigen::MatrixXd forces) {
+                           const DeformPrepareOptions& options, Eigen::MatrixXd forces,
+                           Eigen::VectorXd stiffness) {
+  if (stiffness.size() > 0) check_arap_stiffness(stiffness, mesh.V.rows()); // before it is carried over
   DeformScene scene;
   if (!options.repair) {
     scene.constraints =
         constraints.scenario ? resolve_scenario(*constraints.scenario, mesh.V) : constraints.set;
     scene.forces = std::move(forces);
+    scene.stiffness = std::move(stiffness);
   } else {
     RepairOptions repair_options;
     repair_options.remove_zero_area = true;
@@ -103,6 +118,7 @@ DeformScene prepare_deform(MeshData mesh, const DeformConstraints& constraints,
       for (Eigen::Index v = 0; v < forces.rows(); ++v)
         if (repaired.old_to_new(v) >= 0) scene.forces.row(repaired.old_to_new(v)) += forces.row(v);
     }
+    if (stiffness.size() > 0) scene.stiffness = carried_stiffness(stiffness, repaired);
     mesh.V = std::move(repaired.V);
     mesh.F = std::move(repaired.F);
     scene.repairs = std::move(repaired.actions);
@@ -123,11 +139,9 @@ DeformResult solve_deform(const DeformScene& scene, ArapOptions options, ArapSol
   const ArapSoftConstraints soft = soft_constraints_of(constraints.soft);
   const Eigen::MatrixXd soft_targets = soft_targets_of(constraints.soft) / s;
   solve.forces = scaled_forces(scene, forces, soft, V, options, s);
-  // A mesh in the plane z = 0 whose targets stay in it deforms in its plane, with rotations about z (a cell
-  // squeezed through a reflection keeps a 2x2 rotation); targets off the plane make it a 3D deformation.
-  options.planar = (V.col(2).array() == 0.0).all() && (targets.col(2).array() == 0.0).all() &&
-                   (soft_targets.rows() == 0 || (soft_targets.col(2).array() == 0.0).all()) &&
-                   (solve.forces.rows() == 0 || (solve.forces.col(2).array() == 0.0).all());
+  // In the plane, a cell squeezed through a reflection keeps a 2x2 rotation.
+  options.planar = deforms_in_plane(V, targets, soft_targets, solve.forces);
+  if (scene.stiffness.size() > 0) options.stiffness = scene.stiffness; // a ratio: no unit to scale
   DeformResult result;
   result.planar = options.planar;
   const auto precompute_start = Clock::now();
@@ -151,6 +165,14 @@ DeformResult solve_deform(const DeformScene& scene, ArapOptions options, ArapSol
   result.U *= s;
   rescale_report(result.report, s);
   return result;
+}
+
+bool deforms_in_plane(const Eigen::MatrixXd& V, const Eigen::MatrixXd& targets,
+                      const Eigen::MatrixXd& soft_targets, const Eigen::MatrixXd& forces) {
+  const auto in_plane = [](const Eigen::MatrixXd& X) {
+    return X.rows() == 0 || (X.col(2).array() == 0.0).all();
+  };
+  return in_plane(V) && in_plane(targets) && in_plane(soft_targets) && in_plane(forces);
 }
 
 Eigen::MatrixXd static_forces(const Eigen::MatrixXd& V_scaled, const Eigen::MatrixXi& F, ArapMethod method,

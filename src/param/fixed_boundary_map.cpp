@@ -1,10 +1,10 @@
 #include "iarap/param/fixed_boundary_map.h"
 
-#include "constrained_system.h"
-
 #include "iarap/core/errors.h"
 #include "iarap/mesh/cotan.h"
 #include "iarap/mesh/edge_topology.h"
+
+#include "../solver/constrained_solve.h"
 
 #include <algorithm>
 #include <cmath>
@@ -70,13 +70,13 @@ Eigen::MatrixXd fixed_boundary_map(const DiskMesh& disk, BoundaryMapWeights weig
   for (Eigen::Index p = 0; p < inner_pins.size(); ++p) fixed.push_back(inner_pins.vertices(p));
   const Eigen::SparseMatrix<double> L =
       weights == BoundaryMapWeights::Uniform ? uniform_laplacian(disk) : cotan_laplacian(disk.V, disk.F);
-  param_detail::ConstrainedSystem system(
-      L, fixed, weights == BoundaryMapWeights::Uniform ? "the Tutte system" : "the harmonic system");
   Eigen::MatrixXd UV = Eigen::MatrixXd::Zero(disk.V.rows(), 2);
   for (Eigen::Index p = 0; p < m; ++p)
     UV.row(disk.boundary[static_cast<std::size_t>(p)]) = boundary_uv.row(p);
   for (Eigen::Index p = 0; p < inner_pins.size(); ++p) UV.row(inner_pins.vertices(p)) = inner_pins.uv.row(p);
-  system.solve(Eigen::MatrixXd::Zero(disk.V.rows(), 2), UV);
+  detail::solve_constrained(L, fixed, Eigen::MatrixXd::Zero(disk.V.rows(), 2), UV,
+                            weights == BoundaryMapWeights::Uniform ? "the Tutte system"
+                                                                   : "the harmonic system");
   return UV;
 }
 

@@ -1,9 +1,9 @@
 #include "iarap/param/lscm.h"
 
-#include "constrained_system.h"
-
 #include "iarap/core/errors.h"
 #include "iarap/mesh/cotan.h"
+
+#include "../solver/constrained_solve.h"
 
 #include <cmath>
 #include <string>
@@ -112,8 +112,8 @@ Eigen::MatrixXd lscm(const DiskMesh& disk, const UvPins& pins) {
     x(v, 0) = pins.uv(p, 0);
     x(n + v, 0) = pins.uv(p, 1);
   }
-  param_detail::ConstrainedSystem system(conformal_energy_matrix(disk), fixed, "the LSCM system");
-  system.solve(Eigen::MatrixXd::Zero(2 * n, 1), x);
+  detail::solve_constrained(conformal_energy_matrix(disk), fixed, Eigen::MatrixXd::Zero(2 * n, 1), x,
+                            "the LSCM system");
   Eigen::MatrixXd UV(n, 2);
   UV.col(0) = x.col(0).head(n);
   UV.col(1) = x.col(0).tail(n);

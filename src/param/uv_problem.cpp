@@ -4,6 +4,7 @@
 #include "iarap/param/triangle_frames.h"
 #include "iarap/solver/closest_rotation_2d.h"
 
+#include "../solver/constrained_solve.h"
 #include "../solver/inner.h"
 
 #include <algorithm>
@@ -17,17 +18,18 @@ UvProblem::UvProblem(const DiskMesh& disk, std::unique_ptr<UvElasticEnergy> ener
                      const std::vector<int>& pinned, std::optional<InjectivityBarrier> barrier,
                      Eigen::MatrixXd& U)
     : disk_(disk), energy_(std::move(energy)), barrier_(std::move(barrier)), U_(U),
-      system_(energy_->system(), pinned, "the ARAP parameterization system") {}
+      layout_(detail::constraint_layout(U.rows(), pinned)),
+      cholesky_(detail::factorize_free(energy_->system(), layout_, "the ARAP parameterization system")) {}
 
 Eigen::MatrixXd UvProblem::free_rows(const Eigen::MatrixXd& all) const {
-  const std::vector<int>& free = system_.free();
+  const std::vector<int>& free = layout_.free;
   Eigen::MatrixXd x(free_count(), 2);
   for (std::size_t p = 0; p < free.size(); ++p) x.row(static_cast<Eigen::Index>(p)) = all.row(free[p]);
   return x;
 }
 
 Eigen::MatrixXd UvProblem::full(const Eigen::MatrixXd& x) const {
-  const std::vector<int>& free = system_.free();
+  const std::vector<int>& free = layout_.free;
   Eigen::MatrixXd all = Eigen::MatrixXd::Zero(U_.rows(), 2);
   for (std::size_t p = 0; p < free.size(); ++p) all.row(free[p]) = x.row(static_cast<Eigen::Index>(p));
   return all;
@@ -40,7 +42,7 @@ Eigen::MatrixXd UvProblem::positions() const {
 void UvProblem::set_positions(const Eigen::MatrixXd& x) {
   // The plain step evaluates the map it returns, which the loops then set again: keep that evaluation.
   if (evaluated_ && x == positions()) return;
-  const std::vector<int>& free = system_.free();
+  const std::vector<int>& free = layout_.free;
   for (std::size_t p = 0; p < free.size(); ++p) U_.row(free[p]) = x.row(static_cast<Eigen::Index>(p));
   evaluated_ = false;
 }
@@ -94,7 +96,7 @@ const Eigen::MatrixXd& UvProblem::plain_step() {
 
 Eigen::MatrixXd UvProblem::solve(const Eigen::MatrixXd& r) const {
   ++solves_;
-  return 0.5 * system_.solve_free(r);
+  return 0.5 * cholesky_.solve(r);
 }
 
 void UvProblem::prepare_hessian() {
@@ -132,7 +134,7 @@ Eigen::MatrixXd UvProblem::hessian_product(const Eigen::MatrixXd& v) {
 
 double UvProblem::step_limit(const Eigen::MatrixXd& x, const Eigen::MatrixXd& d) const {
   if (!barrier_) return std::numeric_limits<double>::infinity();
-  const std::vector<int>& free = system_.free();
+  const std::vector<int>& free = layout_.free;
   Eigen::MatrixXd at = U_, J;
   for (std::size_t p = 0; p < free.size(); ++p) at.row(free[p]) = x.row(static_cast<Eigen::Index>(p));
   face_jacobians(disk_.frames, disk_.F, at, J);

@@ -8,9 +8,10 @@
 // every iterate of every accelerator is injective. Internal to the param module.
 #pragma once
 #include "iarap/param/disk_mesh.h"
+#include "iarap/solver/sparse_cholesky.h"
 
+#include "../solver/constraint_layout.h"
 #include "../solver/problem.h"
-#include "constrained_system.h"
 #include "injectivity_barrier.h"
 #include "uv_elastic_energy.h"
 
@@ -30,7 +31,7 @@ public:
   UvProblem(const DiskMesh& disk, std::unique_ptr<UvElasticEnergy> energy, const std::vector<int>& pinned,
             std::optional<InjectivityBarrier> barrier, Eigen::MatrixXd& U);
 
-  Eigen::Index free_count() const override { return static_cast<Eigen::Index>(system_.free().size()); }
+  Eigen::Index free_count() const override { return static_cast<Eigen::Index>(layout_.free.size()); }
   Eigen::Index dimension() const override { return 2; }
   Eigen::MatrixXd positions() const override;
   void set_positions(const Eigen::MatrixXd& x) override;
@@ -46,7 +47,7 @@ public:
 
   // E (without the barrier) at the last local step.
   double elastic_energy() const { return E_; }
-  FactorizationKind factorization() const { return system_.kind(); }
+  FactorizationKind factorization() const { return cholesky_.kind(); }
 
 private:
   Eigen::MatrixXd full(const Eigen::MatrixXd& x) const; // #V x 2, zero at the pinned rows
@@ -58,7 +59,8 @@ private:
   std::unique_ptr<UvElasticEnergy> energy_;
   std::optional<InjectivityBarrier> barrier_;
   Eigen::MatrixXd& U_;
-  ConstrainedSystem system_; // M with the pinned vertices held: M_ff factorized, the free vertices
+  detail::ConstraintLayout layout_; // the pinned vertices held, the free ones in order
+  SparseCholesky cholesky_;         // M_ff
   // The state at the last local step: Jacobians, covariances, rotations, E and W; whether U is still there.
   Eigen::MatrixXd J_, S_, R_;
   double E_ = 0, W_ = 0;

@@ -45,4 +45,30 @@ double parse_coordinate(const std::string& token, const std::string& at, const c
   return value;
 }
 
+int for_each_vertex_line(
+    std::istream& in, const std::string& source, int num_vertices, size_t count, const char* format,
+    const std::function<void(int, const std::vector<std::string>&, const std::string&, int)>& line) {
+  std::string text;
+  int number = 0, lines = 0;
+  while (std::getline(in, text)) {
+    ++number;
+    if (const auto hash = text.find('#'); hash != std::string::npos) text.erase(hash);
+    const auto tokens = tokens_of(text);
+    if (tokens.empty()) continue;
+    const std::string at = where(source, number);
+    if (tokens.size() != count)
+      throw InputError(at + "expected '" + format + "', found " + std::to_string(tokens.size()) +
+                       " token(s)");
+    const long long index = parse_index(tokens[0], at);
+    if (index < 0 || index >= num_vertices)
+      throw InputError(at + "vertex index " + tokens[0] + " out of range; the mesh has " +
+                       std::to_string(num_vertices) + " vertices (valid: 0.." +
+                       std::to_string(num_vertices - 1) + ")");
+    line(static_cast<int>(index), tokens, at, number);
+    ++lines;
+  }
+  if (in.bad()) throw InputError(source + ": read error after line " + std::to_string(number));
+  return lines;
+}
+
 } // namespace iarap::detail

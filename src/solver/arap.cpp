@@ -11,9 +11,11 @@
 
 #include "../core/run_beside.h"
 #include "../intrinsic/intrinsic_phases.h"
+#include "cell_stiffness.h"
 #include "constraint_layout.h"
 #include "local_global_loops.h"
 #include "local_global_problem.h"
+#include "quadratic_terms.h"
 #include "soft_terms.h"
 #include "traced_elements.h"
 
@@ -156,8 +158,8 @@ void take_traced_elements(const Eigen::MatrixXd& V, std::optional<detail::Traced
 // the pattern and the cotan Laplacian read the first two, the signpost triangulation all three; each drops
 // its references when done with them.
 void build_intrinsic_elements(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
-                              const IntrinsicOptions& intrinsic, const detail::ConstraintLayout& layout,
-                              ArapData& data, SystemBuild& system) {
+                              const IntrinsicOptions& intrinsic, bool cotan_identity,
+                              const detail::ConstraintLayout& layout, ArapData& data, SystemBuild& system) {
   std::optional<detail::TracedTriangulation> traced;
   double intrinsic_ms = 0.0, elements_ms = 0.0, cotan_ms = 0.0;
   const auto start = Clock::now();
@@ -170,7 +172,8 @@ void build_intrinsic_elements(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F
         system.pattern = system_pattern(F, static_cast<int>(V.rows()), *topology);
         topology.reset();
         analyze(layout, system);
-        if (!C->allFinite()) return; // degenerate faces: mollified lengths, the identity does not hold
+        // Degenerate faces (mollified lengths) or stiffness: the identity does not hold.
+        if (!cotan_identity || !C->allFinite()) return;
         data.L = timed(cotan_ms, [&] { return cotan_system_matrix(F, *C, system.pattern); });
         C.reset();
         factorize(data.L, layout, system);
@@ -188,7 +191,7 @@ void build_intrinsic_elements(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F
   data.timings.assembly_ms = elements_ms + cotan_ms;
   // What the intrinsic and element build did not hide of the analysis and factorization.
   data.timings.factor_ms = std::max(0.0, ms_since(start) - intrinsic_ms - elements_ms - cotan_ms);
-  if (data.intrinsic.mollify_delta != 0.0) system.factorized = false;
+  if (data.intrinsic.mollify_delta != 0.0 || !cotan_identity) system.factorized = false;
 }
 
 // L from the elements (Eq. 17) and its factorization, where the element build did not factorize it.
@@ -200,6 +203,16 @@ void factorize_element_system(const Eigen::MatrixXi& F, const detail::Constraint
 }
 
 } // namespace
+
+void check_arap_stiffness(const Eigen::VectorXd& s, Eigen::Index n) {
+  if (s.size() != n)
+    throw InputError("ARAP: stiffness has " + std::to_string(s.size()) + " entries for a mesh of " +
+                     std::to_string(n) + " vertices");
+  for (Eigen::Index v = 0; v < n; ++v)
+    if (!(std::isfinite(s(v)) && s(v) > 0))
+      throw InputError("ARAP: stiffness of vertex " + std::to_string(v) + " is " + std::to_string(s(v)) +
+                       "; it must be finite and > 0");
+}
 
 ArapData arap_precompute(const Eigen::MatrixXd& V_in, const Eigen::MatrixXi& F, const Eigen::VectorXi& fixed,
                          const ArapOptions& options) {
@@ -214,13 +227,17 @@ ArapData arap_precompute(const Eigen::MatrixXd& V_in, const Eigen::MatrixXi& F, 
   data.planar = options.planar || V_in.cols() == 2;
   // Bad constraints fail before any heavy work.
   detail::check_soft_constraints(soft, static_cast<int>(V.rows()), F, fixed);
+  if (options.stiffness.size() > 0) check_arap_stiffness(options.stiffness, V.rows());
+  const bool stiffness = !detail::is_unit_stiffness(options.stiffness);
   detail::ConstraintLayout layout = detail::constraint_layout(data, fixed, soft);
   SystemBuild system;
   system.Q = detail::soft_system_matrix(detail::soft_points(soft, F), static_cast<int>(V.rows()));
   if (options.method == ArapMethod::Iarap)
-    build_intrinsic_elements(V, F, options.intrinsic, layout, data, system);
+    build_intrinsic_elements(V, F, options.intrinsic, !stiffness, layout, data, system);
   else
     build_cotan_elements(V, F, options.method, layout, data, system);
+  if (stiffness)
+    detail::apply_cell_stiffness(data.elements, detail::cell_stiffness_of(data.elements, options.stiffness));
   if (!system.factorized) factorize_element_system(F, layout, data, system);
   data.elements.planar = data.planar;
   data.timings.analyze_ms = system.analyze_ms;
@@ -266,20 +283,6 @@ void arap_set_soft_weights(ArapData& data, const Eigen::VectorXd& vertex_weights
 
 namespace {
 
-// P(U) of data's soft points for U #V x 3.
-double penalty_of(const ArapData& data, const Eigen::MatrixXd& soft_targets, const Eigen::MatrixXd& U) {
-  if (data.soft.size() == 0) return 0.0;
-  const ArapElements::ValueRows U_rows = U; // row-major, as soft_penalty reads it
-  return detail::soft_penalty(detail::soft_points(data.soft, data.F), soft_targets, U_rows.data(), nullptr,
-                              static_cast<size_t>(data.soft.soft_size()));
-}
-
-// -f . (U - V) for forces f #V x 3 (0 x 0: none).
-double potential_of(const ArapData& data, const Eigen::MatrixXd& forces, const Eigen::MatrixXd& U) {
-  if (forces.rows() == 0) return 0.0;
-  return forces.cwiseProduct(data.V).sum() - forces.cwiseProduct(U).sum();
-}
-
 ArapReport solve_checked(ArapData& data, const Eigen::MatrixXd& targets, const Eigen::MatrixXd& soft_targets,
                          const Eigen::MatrixXd& forces, Eigen::MatrixXd& U, const ArapSolveOptions& options,
                          Clock::time_point start) {
@@ -288,8 +291,11 @@ ArapReport solve_checked(ArapData& data, const Eigen::MatrixXd& targets, const E
     detail::LocalGlobalProblem problem(data, targets, U, soft_targets, forces);
     report = detail::run_local_global(problem, options, data.solver.kind(), start);
   } // U holds the result in the file's order from here
-  report.penalty = penalty_of(data, soft_targets, U);
-  report.potential = potential_of(data, forces, U);
+  // The terms' energies at the result, in the file's order.
+  const ArapElements::ValueRows U_rows = U;
+  for (const auto& term : detail::quadratic_terms(data, soft_targets, forces, nullptr))
+    (term->kind() == detail::QuadraticTerm::Kind::Penalty ? report.penalty : report.potential) =
+        term->energy(U_rows);
   report.arap_energy = (report.energies.empty() ? report.initial_energy : report.energies.back()) -
                        report.penalty - report.potential;
   return report;
@@ -328,8 +334,10 @@ ArapReport arap_solve(ArapData& data, const Eigen::MatrixXd& targets, const Eige
 double arap_penalty(const ArapData& data, const Eigen::MatrixXd& soft_targets, const Eigen::MatrixXd& U) {
   check_solver_positions(data, soft_targets, data.soft.size(), "soft targets");
   check_solver_positions(data, U, data.V.rows(), "positions U");
-  return penalty_of(data, soft_targets.cols() == 2 ? embedded(soft_targets) : soft_targets,
-                    U.cols() == 2 ? embedded(U) : U);
+  if (data.soft.size() == 0) return 0.0;
+  const detail::SoftPointTerm penalty(data, soft_targets.cols() == 2 ? embedded(soft_targets) : soft_targets,
+                                      nullptr);
+  return penalty.energy(U.cols() == 2 ? embedded(U) : U);
 }
 
 Eigen::MatrixXd arap_penalty_gradient(const ArapData& data, const Eigen::MatrixXd& soft_targets,

@@ -7,6 +7,7 @@
 
 #include "../intrinsic/segments.h"
 #include "../mesh/face_index_range.h"
+#include "cell_stiffness.h"
 #include "streamed_layout.h"
 #include "traced_elements.h"
 
@@ -305,7 +306,7 @@ Eigen::SparseMatrix<double> element_system_matrix(const ArapElements& el) {
   std::vector<Eigen::Triplet<double>> triplets;
   triplets.reserve(static_cast<size_t>(9 * el.size()));
   for (Eigen::Index e = 0; e < el.size(); ++e) {
-    const double cw = (el.cell_start[e + 1] - el.cell_start[e]) * el.w(e); // |cells(e)| w_e
+    const double cw = detail::element_cell_weight(el, e) * el.w(e); // |cells(e)| w_e, or sum s_c w_e
     for (int k = 0; k < 3; ++k)
       for (int l = 0; l < 3; ++l) {
         const double v = cw * (el.b_value(e, k) * el.b_value(e, l)); // bitwise symmetric

@@ -6,6 +6,22 @@
 
 namespace iarap::detail {
 
+namespace {
+
+// free and free_slot from constrained_slot: every unknown not constrained, in increasing order.
+void assign_free(ConstraintLayout& layout) {
+  const int n = static_cast<int>(layout.constrained_slot.size());
+  layout.free_slot = Eigen::VectorXi::Constant(n, -1);
+  layout.free.reserve(static_cast<size_t>(n));
+  for (int v = 0; v < n; ++v)
+    if (layout.constrained_slot[static_cast<size_t>(v)] < 0) {
+      layout.free_slot(v) = static_cast<int>(layout.free.size());
+      layout.free.push_back(v);
+    }
+}
+
+} // namespace
+
 ConstraintLayout constraint_layout(const ArapData& data, const Eigen::VectorXi& fixed,
                                    const ArapSoftConstraints& soft) {
   const int n = static_cast<int>(data.V.rows());
@@ -60,13 +76,17 @@ ConstraintLayout constraint_layout(const ArapData& data, const Eigen::VectorXi& 
     layout.pinned.push_back(first_of[c]);
   }
 
-  layout.free_slot = Eigen::VectorXi::Constant(n, -1);
-  layout.free.reserve(static_cast<size_t>(n));
-  for (int v = 0; v < n; ++v)
-    if (slot[v] < 0) {
-      layout.free_slot(v) = static_cast<int>(layout.free.size());
-      layout.free.push_back(v);
-    }
+  assign_free(layout);
+  return layout;
+}
+
+ConstraintLayout constraint_layout(Eigen::Index n, const std::vector<int>& constrained) {
+  ConstraintLayout layout;
+  layout.constrained = constrained;
+  layout.constrained_slot.assign(static_cast<size_t>(n), -1);
+  for (size_t k = 0; k < constrained.size(); ++k)
+    layout.constrained_slot[static_cast<size_t>(constrained[k])] = static_cast<int>(k);
+  assign_free(layout);
   return layout;
 }
 

@@ -30,6 +30,10 @@ struct ConstraintLayout {
 ConstraintLayout constraint_layout(const ArapData& data, const Eigen::VectorXi& fixed,
                                    const ArapSoftConstraints& soft = {});
 
+// The layout of n unknowns of which `constrained` (distinct, in 0..n-1; not checked) are held, in that slot
+// order, nothing pinned: for a system that is not an ArapData's (constrained_solve.h).
+ConstraintLayout constraint_layout(Eigen::Index n, const std::vector<int>& constrained);
+
 // L (#V x #V, symmetric, compressed) split into L_ff (free x free) and L_fc (free x constrained) directly
 // in compressed form. Matrices with one pattern give L_ff with one pattern, which is what lets the
 // symbolic factorization run on the pattern ahead of the values.

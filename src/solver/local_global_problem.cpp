@@ -24,7 +24,8 @@ LocalGlobalProblem::LocalGlobalProblem(ArapData& data, const Eigen::MatrixXd& ta
   for (Eigen::Index k = 0; k < data.fixed.size(); ++k) U.row(data.fixed(k)) = targets.row(k);
   const ArapElements& el = data.elements;
   visit_rows(el, U, U_rows_);
-  const std::vector<int> position = inverse_permutation(streamed(el).visit_order);
+  position_ = inverse_permutation(streamed(el).visit_order);
+  const std::vector<int>& position = position_;
   R_spare_.resize(static_cast<size_t>(el.num_cells));
 
   // The free vertices in visit order (x's rows), and for each its row of the symmetric L (= its column),
@@ -51,34 +52,17 @@ LocalGlobalProblem::LocalGlobalProblem(ArapData& data, const Eigen::MatrixXd& ta
   const Eigen::MatrixXd Lfc_Uc = data.L_fc * U_c; // rows in data.free's order
   Lfc_Uc_.resize(nf, 3);
   for (Eigen::Index r = 0; r < nf; ++r) Lfc_Uc_.row(r) = Lfc_Uc.row(free_index_[static_cast<size_t>(r)]);
-  // The linear part of the right-hand side at the free rows, s_f = sum_k 2 W_k c_k t_k^T of the soft points
-  // plus the forces f_f, folded into L_fc U_c (B = rhs_f + s_f + f_f - L_fc U_c) and kept for the gradient.
-  soft_points_ = soft_points(data.soft, data.F);
-  linear_ = !soft_points_.empty() || forces.rows() > 0;
-  if (linear_) linear_f_.setZero(nf, 3);
-  if (!soft_points_.empty()) {
-    soft_targets_ = soft_targets;
-    position_ = position;
-    std::vector<int> row_of_free(static_cast<size_t>(nf), -1);
+  // The terms' linear parts at the free rows, s_f = sum_t s_t, folded into L_fc U_c (B = rhs_f + s_f -
+  // L_fc U_c) and kept for the gradient.
+  terms_ = quadratic_terms(data, soft_targets, forces, &position_);
+  if (!terms_.empty()) {
+    std::vector<int> unknown(position.size(), -1); // each vertex's row of x
     for (Eigen::Index r = 0; r < nf; ++r)
-      row_of_free[static_cast<size_t>(free_index_[static_cast<size_t>(r)])] = static_cast<int>(r);
-    for (size_t k = 0; k < soft_points_.size(); ++k) {
-      const SoftPoint& p = soft_points_[k];
-      for (int j = 0; j < 3; ++j) {
-        const int i = data.free_slot(p.v[j]);
-        if (i >= 0)
-          linear_f_.row(row_of_free[static_cast<size_t>(i)]) +=
-              2.0 * p.W * p.c[j] * soft_targets.row(static_cast<Eigen::Index>(k));
-      }
-    }
+      unknown[static_cast<size_t>(data.free(free_index_[static_cast<size_t>(r)]))] = static_cast<int>(r);
+    linear_f_.setZero(nf, 3);
+    for (const auto& term : terms_) term->add_linear(unknown, linear_f_);
+    Lfc_Uc_ -= linear_f_;
   }
-  if (forces.rows() > 0) {
-    for (Eigen::Index r = 0; r < nf; ++r)
-      linear_f_.row(r) += forces.row(data.free(free_index_[static_cast<size_t>(r)]));
-    visit_rows(el, forces, f_rows_);
-    f_dot_rest_ = forces.cwiseProduct(data.V).sum();
-  }
-  if (linear_) Lfc_Uc_ -= linear_f_;
   if (data.soft.hard_faces.size() > 0) set_up_hard_points(soft_targets);
   B_.resize(nf, 3);
   X_.resize(nf, 3);
@@ -87,7 +71,7 @@ LocalGlobalProblem::LocalGlobalProblem(ArapData& data, const Eigen::MatrixXd& ta
   data.R.clear();
 }
 
-// C x = d for the hard points (the last rows of soft_points_): the corners that are unknowns give C's
+// C x = d for the hard points (the last of data.soft's points): the corners that are unknowns give C's
 // columns (rows of x), the constrained ones (targets, pinned guesses) move to d. Contradictory points throw
 // HardPointConflict before any iteration; the initial guess is then moved onto the constraints.
 void LocalGlobalProblem::set_up_hard_points(const Eigen::MatrixXd& soft_targets) {
@@ -102,10 +86,11 @@ void LocalGlobalProblem::set_up_hard_points(const Eigen::MatrixXd& soft_targets)
   std::vector<int> row_of_free(free_index_.size(), -1);
   for (size_t r = 0; r < free_index_.size(); ++r)
     row_of_free[static_cast<size_t>(free_index_[r])] = static_cast<int>(r);
+  const std::vector<SoftPoint> points = soft_points(data_.soft, data_.F);
   std::vector<ConstraintRow> rows(static_cast<size_t>(m));
   hard_d_.resize(m, 3);
   for (Eigen::Index k = 0; k < m; ++k) {
-    const SoftPoint& p = soft_points_[static_cast<size_t>(first + k)];
+    const SoftPoint& p = points[static_cast<size_t>(first + k)];
     ConstraintRow& row = rows[static_cast<size_t>(k)];
     hard_d_.row(k) = soft_targets.row(first + k);
     for (int j = 0; j < 3; ++j) {
@@ -162,12 +147,9 @@ void LocalGlobalProblem::set_positions(const Eigen::MatrixXd& x) {
 double LocalGlobalProblem::local_step() {
   const double E = fit_rotations_in_visit_order(data_.elements, U_rows_, data_.R, cell_energy_,
                                                 keep_covariances_ ? &S_ : nullptr);
-  if (!linear_) return E;
-  if (!soft_points_.empty())
-    penalty_ = soft_penalty(soft_points_, soft_targets_, U_rows_.data(), &position_,
-                            static_cast<size_t>(data_.soft.soft_size()));
-  if (f_rows_.rows() > 0) potential_ = f_dot_rest_ - f_rows_.cwiseProduct(U_rows_).sum();
-  return E + penalty_ + potential_;
+  double total = E;
+  for (const auto& term : terms_) total += term->energy(U_rows_);
+  return total;
 }
 
 namespace {
@@ -195,7 +177,7 @@ void LocalGlobalProblem::assemble_rhs() {
   g_.resize(free_count(), 3);
   const double* u = U_rows_.data();
   const StreamedLayout& sl = streamed(data_.elements);
-  const bool linear = linear_;
+  const bool linear = !terms_.empty();
 #pragma omp parallel for schedule(static)
   for (int r = 0; r < rows; ++r) {
     double rhs[3], LU[3];

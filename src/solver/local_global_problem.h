@@ -2,24 +2,25 @@
 // (plain, Anderson, L-BFGS) see it: the energy E(x) = min_R energy with its rotations (local step), the
 // right-hand side B(x) = rhs_f(R*(x)) - L_fc U_c (Eq. 16), the plain iterate G(x) = L_ff^{-1} B(x) (global
 // step) and the gradient g(x) = L_ff x - B(x) = L_ff (x - G(x)) (Eq. 14 at the free rows, by the envelope
-// theorem). With soft constraints (arap_soft_constraints.h) every piece is of the total E + P: L stands for
-// L + Q (in L_ff, L_fc and the Hessian), B gains the free rows of sum_k 2 W_k c_k t_k^T and local_step()
-// returns E + P, so that every optimizer minimizes the total. With hard points (C x = d, hard_points.h) x
-// stays on the constraints: the initial guess is moved onto them, plain_step is the constrained global
-// step, solve() maps onto their tangent space and the gradient is projected so that its preconditioned
-// step keeps them (zero at the constrained minimum): the loops need not know. Internal to the solver; the
-// public contract is arap_solve's.
+// theorem). With the quadratic terms of quadratic_terms.h (soft points, forces) every piece is of the total
+// E + sum_t E_t: L stands for L + Q (in L_ff, L_fc and the Hessian), B gains the terms' linear parts s_t at
+// the free rows and local_step() returns the total, so that every optimizer minimizes it. With hard points (C
+// x = d, hard_points.h) x stays on the constraints: the initial guess is moved onto them, plain_step is the
+// constrained global step, solve() maps onto their tangent space and the gradient is projected so that its
+// preconditioned step keeps them (zero at the constrained minimum): the loops need not know. Internal to the
+// solver; the public contract is arap_solve's.
 #pragma once
 #include "iarap/solver/arap_types.h"
 
 #include "hard_points.h"
 #include "inner.h"
 #include "problem.h"
-#include "soft_terms.h"
+#include "quadratic_terms.h"
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 
+#include <memory>
 #include <vector>
 
 namespace iarap::detail {
@@ -32,8 +33,7 @@ public:
   // g and every #free x 3 matrix of this interface (the free vertices in visit order: the passes over them
   // stream); the destructor writes U and data.R back in the file's order. soft_targets: #soft x 3 targets
   // of data.soft's points (ArapSoftConstraints::size rows; data.Q must be of data.soft). forces: #V x 3
-  // external forces f (0 x 0: none; ArapSolveOptions::forces): B gains f_f, local_step() the potential
-  // -f . (U - V).
+  // external forces f (0 x 0: none; ArapSolveOptions::forces). Both become quadratic terms.
   LocalGlobalProblem(ArapData& data, const Eigen::MatrixXd& targets, Eigen::MatrixXd& U,
                      const Eigen::MatrixXd& soft_targets = Eigen::MatrixXd(0, 3),
                      const Eigen::MatrixXd& forces = Eigen::MatrixXd(0, 3));
@@ -47,13 +47,9 @@ public:
   Eigen::MatrixXd positions() const override;
   void set_positions(const Eigen::MatrixXd& x) override;
 
-  // Local step at U: fits data.R and returns E(U) + P(U) - f . (U - V) (P = 0 without soft constraints, f
-  // = 0 without forces).
+  // Local step at U: fits data.R and returns E(U) + sum_t E_t(U) over the quadratic terms (the penalty P,
+  // then the potential -f . (U - V)).
   double local_step() override;
-  // P(U) at the last local step.
-  double penalty() const { return penalty_; }
-  // -f . (U - V) at the last local step.
-  double potential() const { return potential_; }
   // B(U) from data.R (the rotations of the last local step), kept for plain_step, and the gradient there
   // (gradient()), in one pass over the free vertices.
   void assemble_rhs() override;
@@ -100,15 +96,9 @@ private:
   bool keep_covariances_ = false;
   ArapElements::ValueRows v_rows_; // a direction v on all vertices, 0 at constrained ones
   mutable int solves_ = 0;
-  std::vector<SoftPoint> soft_points_; // data.soft's points, their targets, and the visit position of each
-  Eigen::MatrixXd soft_targets_;       // vertex (for the penalty on U_rows_)
-  std::vector<int> position_;
-  // #free x 3 linear term at the free rows (visit order): s_f = sum_k 2 W_k c_k t_k^T plus the forces f_f
-  Eigen::MatrixXd linear_f_;
-  bool linear_ = false;            // linear_f_ is in use (soft points or forces)
-  ArapElements::ValueRows f_rows_; // the forces in visit order (0 rows without), and f . V
-  double f_dot_rest_ = 0.0;
-  double penalty_ = 0.0, potential_ = 0.0;
+  std::vector<int> position_; // #V: the visit position of each vertex (its row of U_rows_)
+  std::vector<std::unique_ptr<QuadraticTerm>> terms_; // evaluated on U_rows_
+  Eigen::MatrixXd linear_f_; // #free x 3: sum_t s_t at the free rows (visit order), when there are terms
   HardPointProjection hard_; // empty without hard points
   Eigen::MatrixXd hard_d_;   // #hard x 3: their targets less the constrained corners' share
 };

@@ -4,6 +4,8 @@
 #include "iarap/core/threads.h"
 #include "iarap/mesh/edge_topology.h"
 
+#include "cell_stiffness.h"
+
 #include <string>
 #include <vector>
 
@@ -77,8 +79,7 @@ Eigen::SparseMatrix<double> element_system_matrix(const ArapElements& el, const 
         throw InputError("system matrix: element " + std::to_string(e) + " has vertex " +
                          std::to_string(el.b_index(e, k)) + " outside its face " + std::to_string(f));
     }
-    const double cw =
-        (el.cell_start[static_cast<size_t>(e) + 1] - el.cell_start[static_cast<size_t>(e)]) * el.w(e);
+    const double cw = detail::element_cell_weight(el, e) * el.w(e); // |cells(e)| w_e, or sum s_c w_e
     for (int k = 0; k < 3; ++k)
       for (int l = 0; l < 3; ++l)
         if (corner[k] >= 0 && corner[l] >= 0) // same products as the triplet assembly: bitwise symmetric

@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <random>
 #include <string>
@@ -36,6 +37,34 @@ TEST_F(SimulationTest, NoForcesAndRestTargetsStayAtRest) {
     }
     EXPECT_LE(sim.kinetic_energy(), 1e-20);
   }
+}
+
+// The simulation runs on the mesh divided by its normalizing scale (a power of two) and answers in the
+// input's units: the same mesh 2^40 times larger (masses kept: density / 2^80; gravity 2^40 times longer)
+// moves exactly 2^40 times as far, with energies 2^80 times as large, bit for bit (powers of two scale
+// without rounding), and its scale() is 2^40 times the original's.
+TEST_F(SimulationTest, AnyScaleGivesTheSameMotionInItsUnits) {
+  const HeldPatch p = held_patch(8);
+  const double k = std::ldexp(1.0, 40);
+  SimulationOptions small_options;
+  small_options.dt = 0.05;
+  small_options.gravity = Eigen::Vector3d(0, 0, -2);
+  SimulationOptions big_options = small_options;
+  big_options.density = small_options.density / (k * k);
+  big_options.gravity = small_options.gravity * k;
+  Simulation small(p.mesh.V, p.mesh.F, p.fixed, small_options);
+  Simulation big(p.mesh.V * k, p.mesh.F, p.fixed, big_options);
+  EXPECT_EQ(big.scale(), k * small.scale());
+  for (int s = 0; s < 4; ++s) {
+    const SimulationStepReport a = small.step(p.targets, Eigen::MatrixXd(0, 3));
+    const SimulationStepReport b = big.step(p.targets * k, Eigen::MatrixXd(0, 3));
+    ASSERT_TRUE(big.positions() == small.positions() * k) << s;
+    EXPECT_EQ(b.kinetic_energy, a.kinetic_energy * k * k);
+    EXPECT_EQ(b.solve.arap_energy, a.solve.arap_energy * k * k);
+    EXPECT_EQ(b.solve.potential, a.solve.potential * k * k);
+    EXPECT_EQ(b.solve.iterations, a.solve.iterations);
+  }
+  EXPECT_GT((small.positions() - p.mesh.V).norm(), 1e-3 * p.diagonal); // it did fall
 }
 
 TEST_F(SimulationTest, FreeBodyConservesLinearMomentum) {

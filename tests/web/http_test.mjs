@@ -385,6 +385,58 @@ describe('uploads', () => {
   });
 });
 
+describe('flat meshes', () => {
+  test('a mesh in z = 0 is solved in its plane, as `iarap deform` solves it', async () => {
+    // A 13 x 4 vertex strip of [0, 3] x [0, 1] in z = 0; the left column fixed, the right one the handle,
+    // turned by 150 degrees about the middle: a fold whose 3D solve (cells turned over) ends elsewhere.
+    const columns = 12, rows = 3;
+    const V = [];
+    const F = [];
+    for (let j = 0; j <= rows; ++j) for (let i = 0; i <= columns; ++i) V.push([(3 * i) / columns, j / rows, 0]);
+    for (let j = 0; j < rows; ++j) {
+      for (let i = 0; i < columns; ++i) {
+        const a = j * (columns + 1) + i;
+        F.push([a, a + 1, a + columns + 2], [a, a + columns + 2, a + columns + 1]);
+      }
+    }
+    const column = (i) => Array.from({ length: rows + 1 }, (_, j) => j * (columns + 1) + i);
+    const fixed = column(0), handle = column(columns);
+    const angle = (150 * Math.PI) / 180;
+    const targets = handle.map((v) => {
+      const x = V[v][0] - 1.5, y = V[v][1] - 0.5;
+      return [1.5 + Math.cos(angle) * x - Math.sin(angle) * y, 0.5 + Math.sin(angle) * x + Math.cos(angle) * y, 0];
+    });
+    const off = ['OFF', `${V.length} ${F.length} 0`, ...V.map((v) => v.join(' ')), ...F.map((f) => `3 ${f.join(' ')}`)].join('\n');
+    const upload = await fetch(`${base}/api/upload?name=strip.off`, { method: 'POST', headers: { 'Content-Type': 'application/octet-stream' }, body: off });
+    assert.equal(upload.status, 200, await upload.clone().text());
+    assert.equal((await postJson('/api/constraints', { fixed, handle })).status, 200);
+    const response = await postJson('/api/solve', { method: 'iarap', iterations: 50, handle_targets: targets.flat() });
+    assert.equal(response.status, 200, await response.clone().text());
+    const { header, arrays } = decodeFrame(await response.arrayBuffer());
+    assert.equal(header.planar, true);
+    for (let v = 0; v < V.length; ++v) assert.equal(arrays.positions[3 * v + 2], 0, `vertex ${v} left the plane`);
+
+    const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'iarap_flat_'));
+    fs.writeFileSync(path.join(dir, 'strip.off'), off);
+    const lines = [...fixed.map((v) => `${v} ${V[v][0]} ${V[v][1]} 0`), ...handle.map((v, k) => `${v} ${targets[k][0]} ${targets[k][1]} 0`)];
+    fs.writeFileSync(path.join(dir, 'strip.txt'), lines.join('\n') + '\n');
+    execFileSync(cliPath, ['deform', path.join(dir, 'strip.off'), '--constraints', path.join(dir, 'strip.txt'), '--out', path.join(dir, 'out.obj'), '--iterations', '50', '--quiet']);
+    const deformed = objVertices(path.join(dir, 'out.obj'));
+    fs.rmSync(dir, { recursive: true, force: true });
+    // The answer's positions are float32: equal to the CLI's doubles to float rounding (2^-24 of the
+    // coordinates, at most 3 here), far below 1e-6 of the diagonal (sqrt(10)).
+    let gap = 0;
+    deformed.forEach((p, v) => p.forEach((x, c) => { gap = Math.max(gap, Math.abs(x - arrays.positions[3 * v + c])); }));
+    assert.ok(gap <= 1e-6 * Math.sqrt(10), `server vs iarap deform: ${gap}`);
+
+    // Lifted off the plane, the same strip is a 3D solve.
+    const lifted = targets.map(([x, y]) => [x, y, 0.5]);
+    const lift = decodeFrame(await (await postJson('/api/solve', { iterations: 5, handle_targets: lifted.flat() })).arrayBuffer());
+    assert.equal(lift.header.planar, false);
+    assert.equal((await postJson('/api/load', { mesh: 'bunny.off' })).status, 200);
+  });
+});
+
 describe('UV maps', () => {
   test('a disk is flattened like `iarap param`; a closed mesh and bad options are refused', async () => {
     await expectError(postJson('/api/param', {}), 422, /not a topological disk.*0 boundary loops/);

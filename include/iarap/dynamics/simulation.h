@@ -54,15 +54,15 @@ struct SimulationOptions {
   }
 };
 
-// What one step did.
+// What one step did: the step's own figures and the report of its solve (simulation_report_fields.h
+// names them for the front-ends).
 struct SimulationStepReport {
-  int step = 0;                // 1 for the first step
-  double time = 0;             // step x dt
-  double kinetic_energy = 0;   // sum_i m_i |v_i|^2 / 2 after the step (damped velocities)
-  double elastic_energy = 0;   // E_ARAP(x_{n+1})
-  double potential_energy = 0; // -f . (x_{n+1} - V)
-  int iterations = 0;          // of the step's solve
-  bool converged = false;
+  int step = 0;              // 1 for the first step
+  double time = 0;           // step x dt
+  double kinetic_energy = 0; // sum_i m_i |v_i|^2 / 2 after the step (damped velocities)
+  // The step's arap_solve: iterations, converged, stop_reason, energies (of Phi), times, ...; arap_energy is
+  // E_ARAP(x_{n+1}), potential -f . (x_{n+1} - V) and penalty the inertia term (plus any soft points').
+  ArapReport solve;
 };
 
 class Simulation {
@@ -95,7 +95,8 @@ public:
   double potential_energy() const;
   double time() const { return time_; }
   int steps() const { return steps_; }
-  const ArapData& data() const { return data_; }
+  const ArapData& data() const { return data_; } // of the rest mesh divided by scale()
+  double scale() const { return s_; }
 
 private:
   SimulationOptions options_;
@@ -103,7 +104,8 @@ private:
   Eigen::MatrixXd forces_, X_, velocity_, targets_, soft_targets_;
   Eigen::VectorXi inertial_; // the free vertices with mass, the soft vertices of the inertia term
   std::vector<char> is_fixed_;
-  ArapData data_;
+  ArapData data_;  // of V / s_
+  double s_ = 1.0; // normalizing_scale(V): the solves run on the mesh divided by it
   double time_ = 0;
   int steps_ = 0;
 };

@@ -51,15 +51,19 @@ struct DeformScene {
   MeshData mesh;                    // repaired when asked
   ConstraintSet constraints;        // resolved or remapped onto mesh
   Eigen::MatrixXd forces;           // #V x 3 per-vertex forces on mesh (0 x 0: none)
+  Eigen::VectorXd stiffness;        // #V per-vertex stiffness on mesh (empty: none; ArapOptions::stiffness)
   std::vector<std::string> repairs; // RepairResult::actions (empty without repair)
   MeshReport check;                 // check_mesh(mesh): a front-end refuses it when !check.usable()
 };
 
-// Repairs on request and carries the constraints and forces over. forces: #V x 3 per-vertex forces of the
-// input mesh, or 0 x 0. Throws what resolve_scenario, remap_constraints and repair_mesh throw.
+// Repairs on request and carries the constraints, forces and stiffness over. forces: #V x 3 per-vertex
+// forces of the input mesh, or 0 x 0; stiffness: #V factors (ArapOptions::stiffness), or empty. Where the
+// repair welds vertices their forces add up and the stiffest factor is kept; split copies keep their
+// vertex's. Throws what resolve_scenario, remap_constraints and repair_mesh throw.
 DeformScene prepare_deform(MeshData mesh, const DeformConstraints& constraints,
                            const DeformPrepareOptions& options = {},
-                           Eigen::MatrixXd forces = Eigen::MatrixXd());
+                           Eigen::MatrixXd forces = Eigen::MatrixXd(),
+                           Eigen::VectorXd stiffness = Eigen::VectorXd());
 
 struct DeformResult {
   Eigen::MatrixXd U;           // #V x 3 positions in the input's units
@@ -71,13 +75,20 @@ struct DeformResult {
 };
 
 // Solves scene with `options` (method, boundary refinement, pin_unconstrained_components; planar is set
-// here) and `solve` (lengths in mesh units: scale_length_options is applied here). With forces.present every
-// connected component must hold a fixed vertex, a soft vertex or a point on a face (InputError otherwise:
-// a free body under a force has no equilibrium). Throws what arap_precompute and arap_solve throw; a
-// HardPointConflict comes back as InputError naming both lines (hard_point_conflict_message), and an
-// energy that overflows as SolverError naming the farthest target.
+// here, and stiffness to the scene's when it has one) and `solve` (lengths in mesh units:
+// scale_length_options is applied here). With forces.present every connected component must hold a fixed
+// vertex, a soft vertex or a point on a face (InputError otherwise: a free body under a force has no
+// equilibrium). Throws what arap_precompute and arap_solve throw; a HardPointConflict comes back as
+// InputError naming both lines (hard_point_conflict_message), and an energy that overflows as SolverError
+// naming the farthest target.
 DeformResult solve_deform(const DeformScene& scene, ArapOptions options, ArapSolveOptions solve,
                           const StaticForces& forces = {});
+
+// `iarap deform`'s rule for the planar mode (ArapOptions::planar): a mesh V whose rows, and those of the
+// targets, soft targets and forces (each #rows x 3, or 0 x 0), all lie in the plane z = 0 deforms in its
+// plane, with rotations about z; anything off the plane makes it a 3D deformation.
+bool deforms_in_plane(const Eigen::MatrixXd& V, const Eigen::MatrixXd& targets,
+                      const Eigen::MatrixXd& soft_targets, const Eigen::MatrixXd& forces);
 
 // The statics' forces on the mesh divided by s (V_scaled = V / s, a power of two; s = 1: the mesh as it
 // is): in those units a mass is density s^2 x area and a force f / s, so that the minimizer is the mesh's

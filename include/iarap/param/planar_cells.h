@@ -7,6 +7,11 @@
 // area-weighted normal of c's faces, t1 x t2 = n) and scaled back to the length of s_hat_e: on a planar
 // mesh s_ec is s_hat_e itself (in the plane's coordinates), elsewhere a flattening of the cell that keeps
 // every element's length. The weights are those of the 3D energy (negative ones included, never clamped).
+//
+// Not the solver's planar mode (ArapOptions::planar), which deforms a mesh lying in z = 0 with one rest
+// vector s_hat_e per element: here each cell of a curved surface is flattened into its own tangent plane, so
+// an element has a different flat rest vector s_ec in each of its cells, which ArapElements cannot carry.
+// On a planar mesh the two agree (tests/param/planar_cells_test.cpp).
 #pragma once
 #include "iarap/solver/arap_elements.h"
 

@@ -27,11 +27,15 @@ namespace iarap {
 // (V #V x 2, or #V x 3 in the plane z = 0 with ArapOptions::planar) is deformed in its plane with 2x2
 // rotations (planar_rotation): the result is the 3D solver's on the mesh embedded at z = 0 wherever no cell
 // is squeezed through a reflection, with z exactly 0.
-// Throws InputError (bad shapes, face indices, non-finite V, bad fixed set: see arap_set_fixed),
+// Throws InputError (bad shapes, face indices, non-finite V, bad fixed set: see arap_set_fixed, a bad
+// ArapOptions::stiffness: see check_arap_stiffness),
 // TopologyError (non-manifold edge, degenerate face without mollification), SolverError (a component
 // without constrained vertex, failed factorization).
 ArapData arap_precompute(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const Eigen::VectorXi& fixed,
                          const ArapOptions& options = {});
+
+// Throws InputError unless stiffness has n entries, each finite and > 0, naming the first bad vertex.
+void check_arap_stiffness(const Eigen::VectorXd& stiffness, Eigen::Index n);
 
 // The same with soft constraints: L_ff becomes (L + Q)_ff (arap_soft_constraints.h). fixed may then be
 // empty, and a connected component needs a fixed vertex or a soft point, not both. Throws InputError as

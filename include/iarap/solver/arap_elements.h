@@ -41,6 +41,9 @@ struct ArapElements {
   // cell_element[cell_element_start[c] .. cell_element_start[c + 1]).
   std::vector<int> cell_element_start;
   std::vector<int> cell_element;
+  // num_cells factors s_c > 0 on each cell's energy (ArapOptions::stiffness), already folded into the
+  // streamed layout's weights; empty: 1 everywhere. L weighs element e by (sum over cells(e) of s_c) w_e.
+  Eigen::VectorXd cell_stiffness;
 
   // The same elements regrouped cell by cell in a cache-friendly visit order, as the iterations stream them
   // (internal; every builder fills it, and copies of the elements share it: it is never changed).

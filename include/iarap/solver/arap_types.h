@@ -48,6 +48,12 @@ struct ArapOptions {
   // one that turns the plane over. V must then lie in the plane z = 0, and targets and positions too
   // (arap_solve). A #V x 2 V is planar whatever this says.
   bool planar = false;
+  // #V factors s_i > 0 on the energy of vertex i's rotation cell, E = sum_i s_i E_i (issue 45): a stiffer
+  // region bends and stretches less. Empty, or 1 everywhere: none (the same bytes). Every method's cells
+  // are the vertices' (original ARAP: the spokes of i; spokes-and-rims: the spokes and rims of i's faces;
+  // iARAP: the intrinsic spokes of i); a boundary point iARAP inserts takes the mean of the vertices its
+  // elements reach. The rotations do not depend on it; L and the right-hand side weigh each cell's terms.
+  Eigen::VectorXd stiffness;
 };
 
 // Wall-clock parts of arap_precompute; they add up to its duration.

@@ -1,0 +1,105 @@
+#include "refine_job.h"
+
+#include <cmath>
+
+namespace iarap::serve {
+
+double last_relative_decrease(const ArapReport& report) {
+  if (report.energies.empty()) return 0;
+  const double previous =
+      report.energies.size() > 1 ? report.energies[report.energies.size() - 2] : report.initial_energy;
+  return previous != 0 ? (previous - report.energies.back()) / std::abs(previous) : 0;
+}
+
+double last_energy(const ArapReport& report) {
+  return report.energies.empty() ? report.initial_energy : report.energies.back();
+}
+
+std::vector<float> to_float_rows(const Eigen::MatrixXd& X) {
+  std::vector<float> out(static_cast<std::size_t>(X.rows() * X.cols()));
+  for (Eigen::Index i = 0; i < X.rows(); ++i)
+    for (Eigen::Index k = 0; k < X.cols(); ++k)
+      out[static_cast<std::size_t>(i * X.cols() + k)] = static_cast<float>(X(i, k));
+  return out;
+}
+
+RefineJob refine_job_after(const SolveRequest& request, const ArapReport& report, Eigen::MatrixXd targets,
+                           Eigen::MatrixXd soft_targets, Eigen::MatrixXd forces) {
+  RefineJob job;
+  job.method = request.method;
+  job.targets = std::move(targets);
+  job.soft_targets = std::move(soft_targets);
+  job.options.forces = std::move(forces);
+  job.options.max_iterations = request.refine_iterations;
+  job.options.tolerance = -1; // the job's own rules, in refine_chunk
+  job.options.accelerator = request.refine_accelerator;
+  job.options.window = request.solve.window;
+  job.tolerance = request.solve.tolerance;
+  job.gradient_target = request.solve.gradient_tolerance * report.initial_gradient_norm;
+  if (request.refine_accelerator == request.solve.accelerator) { // Newton's state goes on (same targets)
+    job.trust_radius = report.newton_trust_radius;
+    job.reference_gradient = report.newton_reference_gradient;
+  }
+  job.gradient_now =
+      report.gradient_norms.empty() ? report.initial_gradient_norm : report.gradient_norms.back();
+  return job;
+}
+
+SessionFrame refine_chunk(RefineJob& job, ArapData& data, Eigen::MatrixXd& U, double budget_ms,
+                          const std::function<bool()>& keep_going) {
+  ArapSolveOptions options = job.options;
+  options.time_budget_ms = budget_ms;
+  if (job.gradient_target > 0) options.gradient_tolerance = job.gradient_target / job.gradient_now;
+  options.newton_trust_radius = job.trust_radius;
+  options.newton_reference_gradient = job.reference_gradient;
+  const bool plain = job.options.accelerator == ArapAccelerator::None || job.options.window == 0;
+  bool energy_rule = false;
+  // The iteration boundary where a caller of the session takes over (or the server stops), and the
+  // energy rule on accelerated iterates.
+  options.on_iteration = [&](const ArapReport& report) {
+    energy_rule = job.tolerance >= 0 && (plain || report.accepted.back() != 0) &&
+                  last_relative_decrease(report) <= job.tolerance;
+    return !energy_rule && keep_going();
+  };
+  SessionFrame frame;
+  frame.method = job.method;
+  frame.refined = true;
+  frame.tolerance = job.tolerance;
+  try {
+    Eigen::MatrixXd next = U;
+    const ArapReport report = data.soft.size() == 0
+                                  ? arap_solve(data, job.targets, next, options)
+                                  : arap_solve(data, job.targets, job.soft_targets, next, options);
+    U = std::move(next);
+    job.iterations_done += report.iterations;
+    job.options.max_iterations -= report.iterations;
+    if (!report.gradient_norms.empty()) job.gradient_now = report.gradient_norms.back();
+    job.trust_radius = report.newton_trust_radius;
+    job.reference_gradient = report.newton_reference_gradient;
+    frame.energy = last_energy(report);
+    frame.relative_decrease = last_relative_decrease(report);
+    frame.converged = report.converged || energy_rule;
+    frame.refining = !frame.converged && job.options.max_iterations > 0;
+  } catch (const std::exception& e) { // the solver's refusal ends the refinement; U stays the last iterate
+    frame.error = e.what();
+  }
+  frame.iterations = job.iterations_done;
+  frame.positions = to_float_rows(U);
+  return frame;
+}
+
+SessionFrame stopped_refinement_frame(const RefineJob& job, const ArapData& data, const Eigen::MatrixXd& U,
+                                      const Eigen::MatrixXd& V) {
+  SessionFrame frame;
+  frame.method = job.method;
+  frame.refined = true;
+  frame.iterations = job.iterations_done;
+  frame.tolerance = job.tolerance;
+  frame.energy = arap_energy(data, U);
+  if (data.soft.size() > 0) frame.energy += arap_penalty(data, job.soft_targets, U);
+  if (job.options.forces.rows() > 0) frame.energy -= (job.options.forces.array() * (U - V).array()).sum();
+  frame.positions = to_float_rows(U);
+  return frame;
+}
+
+} // namespace iarap::serve

@@ -1,0 +1,60 @@
+// The background refinement's work: after a drag's answer, keep solving toward the same targets in chunks
+// of a time budget, each ending in a frame (FrameBoard). The thread that runs the chunks and yields to
+// requests is SharedSession's (shared_session.h); this file holds what a chunk computes.
+//
+// Its stopping rule is the request's, made independent of where the chunks begin: the energy rule counts
+// only accelerated iterates (a fallback plain step of Newton, L-BFGS or Anderson decreases the energy
+// little far from the minimum: 5e-7 of it at a 5e-4 gap on the beetle, which stopped the refinement
+// there), and the gradient rule compares with the gradient at the solve's initial guess.
+#pragma once
+#include "frame_board.h"
+#include "solve_request.h"
+
+#include "iarap/solver/arap.h"
+
+#include <Eigen/Core>
+#include <functional>
+
+namespace iarap::serve {
+
+struct RefineJob {
+  ArapMethod method = ArapMethod::Iarap;
+  Eigen::MatrixXd targets, soft_targets; // options.forces: the solve's
+  ArapSolveOptions options;              // max_iterations: the iterations left
+  double tolerance = 0;                  // the energy rule (relative decrease of an accelerated iterate)
+  double gradient_target = 0;            // stop once ||g|| <= this (0: no gradient rule)
+  double gradient_now = 0;               // ||g|| at the method's U
+  // Newton's trust radius and reference gradient, carried from the answer to the first chunk and from
+  // chunk to chunk (same targets). Not from one answer to the next: carried over moved targets, the
+  // radius of the previous step let the first steps of the beetle's drag run far (its last answer's
+  // energy was 400 times the minimum's instead of 1.2 times).
+  double trust_radius = 0, reference_gradient = 0;
+  int iterations_done = 0;
+};
+
+// (E_prev - E) / |E_prev| of the report's last iteration: what the energy tolerance compares.
+double last_relative_decrease(const ArapReport& report);
+// The energy after the report's last iteration (the initial one without iterations).
+double last_energy(const ArapReport& report);
+
+// The job that goes on from a solve's answer (report) toward its targets; forces: the solve's (0 x 0: none).
+RefineJob refine_job_after(const SolveRequest& request, const ArapReport& report, Eigen::MatrixXd targets,
+                           Eigen::MatrixXd soft_targets, Eigen::MatrixXd forces);
+
+// One chunk of job from U: solves for about budget_ms (the last iteration may run over), stopping early at
+// the job's rules or at an iteration boundary where keep_going() is false (a request waits for the
+// session). U becomes the last finished iterate; the job counts the iterations and carries Newton's
+// state. The frame (positions, energy, refining: more chunks are due) is not numbered yet; a solver
+// error ends the job with frame.error and U unchanged.
+SessionFrame refine_chunk(RefineJob& job, ArapData& data, Eigen::MatrixXd& U, double budget_ms,
+                          const std::function<bool()>& keep_going);
+
+// The frame that says the refinement was stopped at U: the energy the solves report, E_ARAP + P - f . (U -
+// V).
+SessionFrame stopped_refinement_frame(const RefineJob& job, const ArapData& data, const Eigen::MatrixXd& U,
+                                      const Eigen::MatrixXd& V);
+
+// #X.rows() * #X.cols() floats, row-major: the positions of a frame.
+std::vector<float> to_float_rows(const Eigen::MatrixXd& X);
+
+} // namespace iarap::serve

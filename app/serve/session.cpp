@@ -1,0 +1,387 @@
+#include "session.h"
+
+#include "request_targets.h"
+
+#include "../common/explain_error.h"
+#include "iarap/jobs/deform_job.h"
+#include "iarap/jobs/soft_constraints.h"
+
+#include "iarap/core/stopwatch.h"
+#include "iarap/mesh/validate.h"
+
+#include <algorithm>
+#include <cmath>
+#include <unordered_map>
+
+namespace iarap::serve {
+namespace {
+
+// The viewer loads a mesh as it is; the repair a warning names runs in the tool, before serving.
+const std::string viewer_repair = std::string("outside the viewer, ") + cli::deform_repair_flag;
+
+Eigen::MatrixXd gather_rows(const Eigen::MatrixXd& X, const Eigen::VectorXi& rows) {
+  Eigen::MatrixXd out(rows.size(), X.cols());
+  for (Eigen::Index i = 0; i < rows.size(); ++i) out.row(i) = X.row(rows[i]);
+  return out;
+}
+
+// Range, repeats, and (against `other`) overlap; messages name set[position] = index.
+void check_index_set(const Eigen::VectorXi& set, const char* name, int vertex_count,
+                     std::unordered_map<int, std::string>& seen) {
+  for (Eigen::Index i = 0; i < set.size(); ++i) {
+    const std::string where = std::string(name) + "[" + std::to_string(i) + "] = " + std::to_string(set[i]);
+    if (set[i] < 0 || set[i] >= vertex_count) {
+      throw InputError(where + " is out of range; the mesh has " + std::to_string(vertex_count) +
+                       " vertices (0-based indices)");
+    }
+    const auto [it, inserted] = seen.emplace(set[i], std::string(name) + "[" + std::to_string(i) + "]");
+    if (!inserted) throw InputError(where + " repeats " + it->second);
+  }
+}
+
+// The positions on U of the soft points in the solver's order: soft vertices, soft points on faces, hard
+// points on faces (barycentric combinations of their face's corners).
+Eigen::MatrixXd soft_points_at(const SoftConstraintSet& soft, const Eigen::MatrixXi& F,
+                               const Eigen::MatrixXd& U) {
+  Eigen::MatrixXd P(soft.size(), 3);
+  Eigen::Index row = 0;
+  for (Eigen::Index k = 0; k < soft.vertices.size(); ++k) P.row(row++) = U.row(soft.vertices[k]);
+  const auto on_face = [&](int f, const auto& b) {
+    return (b(0) * U.row(F(f, 0)) + b(1) * U.row(F(f, 1)) + b(2) * U.row(F(f, 2))).eval();
+  };
+  for (Eigen::Index k = 0; k < soft.faces.size(); ++k)
+    P.row(row++) = on_face(soft.faces[k], soft.barycentric.row(k));
+  for (Eigen::Index k = 0; k < soft.hard_faces.size(); ++k)
+    P.row(row++) = on_face(soft.hard_faces[k], soft.hard_barycentric.row(k));
+  return P;
+}
+
+// One arap_solve call that publishes its progress after every iteration and stops when a cancel is
+// requested (the callback returns false). One call, not chunks: the accelerators keep their history, so the
+// page's result equals `iarap deform`'s with the same options bit for bit.
+ArapReport solve_with_progress(ArapData& data, const Eigen::MatrixXd& targets,
+                               const Eigen::MatrixXd& soft_targets, const Eigen::MatrixXd& forces,
+                               Eigen::MatrixXd& U, const SolveRequest& request, SolveProgress& progress) {
+  progress.cancel_requested = false;
+  progress.method = static_cast<int>(request.method);
+  progress.iteration = 0;
+  progress.iterations = request.solve.max_iterations;
+  progress.running = true;
+  struct Done { // clears `running` on every exit, a throw included
+    SolveProgress& progress;
+    ~Done() { progress.running = false; }
+  } done{progress};
+  ArapSolveOptions options = request.solve;
+  options.on_iteration = [&progress](const ArapReport& report) {
+    progress.iteration = report.iterations;
+    progress.energy = last_energy(report);
+    return !progress.cancel_requested.load();
+  };
+  options.forces = forces;
+  if (data.soft.size() == 0) return arap_solve(data, targets, U, options);
+  return arap_solve(data, targets, soft_targets, U, options);
+}
+
+} // namespace
+
+void Session::new_generation() {
+  ++generation_;
+  refine_job_.reset();
+}
+
+void Session::load_mesh(const std::string& name, MeshData mesh) {
+  const MeshReport report = check_mesh(mesh.V, mesh.F);
+  if (!report.usable()) {
+    std::string message = name + ": mesh not usable for ARAP:";
+    for (const auto& error : report.errors) message += "\n  " + cli::name_repair(error, viewer_repair);
+    throw TopologyError(message);
+  }
+  summary_ = MeshSummary{name,
+                         static_cast<int>(mesh.V.rows()),
+                         static_cast<int>(mesh.F.rows()),
+                         report.bbox_diagonal,
+                         mesh.notes,
+                         cli::name_repair(report.warnings, viewer_repair)};
+  for (MethodState& state : methods_) {
+    state.data.reset();
+    state.U = mesh.V;
+    state.anchor.resize(0, 3);
+    state.soft_anchor.resize(0, 3);
+  }
+  soft_ = SoftSession{};
+  ++soft_version_;
+  fixed_.resize(0);
+  handle_.resize(0);
+  constrained_.resize(0);
+  overlay_.reset();
+  new_generation();
+  history_.clear(); // revisions index the previous mesh's vertices
+  mesh_ = std::move(mesh);
+}
+
+void Session::require_mesh() const {
+  if (!mesh_) throw SessionConflict("no mesh loaded; load one of the server's meshes or upload one first");
+}
+
+const MeshSummary& Session::mesh_summary() const {
+  require_mesh();
+  return summary_;
+}
+
+const Eigen::VectorXi& Session::fixed() const {
+  require_mesh();
+  return fixed_;
+}
+
+const Eigen::VectorXi& Session::handle() const {
+  require_mesh();
+  return handle_;
+}
+
+const SoftSession& Session::soft() const {
+  require_mesh();
+  return soft_;
+}
+
+// ArapMethod counts 0, 1, 2 in the order of all_methods.
+Session::MethodState& Session::state_of(ArapMethod method) {
+  return methods_[static_cast<std::size_t>(method)];
+}
+
+const Session::MethodState& Session::state_of(ArapMethod method) const {
+  return methods_[static_cast<std::size_t>(method)];
+}
+
+void Session::check_sets(const Eigen::VectorXi& fixed, const Eigen::VectorXi& handle,
+                         const SoftConstraintSet& soft) const {
+  const int vertex_count = static_cast<int>(mesh_->V.rows());
+  std::unordered_map<int, std::string> seen;
+  for (Eigen::Index k = 0; k < soft.vertices.size(); ++k) {
+    const auto at = static_cast<std::size_t>(k);
+    seen.emplace(soft.vertices[k],
+                 "a soft vertex of the loaded file" +
+                     (at < soft.origins.size() ? " (" + soft.origins[at] + ")" : std::string()));
+  }
+  check_index_set(fixed, "fixed", vertex_count, seen);
+  check_index_set(handle, "handle", vertex_count, seen);
+}
+
+void Session::use_sets(const Eigen::VectorXi& fixed, const Eigen::VectorXi& handle) {
+  fixed_ = fixed;
+  handle_ = handle;
+  constrained_.resize(fixed.size() + handle.size());
+  constrained_ << fixed, handle;
+}
+
+int Session::record_revision() {
+  Revision revision{0, fixed_, handle_, {}, {}, soft_, soft_version_};
+  for (std::size_t m = 0; m < methods_.size(); ++m) {
+    revision.anchors[m] = methods_[m].anchor;
+    revision.soft_anchors[m] = methods_[m].soft_anchor;
+  }
+  return history_.record(std::move(revision));
+}
+
+int Session::set_constraints(const Eigen::VectorXi& fixed, const Eigen::VectorXi& handle) {
+  require_mesh();
+  check_sets(fixed, handle, soft_.soft);
+  use_sets(fixed, handle);
+  new_generation();
+  // The dragged soft vertices are re-anchored where the shape put them, like the handle; the other soft
+  // points keep their targets (soft: the shape does not reach them exactly).
+  for (MethodState& state : methods_) {
+    state.anchor = gather_rows(state.U, constrained_);
+    for (Eigen::Index k = 0; k < soft_.soft.vertices.size(); ++k)
+      if (soft_.dragged[static_cast<std::size_t>(k)])
+        state.soft_anchor.row(k) = state.U.row(soft_.soft.vertices[k]);
+  }
+  return record_revision();
+}
+
+void Session::restore_constraints(int revision) {
+  require_mesh();
+  const Revision* restored = history_.restore(revision);
+  if (restored == nullptr) {
+    throw SessionConflict("constraint revision " + std::to_string(revision) + " is not kept (the last " +
+                          std::to_string(ConstraintHistory::limit) + " of this mesh are)");
+  }
+  use_sets(restored->fixed, restored->handle);
+  soft_ = restored->soft;
+  soft_version_ = restored->soft_version;
+  new_generation();
+  for (std::size_t m = 0; m < methods_.size(); ++m) {
+    methods_[m].anchor = restored->anchors[m];
+    methods_[m].soft_anchor = restored->soft_anchors[m];
+  }
+}
+
+int Session::load_constraints(const Eigen::VectorXi& fixed, const Eigen::VectorXi& handle,
+                              const Eigen::MatrixXd& targets, const SoftSession& soft) {
+  require_mesh();
+  check_sets(fixed, handle, soft.soft);
+  if (soft.dragged.size() != static_cast<std::size_t>(soft.soft.vertices.size()))
+    throw InputError("soft constraints: the dragged marks do not match the soft vertices");
+  if (targets.rows() != fixed.size() + handle.size() || targets.cols() != 3)
+    throw InputError("constraint targets do not match the constrained vertices");
+  for (Eigen::Index i = 0; i < targets.rows(); ++i) {
+    if (!targets.row(i).allFinite())
+      throw InputError("constraint target " + std::to_string(i) + " is not finite");
+  }
+  use_sets(fixed, handle);
+  if (soft_.soft.size() > 0 || soft.soft.size() > 0) ++soft_version_; // rebuilt at the next solve
+  soft_ = soft;
+  new_generation();
+  const Eigen::MatrixXd soft_targets = soft_targets_of(soft.soft);
+  for (MethodState& state : methods_) {
+    state.U = mesh_->V;
+    state.anchor = targets;
+    state.soft_anchor = soft_targets;
+  }
+  return record_revision();
+}
+
+ConstraintTargets Session::constraint_targets(ArapMethod method, const SolveRequest& request) const {
+  require_mesh();
+  if (constrained_.size() == 0 && soft_.soft.size() == 0)
+    throw SessionConflict("no fixed or handle vertices; select some first");
+  const MethodState& state = state_of(method);
+  ConstraintTargets out;
+  out.fixed = fixed_;
+  out.handle = handle_;
+  out.targets = constrained_targets(state.anchor, handle_.size(), request);
+  out.soft = soft_.soft;
+  const Eigen::MatrixXd soft_targets = soft_point_targets(state.soft_anchor, soft_, request);
+  const Eigen::Index sv = out.soft.vertices.size(), sb = out.soft.faces.size();
+  out.soft.vertex_targets = soft_targets.topRows(sv);
+  out.soft.face_targets = soft_targets.middleRows(sv, sb);
+  out.soft.hard_targets = soft_targets.bottomRows(out.soft.hard_faces.size());
+  // Anchors re-taken after a solve that kept the shape (e.g. a handle selected, the identity solved) differ
+  // from the rest rows by the solve's rounding (1e-16 relative, times the conditioning of L); 1e-9 of the
+  // bounding-box diagonal lies far above that and far below anything a user's drag moves.
+  const Eigen::MatrixXd rest = gather_rows(mesh_->V, constrained_);
+  out.anchored_at_rest =
+      rest.size() == 0 || (state.anchor - rest).cwiseAbs().maxCoeff() <= 1e-9 * summary_.bbox_diagonal;
+  return out;
+}
+
+// The method's data for the session's sets: built on first use, for new soft constraints (with them) and
+// for a change of planar mode, refactorized when only the constrained set changed.
+void Session::prepare_data(MethodState& state, ArapMethod method, bool planar, SolveResult& result) {
+  const auto precompute_start = Clock::now();
+  if (!state.data || state.data_soft_version != soft_version_ || state.data->planar != planar ||
+      (soft_.soft.size() > 0 && state.data->fixed != constrained_)) {
+    ArapOptions options;
+    options.method = method;
+    options.planar = planar;
+    // Uploaded meshes may have pieces the user did not select; pin them rather than refuse to solve.
+    options.pin_unconstrained_components = true;
+    state.data.reset(); // a throw leaves no data, rebuilt next time
+    state.data = soft_.soft.size() == 0 ? arap_precompute(mesh_->V, mesh_->F, constrained_, options)
+                                        : arap_precompute(mesh_->V, mesh_->F, constrained_,
+                                                          soft_constraints_of(soft_.soft), options);
+    state.data_soft_version = soft_version_;
+    result.precompute_ms = ms_since(precompute_start);
+  } else if (state.data->fixed.size() != constrained_.size() || state.data->fixed != constrained_) {
+    arap_set_fixed(*state.data, constrained_); // keeps the previous set on a throw
+    result.precompute_ms = ms_since(precompute_start);
+  }
+}
+
+SolveResult Session::solve(const SolveRequest& request, SolveProgress& progress) {
+  require_mesh();
+  if (constrained_.size() == 0 && soft_.soft.size() == 0)
+    throw SessionConflict("no fixed or handle vertices; select some before solving");
+  MethodState& state = state_of(request.method);
+  const Eigen::MatrixXd targets = constrained_targets(state.anchor, handle_.size(), request);
+  const Eigen::MatrixXd soft_targets = soft_point_targets(state.soft_anchor, soft_, request);
+  const Eigen::MatrixXd forces = request_forces(*mesh_, constrained_, soft_.soft, request);
+  SolveResult result;
+  result.refinement_preempted = refine_job_.has_value();
+  new_generation();
+  // `iarap deform`'s rule (solve_deform): a mesh and targets in z = 0 deform in their plane. Its initial
+  // guess is the rest mesh; the session's is the method's U, which must lie in the plane too.
+  result.planar = deforms_in_plane(mesh_->V, targets, soft_targets, forces) &&
+                  deforms_in_plane(state.U, Eigen::MatrixXd(), Eigen::MatrixXd(), Eigen::MatrixXd());
+  prepare_data(state, request.method, result.planar, result);
+
+  Eigen::MatrixXd U = state.U; // commit only a successful solve
+  const auto solve_start = Clock::now();
+  try {
+    result.report = solve_with_progress(*state.data, targets, soft_targets, forces, U, request, progress);
+  } catch (const HardPointConflict& e) {
+    throw InputError(hard_point_conflict_message(e, soft_.soft));
+  }
+  result.cancelled = result.report.stop_reason == ArapStopReason::Callback; // not a time budget
+  result.solve_ms = ms_since(solve_start);
+  result.pinned = static_cast<int>(state.data->pinned.size());
+  result.positions = to_float_rows(U);
+  if (request.cell_energy) {
+    const Eigen::VectorXd energy = arap_cell_energy(*state.data, U);
+    // iARAP with refine_boundary adds cells for inserted boundary points after the #V vertex cells.
+    result.cell_energy.assign(energy.data(), energy.data() + std::min<Eigen::Index>(energy.size(), U.rows()));
+  }
+  state.U = std::move(U);
+  result.generation = generation_;
+  result.refining = request.refine_iterations > 0 && !result.report.converged && !result.cancelled;
+  if (result.refining) refine_job_ = refine_job_after(request, result.report, targets, soft_targets, forces);
+  return result;
+}
+
+SessionFrame Session::refine_chunk(double budget_ms, const std::function<bool()>& keep_going) {
+  RefineJob& job = *refine_job_;
+  MethodState& state = state_of(job.method);
+  SessionFrame frame = serve::refine_chunk(job, *state.data, state.U, budget_ms, keep_going);
+  frame.generation = generation_;
+  if (!frame.refining) refine_job_.reset();
+  return frame;
+}
+
+std::optional<SessionFrame> Session::stop_refinement() {
+  if (!refine_job_) return std::nullopt;
+  const RefineJob job = std::move(*refine_job_);
+  refine_job_.reset();
+  const MethodState& state = state_of(job.method);
+  SessionFrame frame = stopped_refinement_frame(job, *state.data, state.U, mesh_->V);
+  frame.generation = generation_;
+  return frame;
+}
+
+void Session::reset() {
+  require_mesh();
+  new_generation();
+  for (MethodState& state : methods_) {
+    state.U = mesh_->V;
+    state.anchor = gather_rows(state.U, constrained_);
+    state.soft_anchor = soft_points_at(soft_.soft, mesh_->F, state.U);
+  }
+  if (constrained_.size() > 0 || soft_.soft.size() > 0) record_revision();
+}
+
+std::vector<float> Session::positions(std::optional<ArapMethod> method) const {
+  require_mesh();
+  return to_float_rows(method ? state_of(*method).U : mesh_->V);
+}
+
+std::vector<std::uint32_t> Session::faces() const {
+  require_mesh();
+  const Eigen::MatrixXi& F = mesh_->F;
+  std::vector<std::uint32_t> out(static_cast<std::size_t>(F.rows() * 3));
+  for (Eigen::Index f = 0; f < F.rows(); ++f)
+    for (int k = 0; k < 3; ++k)
+      out[static_cast<std::size_t>(3 * f + k)] = static_cast<std::uint32_t>(F(f, k));
+  return out;
+}
+
+MeshSnapshot Session::snapshot(std::optional<ArapMethod> method) const {
+  require_mesh();
+  return {method ? state_of(*method).U : mesh_->V, mesh_->F, summary_.name};
+}
+
+std::shared_ptr<const IntrinsicOverlay> Session::intrinsic_overlay() {
+  require_mesh();
+  if (!overlay_)
+    overlay_ = std::make_shared<const IntrinsicOverlay>(make_intrinsic_overlay(mesh_->V, mesh_->F));
+  return overlay_;
+}
+
+} // namespace iarap::serve

@@ -1,0 +1,26 @@
+// A symmetric system solved at its free rows with the constrained rows held, A_ff x_f = b_f - A_fc x_c: the
+// global step of arap_solve (Eq. 16) for a system that is not an ArapData's. The param module's LSCM,
+// fixed-boundary maps and UV global step use it, on the solver's constraint layout and split. Internal.
+#pragma once
+#include "constraint_layout.h"
+
+#include "iarap/solver/sparse_cholesky.h"
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+
+#include <vector>
+
+namespace iarap::detail {
+
+// The factorization of A_ff (A n x n, symmetric) for `layout`. Throws SolverError when A_ff is singular,
+// naming the system by `what` ("the LSCM system") and its number of free unknowns.
+SparseCholesky factorize_free(const Eigen::SparseMatrix<double>& A, const ConstraintLayout& layout,
+                              const char* what);
+
+// x (n x k): its free rows become A_ff^{-1} (b_f - A_fc x_c), its `constrained` rows (distinct, in
+// 0..n-1, not checked) are kept. b: n x k. One factorization, thrown away after the solve.
+void solve_constrained(const Eigen::SparseMatrix<double>& A, const std::vector<int>& constrained,
+                       const Eigen::MatrixXd& b, Eigen::MatrixXd& x, const char* what);
+
+} // namespace iarap::detail
