@@ -18,3 +18,4 @@ list(APPEND IARAP_APP_SOURCES serve/session.cpp serve/constraint_history.cpp ser
 list(APPEND IARAP_APP_SOURCES param_command.cpp common/param_report_json.cpp serve/param_route.cpp)
 list(APPEND IARAP_APP_SOURCES batch_command.cpp)
 list(APPEND IARAP_APP_SOURCES repair_command.cpp)
+list(APPEND IARAP_APP_SOURCES register_command.cpp)

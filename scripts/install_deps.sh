@@ -4,7 +4,7 @@ set -euo pipefail
 packages=(
   cmake ninja-build g++ pkg-config clang-format-14
   libeigen3-dev libsuitesparse-dev libspectra-dev
-  libcli11-dev nlohmann-json3-dev libpng-dev libcpp-httplib-dev libtinyobjloader-dev
+  libcli11-dev nlohmann-json3-dev libnanoflann-dev libpng-dev libcpp-httplib-dev libtinyobjloader-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   pybind11-dev python3-dev python3-numpy python3-scipy python3-pytest python3-matplotlib python3-distributed
   python3-venv python3-setuptools python3-wheel python3-build python3-mypy dpkg-dev

@@ -164,6 +164,35 @@ def deform_file(
     time_budget_ms: float = 0.0,
     newton_trust_radius: float = 0.0,
 ) -> tuple[_FloatArray, _IndexArray, dict[str, Any]]: ...
+def register(
+    V: npt.ArrayLike,
+    F: npt.ArrayLike,
+    target_points: npt.ArrayLike,
+    *,
+    target_normals: npt.ArrayLike | None = None,
+    target_faces: npt.ArrayLike | None = None,
+    landmarks: npt.ArrayLike | None = None,
+    landmark_targets: npt.ArrayLike | None = None,
+    landmark_weight: float = 100.0,
+    method: str = "iarap",
+    prealign: str = "rigid",
+    stages: int = 8,
+    rounds: int = 30,
+    initial_weight: float = 0.02,
+    final_weight: float = 1.0,
+    point_to_plane: float = 0.95,
+    backward_weight: float = 0.1,
+    reject_distance: float = 3.0,
+    reject_angle: float = 60.0,
+    normal_neighbours: int = 12,
+    iterations: int = 8,
+    tolerance: float = 1e-05,
+    accelerator: str = "newton",
+    window: int = 8,
+    gradient_tolerance: float = 0.0,
+    time_budget_ms: float = 0.0,
+    newton_trust_radius: float = 0.0,
+) -> tuple[_FloatArray, dict[str, Any]]: ...
 def set_thread_count(n: int) -> None: ...
 def thread_count() -> int: ...
 

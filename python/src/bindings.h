@@ -22,5 +22,7 @@ void bind_param(py::module_& m);
 void bind_dynamics(py::module_& m);
 // deform_file(mesh, scenario=..., constraints=...): the job of `iarap deform`.
 void bind_deform_job(py::module_& m);
+// register(V, F, target_points, ...): non-rigid ICP with ARAP as the regularizer.
+void bind_register(py::module_& m);
 
 } // namespace iarap::python

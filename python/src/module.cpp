@@ -28,6 +28,7 @@ the argument and the element. Returned arrays are C-ordered copies that own thei
   iarap::python::bind_param(m);
   iarap::python::bind_dynamics(m);
   iarap::python::bind_deform_job(m);
+  iarap::python::bind_register(m);
   m.def("set_thread_count", &iarap::set_thread_count, py::arg("n"),
         "Threads for the library's parallel loops (OpenMP); n <= 0 means all hardware threads.");
   m.def("thread_count", &iarap::thread_count, "Threads the library's parallel loops use.");
