@@ -53,29 +53,20 @@ void print_text(const nlohmann::json& j) {
                 << in["max_segments_per_edge"] << "), " << in["time_ms"].get<double>() << " ms\n";
     }
   }
-  for (const auto& need : j.value("deform_needs", nlohmann::json::array()))
-    std::cout << "deform needs " << need["flag"].get<std::string>() << ": " << need["why"].get<std::string>()
-              << "\n";
+  for (const auto& need : j.value("deform_needs", nlohmann::json::array())) {
+    std::string methods;
+    for (const auto& m : need["methods"]) methods += (methods.empty() ? "" : ", ") + m.get<std::string>();
+    std::cout << "deform needs " << need["flag"].get<std::string>() << " (" << methods
+              << "): " << need["why"].get<std::string>() << "\n";
+  }
   std::cout << (j["usable"].get<bool>() ? "usable for ARAP: yes" : "usable for ARAP: no") << "\n";
 }
 
-// What `iarap deform` needs beyond the defaults to run on a usable mesh, each entry a flag and why, so that
-// `info` and `deform` agree: the defects check_mesh only warns about stop the solve without these flags.
-nlohmann::json deform_needs(const MeshReport& report) {
+// What `iarap deform` needs beyond the defaults (deform_needs, the library's verdict), as JSON.
+nlohmann::json deform_needs_json(const MeshReport& report) {
   nlohmann::json needs = nlohmann::json::array();
-  if (!report.usable()) return needs;
-  std::string repair;
-  const auto add = [&](int count, const std::string& what) {
-    if (count > 0) repair += (repair.empty() ? "" : "; ") + std::to_string(count) + " " + what;
-  };
-  add(report.zero_area_faces, "zero-area faces (infinite cotangent weights), which it drops");
-  add(report.coincident_vertices, "coincident vertices (seams that split the surface), which it welds");
-  if (!repair.empty()) needs.push_back({{"flag", "--repair"}, {"why", repair}});
-  if (report.components > 1)
-    needs.push_back({{"flag", "--pin-unconstrained"},
-                     {"why", std::to_string(report.components) +
-                                 " components: each needs a constraint, or this flag pins one vertex of each "
-                                 "that has none"}});
+  for (const DeformNeed& need : deform_needs(report))
+    needs.push_back({{"flag", need.flag}, {"why", need.why}, {"methods", need.methods}});
   return needs;
 }
 
@@ -88,7 +79,7 @@ void run_info(const InfoArguments& args) {
     const MeshReport report = check_mesh(mesh.V, mesh.F);
     j.update(mesh_report_json(report));
     j["notes"] = mesh.notes;
-    j["deform_needs"] = deform_needs(report);
+    j["deform_needs"] = deform_needs_json(report);
     ok = j["usable"].get<bool>();
     if (ok && !args.no_intrinsic) {
       try {

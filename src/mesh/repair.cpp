@@ -48,7 +48,6 @@ std::vector<int> kept_faces(const Eigen::MatrixXd& Vn, double diagonal, const Ei
   const int nf = static_cast<int>(F.rows());
   std::vector<int> kept;
   kept.reserve(static_cast<std::size_t>(nf));
-  const double min_area = 1e-12 * diagonal * diagonal;
   for (int f = 0; f < nf; ++f) {
     const int a = representative(F(f, 0)), b = representative(F(f, 1)), c = representative(F(f, 2));
     const bool repeated_before = F(f, 0) == F(f, 1) || F(f, 1) == F(f, 2) || F(f, 0) == F(f, 2);
@@ -61,8 +60,7 @@ std::vector<int> kept_faces(const Eigen::MatrixXd& Vn, double diagonal, const Ei
       ++counts.collapsed_faces;
       continue;
     } else if (options.remove_zero_area) {
-      const Eigen::RowVector3d pa = Vn.row(a), pb = Vn.row(b), pc = Vn.row(c);
-      if (0.5 * (pb - pa).cross(pc - pa).norm() <= min_area) {
+      if (is_degenerate_face(Vn.row(a), Vn.row(b), Vn.row(c), diagonal)) {
         ++counts.zero_area_faces;
         continue;
       }

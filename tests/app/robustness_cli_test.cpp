@@ -64,7 +64,7 @@ TEST(CliRobustness, BadOutputPathFailsBeforeTheSolve) {
 TEST(CliRobustness, NonUtf8PathsGiveValidJson) {
   const Fixture f = fixture("utf8");
   const fs::path odd = f.dir / "bun\xff.off";
-  fs::copy_file(f.mesh, odd);
+  fs::copy_file(f.mesh, odd, fs::copy_options::overwrite_existing); // a reused pid finds its old folder
   const fs::path out = f.dir / "out.obj";
   CliRun run = iarap_cli("deform '" + odd.string() + "' --scenario '" + f.scenario.string() +
                          "' --quiet --iterations 3 --json --out '" + out.string() + "'");

@@ -21,7 +21,7 @@ struct MeshReport {
   bool orientable() const { return non_orientable_components == 0; }
   int non_manifold_edges = 0;    // edges with 3 or more faces
   int non_manifold_vertices = 0; // vertices whose faces form more than one edge-connected fan
-  int zero_area_faces = 0;       // area <= 1e-12 * bbox_diagonal^2
+  int zero_area_faces = 0;       // degenerate faces (is_degenerate_face)
   int unreferenced_vertices = 0;
   int non_delaunay_edges = 0;            // interior edges with cot a + cot b < -1e-12 (negative cotan weight)
   int inconsistently_oriented_edges = 0; // interior edges both faces traverse in the same direction
@@ -46,5 +46,23 @@ MeshReport check_mesh(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F);
 
 // Length of the diagonal of the bounding box of the finite rows of V (#V x 3); 0 when there are none.
 double bounding_box_diagonal(const Eigen::MatrixXd& V);
+
+// A face whose cotangent weights ARAP cannot use: area <= 1e-12 x bbox_diagonal^2 from its corners, or edge
+// lengths that make no triangle in double precision (the cotangents from the lengths, as the elements
+// compute them, are not finite: a needle 1e-10 high on a unit base rounds its two short sides to exactly
+// half the base). check_mesh counts these as zero-area faces and repair_mesh (remove_zero_area) drops them,
+// so that both agree with what the precompute refuses.
+bool is_degenerate_face(const Eigen::RowVector3d& a, const Eigen::RowVector3d& b, const Eigen::RowVector3d& c,
+                        double bbox_diagonal);
+
+// What `iarap deform` needs beyond the defaults to run on a usable mesh with each method: a flag, why, and
+// the methods ("arap", "spokes-rims", "iarap") that refuse the mesh without it. `info` prints these; a test
+// over dirty and shared meshes keeps them equal to what the precompute does.
+struct DeformNeed {
+  std::string flag;
+  std::string why;
+  std::vector<std::string> methods;
+};
+std::vector<DeformNeed> deform_needs(const MeshReport& report);
 
 } // namespace iarap
