@@ -28,13 +28,17 @@ struct TetBarFiles {
                 " " + std::to_string(bar.V(v, 2) + (bar.V(v, 0) == 6.0 ? 1.0 : 0.0)) + "\n";
     write_file(constraints, text);
   }
+  // `iarap deform` on the bar with its constraints, writing `out` (a file name in dir).
+  CliRun deform(const std::string& out, const std::string& flags, bool merge_stderr = false) const {
+    return iarap_cli("deform '" + mesh + "' --constraints '" + constraints + "' --out '" +
+                         (dir / out).string() + "' " + flags,
+                     merge_stderr);
+  }
 };
 
 TEST(TetDeformCli, MeshInMeshOutKeepsTheTetrahedraAndReportsTheVolumeRatio) {
   const TetBarFiles files;
-  const std::string out = (files.dir / "out.mesh").string();
-  const CliRun run = iarap_cli("deform '" + files.mesh + "' --constraints '" + files.constraints +
-                               "' --out '" + out + "' --json --quiet --grad-tol 1e-8");
+  const CliRun run = files.deform("out.mesh", "--json --quiet --grad-tol 1e-8");
   ASSERT_EQ(run.code, 0) << run.out;
   const nlohmann::json j = parse_json(run);
   EXPECT_EQ(j["tetrahedra"], files.bar.T.rows());
@@ -42,27 +46,21 @@ TEST(TetDeformCli, MeshInMeshOutKeepsTheTetrahedraAndReportsTheVolumeRatio) {
   EXPECT_GT(j["volume_ratio"].get<double>(), 0.95);
   EXPECT_LT(j["volume_ratio"].get<double>(), 1.05);
   EXPECT_FALSE(j.contains("intrinsic"));
-  const iarap::TetMesh result = iarap::read_tet_mesh(out);
+  const iarap::TetMesh result = iarap::read_tet_mesh((files.dir / "out.mesh").string());
   EXPECT_EQ(result.T, files.bar.T);
   EXPECT_NEAR(result.V(files.bar.vertex(6, 1, 1), 2), 2.0, 1e-12); // a constrained corner at its target
 }
 
 TEST(TetDeformCli, SurfaceOutputKeepsTheTetMeshNumberingAndSurfaceMethodsAreRefused) {
   const TetBarFiles files;
-  const std::string out = (files.dir / "out.off").string();
-  const CliRun run = iarap_cli("deform '" + files.mesh + "' --constraints '" + files.constraints +
-                               "' --out '" + out + "' --quiet");
+  const CliRun run = files.deform("out.off", "--quiet");
   ASSERT_EQ(run.code, 0) << run.out;
-  const std::string off = read_file(out);
+  const std::string off = read_file(files.dir / "out.off");
   EXPECT_EQ(off.rfind("OFF\n" + std::to_string(files.bar.V.rows()) + " 52 0\n", 0), 0u) << off.substr(0, 40);
-  const CliRun method = iarap_cli("deform '" + files.mesh + "' --constraints '" + files.constraints +
-                                      "' --method arap --out '" + out + "' --quiet",
-                                  true);
+  const CliRun method = files.deform("out.off", "--method arap --quiet", true);
   EXPECT_NE(method.code, 0);
   EXPECT_NE(method.out.find("surface energy"), std::string::npos) << method.out;
-  const CliRun repair = iarap_cli("deform '" + files.mesh + "' --constraints '" + files.constraints +
-                                      "' --repair --out '" + out + "'",
-                                  true);
+  const CliRun repair = files.deform("out.off", "--repair", true);
   EXPECT_NE(repair.code, 0);
   EXPECT_NE(repair.out.find("tetrahedral"), std::string::npos) << repair.out;
 }

@@ -86,10 +86,10 @@ struct DeformResult {
   double max_displacement = 0; // max_i |U_i - V_i|, input units
 };
 
-// Solves scene with `options` (method, boundary refinement, pin_unconstrained_components; planar is set
-// here, and stiffness to the scene's when it has one; a scene with tets runs arap_precompute_tets, which
-// refuses methods other than iARAP's default and gravity, whose masses would be the surface's) and `solve`
-// (lengths in mesh units: scale_length_options is applied here). With forces.present every connected
+// Solves scene with `options` (method, boundary refinement, pin_unconstrained_components; planar is set here,
+// and stiffness to the scene's when it has one; a scene with tets runs arap_precompute_tets, which refuses
+// methods other than the default, and gravity is refused on it: its masses would be the surface's) and
+// `solve` (lengths in mesh units: scale_length_options is applied here). With forces.present every connected
 // component must hold a fixed vertex, a soft vertex or a point on a face (InputError otherwise: a free body
 // under a force has no equilibrium). Throws what arap_precompute and arap_solve throw; a HardPointConflict
 // comes back as InputError naming both lines (hard_point_conflict_message), and an energy that overflows as
