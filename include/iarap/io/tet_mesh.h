@@ -1,11 +1,10 @@
 // Tetrahedral meshes: what the tet readers return, and the checks they and arap_precompute_tets share.
 //
-// Orientation: a tetrahedron (a, b, c, d) is positive when det(b - a, c - a, d - a) > 0. Writers of tet
-// files do not agree on the sign (TetGen's .ele is negative in this convention, MEDIT and gmsh positive),
-// so the readers orient each file as a whole: all negative -> every tetrahedron reoriented (c and d
-// swapped, a note says so); mixed signs -> an error naming the first tetrahedron of the rarer sign (a
-// tangled or corrupted mesh; reorienting it one by one would hide that). The ARAP energy itself does not
-// depend on the order of a tetrahedron's vertices.
+// Orientation: a tetrahedron (a, b, c, d) is positive when det(b - a, c - a, d - a) > 0 (TetGen 1.5's .ele
+// output is; not every writer's is), so the readers orient each file as a whole: all negative -> every
+// tetrahedron reoriented (c and d swapped, a note says so); mixed signs -> an error naming the first
+// tetrahedron of the rarer sign (a tangled or corrupted mesh; reorienting it one by one would hide that). The
+// ARAP energy itself does not depend on the order of a tetrahedron's vertices.
 #pragma once
 #include <Eigen/Core>
 
