@@ -13,7 +13,9 @@
 #include "iarap/core/threads.h"
 #include "iarap/io/check_output_path.h"
 #include "iarap/io/read_mesh.h"
+#include "iarap/io/read_tet_mesh.h"
 #include "iarap/io/write_mesh.h"
+#include "iarap/io/write_tet_mesh.h"
 #include "iarap/jobs/deform_job.h"
 #include "iarap/mesh/validate.h"
 #include "iarap/scene/read_constraints.h"
@@ -40,10 +42,30 @@ struct DeformArguments {
   ExternalForceArguments forces; // statics under gravity / per-vertex forces (none: the plain deformation)
 };
 
+// A tetrahedral mesh (.mesh .node .ele .msh) and its constraints: per vertex as for a surface; soft points on
+// faces index its boundary faces (tet_boundary_faces). No --repair.
+DeformScene read_and_prepare_tets(const DeformArguments& args) {
+  if (args.repair)
+    throw CLI::ValidationError("--repair is for triangle meshes; " + args.mesh + " is a tetrahedral mesh");
+  TetMesh tets = read_tet_mesh(args.mesh);
+  const auto n = static_cast<int>(tets.V.rows());
+  DeformConstraints constraints;
+  if (!args.scenario.empty())
+    constraints.scenario = read_scenario(args.scenario);
+  else
+    constraints.set =
+        read_constraints(args.constraints, n, static_cast<int>(tet_boundary_faces(tets.T).rows()));
+  Eigen::MatrixXd forces = file_forces(args.forces, n);
+  Eigen::VectorXd stiffness;
+  if (!args.stiffness.empty()) stiffness = read_stiffness(args.stiffness, n);
+  return prepare_tet_deform(std::move(tets), constraints, std::move(forces), std::move(stiffness));
+}
+
 // The mesh to deform and its constraints, read from the files and prepared by the library's job
 // (prepare_deform: with --repair the mesh is repaired, a scenario resolved on the repaired mesh, a
 // constraints file's indices and the forces and stiffness files' rows carried over).
 DeformScene read_and_prepare(const DeformArguments& args) {
+  if (is_tet_mesh_path(args.mesh)) return read_and_prepare_tets(args);
   MeshData mesh = read_mesh(args.mesh);
   DeformConstraints constraints;
   if (!args.scenario.empty())
@@ -99,8 +121,30 @@ void check_arguments(const DeformArguments& args) {
   if (!args.report.empty() && (same_file(args.report, args.mesh) || same_file(args.report, args.out))) {
     throw CLI::ValidationError("--report " + args.report + " is the input or output mesh");
   }
-  check_mesh_output_path(args.out);
+  if (is_tet_mesh_path(args.mesh) && is_tet_mesh_output_path(args.out))
+    check_output_path(args.out); // the tetrahedra, as MEDIT
+  else
+    check_mesh_output_path(args.out);
   if (!args.report.empty()) check_output_path(args.report);
+}
+
+// A tetrahedral mesh's result: the tetrahedra (.mesh) or the boundary surface (.obj .off .ply, with the
+// tet mesh's vertex numbering: interior vertices stay in the file, used by no face). Report keys: the
+// tetrahedra, the negative cotangent weights (obtuse dihedral angles, kept) and the volume ratio
+// sum of signed volumes after / before.
+void write_tet_result(const DeformArguments& args, const DeformScene& scene, const DeformResult& result,
+                      nlohmann::json& j) {
+  if (is_tet_mesh_output_path(args.out))
+    write_tet_mesh(args.out, result.U, scene.tets);
+  else
+    write_mesh(args.out, result.U, scene.mesh.F);
+  const double ratio =
+      tet_signed_volumes(result.U, scene.tets).sum() / tet_signed_volumes(scene.mesh.V, scene.tets).sum();
+  j["tetrahedra"] = scene.tets.rows();
+  j["negative_weights"] = (result.data.elements.w.array() < 0).count();
+  j["volume_ratio"] = ratio;
+  if (!args.quiet)
+    std::cerr << "deform: " << scene.tets.rows() << " tetrahedra, volume after / before " << ratio << "\n";
 }
 
 void require_usable(const DeformArguments& args, const MeshReport& check) {
@@ -201,7 +245,10 @@ void run_deform(const DeformArguments& args) {
   const ArapData& arap = result.data;
   if (!args.quiet) print_progress(args, options.method, mesh, constraints, report);
   if (options.method == ArapMethod::Arap) warn_about_original_energy(report, scene.check);
-  write_result(args, scene, result, j);
+  if (scene.tets.rows() > 0)
+    write_tet_result(args, scene, result, j);
+  else
+    write_result(args, scene, result, j);
 
   j["method"] = arap_method_name(options.method);
   j["planar"] = result.planar;
@@ -228,7 +275,8 @@ void run_deform(const DeformArguments& args) {
   j["bbox_diagonal"] = scene.check.bbox_diagonal;
   j["output"] = args.out;
   j["total_ms"] = ms_since(total_start);
-  if (options.method == ArapMethod::Iarap) j["intrinsic"] = intrinsic_json(arap.intrinsic, args.boundary);
+  if (options.method == ArapMethod::Iarap && scene.tets.rows() == 0)
+    j["intrinsic"] = intrinsic_json(arap.intrinsic, args.boundary);
   const std::string text = json_text(j);
   if (!args.report.empty()) write_text_file(args.report, text);
   if (args.json) std::cout << text;
@@ -241,7 +289,9 @@ const bool registered = register_command(
        auto* sub = app.add_subcommand(
            "deform", "Deform a mesh with ARAP (original, spokes-and-rims or iARAP), "
                      "starting from the rest shape with constrained vertices at their targets");
-       sub->add_option("MESH", args->mesh, "Input mesh (.obj .off .ply .stl)")
+       sub->add_option(
+              "MESH", args->mesh,
+              "Input mesh (.obj .off .ply .stl; tetrahedral: .mesh .node .ele .msh, volumetric ARAP)")
            ->required()
            ->check(CLI::ExistingFile);
        auto* constraints =
@@ -264,7 +314,10 @@ const bool registered = register_command(
        sub->add_option("--threads", args->threads, "Threads for the parallel loops; 0 = all hardware threads")
            ->check(CLI::Range(0, 4096))
            ->capture_default_str();
-       sub->add_option("--out", args->out, "Output mesh (.obj .off .ply), written atomically")->required();
+       sub->add_option("--out", args->out,
+                       "Output mesh (.obj .off .ply; .mesh keeps a tetrahedral input's tetrahedra), written "
+                       "atomically")
+           ->required();
        sub->add_flag("--json", args->json, "Print the run's report as one JSON object on stdout");
        sub->add_option("--report", args->report, "Also write the JSON report to this file (atomically)");
        auto* repair_flag = sub->add_flag(

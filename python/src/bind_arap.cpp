@@ -6,7 +6,9 @@
 
 #include "iarap/core/errors.h"
 #include "iarap/core/stopwatch.h"
+#include "iarap/io/tet_mesh.h"
 #include "iarap/solver/arap.h"
+#include "iarap/solver/arap_tets.h"
 
 #include <memory>
 #include <mutex>
@@ -20,7 +22,8 @@ class ArapSolver {
 public:
   ArapSolver(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const Eigen::VectorXi& fixed,
              const ArapSoftConstraints& soft, const ArapOptions& options)
-      : data_(arap_precompute(V, F, fixed, soft, options)) {}
+      : data_(F.cols() == 4 ? arap_precompute_tets(V, F, fixed, soft, options)
+                            : arap_precompute(V, F, fixed, soft, options)) {}
 
   // Everything below locks mutex_; callers release the GIL first so that a waiting thread never holds it.
   Eigen::MatrixXd solve(const Eigen::MatrixXd& targets, const Eigen::MatrixXd& soft_targets,
@@ -112,6 +115,12 @@ ArapSoftConstraints to_soft(const py::object& vertices, const py::object& weight
   return soft;
 }
 
+// F given as (#T, 4): tetrahedra.
+bool has_four_columns(const py::object& F) {
+  const py::array a = py::array::ensure(F);
+  return a && a.ndim() == 2 && a.shape(1) == 4;
+}
+
 std::unique_ptr<ArapSolver> make_solver(const py::object& V, const py::object& F, const py::object& fixed,
                                         const std::string& method, bool pin_unconstrained_components,
                                         bool refine_boundary, const py::object& soft_vertices,
@@ -121,11 +130,13 @@ std::unique_ptr<ArapSolver> make_solver(const py::object& V, const py::object& F
                                         const py::object& hard_barycentric, const py::object& stiffness) {
   // #V x 2: a planar mesh, deformed in its plane (rotations about z); solves then take and give 2 columns.
   const Eigen::MatrixXd positions = to_points(V, "V", true, -1, "", true);
-  const Eigen::MatrixXi faces = to_faces(F, "F", positions.rows());
+  // (#T, 4): tetrahedra (arap_precompute_tets); soft points then lie on their boundary faces.
+  const bool tets = has_four_columns(F);
+  const Eigen::MatrixXi faces = to_faces(F, "F", positions.rows(), tets ? 4 : 3);
   const Eigen::VectorXi constrained = to_indices(fixed, "fixed", positions.rows());
   const ArapSoftConstraints soft =
       to_soft(soft_vertices, soft_weights, soft_faces, soft_barycentric, soft_face_weights, hard_faces,
-              hard_barycentric, positions.rows(), faces.rows());
+              hard_barycentric, positions.rows(), tets ? tet_boundary_faces(faces).rows() : faces.rows());
   ArapOptions options;
   options.method = parse_arap_method(method);
   options.pin_unconstrained_components = pin_unconstrained_components;
@@ -398,7 +409,10 @@ Energies are in squared mesh units. Methods release the GIL; one solver serves o
 
 V: (#V, 3) rest positions, or (#V, 2) for a planar mesh, deformed in its plane with rotations about z
 (targets, U0, results, energy and gradient arguments then have 2 columns). F: (#F, 3) faces of a manifold, consistently oriented triangle mesh (boundary
-allowed). fixed: (#fixed,) distinct constrained vertex indices. pin_unconstrained_components: pin the first
+allowed), or (#T, 4) tetrahedra (read_tet_mesh): volumetric ARAP, sum over tetrahedra of vol |F_t - R_t|^2
+with one rotation per tetrahedron (`rotations`: #T, padded to #V with identities on meshes with fewer
+tetrahedra than vertices); method must be "iarap" (the default; the surface energies are refused), and
+soft_faces / hard_faces index tet_boundary_faces(T). fixed: (#fixed,) distinct constrained vertex indices. pin_unconstrained_components: pin the first
 vertex of every connected component without a constrained vertex (else such a component raises SolverError).
 refine_boundary ("iarap" only, not in the paper): split boundary edges opposite an obtuse intrinsic angle, so
 that no weight is negative; the inserted points get rotation cells of their own (rows #V.. of `rotations`).

@@ -3,7 +3,9 @@
 #include "numpy_arrays.h"
 
 #include "iarap/io/read_mesh.h"
+#include "iarap/io/read_tet_mesh.h"
 #include "iarap/io/write_mesh.h"
+#include "iarap/io/write_tet_mesh.h"
 #include "iarap/mesh/repair.h"
 #include "iarap/mesh/validate.h"
 
@@ -28,6 +30,24 @@ void write_mesh_py(const py::object& path, const py::object& V, const py::object
   const Eigen::MatrixXi faces = to_faces(F, "F", positions.rows());
   py::gil_scoped_release release;
   write_mesh(file, positions, faces);
+}
+
+py::tuple read_tet_mesh_py(const py::object& path) {
+  const std::string file = to_path(path);
+  TetMesh mesh;
+  {
+    py::gil_scoped_release release;
+    mesh = read_tet_mesh(file);
+  }
+  return py::make_tuple(to_numpy(mesh.V), to_numpy(mesh.T));
+}
+
+void write_tet_mesh_py(const py::object& path, const py::object& V, const py::object& T) {
+  const std::string file = to_path(path);
+  const Eigen::MatrixXd positions = to_points(V, "V");
+  const Eigen::MatrixXi tets = to_faces(T, "T", positions.rows(), 4);
+  py::gil_scoped_release release;
+  write_tet_mesh(file, positions, tets);
 }
 
 py::dict report_to_dict(const MeshReport& report) {
@@ -102,6 +122,22 @@ Raises InputError (a ValueError) naming path:line for unreadable or malformed fi
         R"(Writes V (#V, 3) and F (#F, 3) to an .obj, .off or .ply (ASCII) file, atomically, coordinates
 printed with 17 significant digits (a read gives back the same doubles).
 Raises ValueError for bad arrays or an unsupported extension or an unwritable path.)");
+  m.def(
+      "read_tet_mesh", &read_tet_mesh_py, py::arg("path"),
+      R"(Reads a tetrahedral mesh from a MEDIT .mesh, TetGen .node / .ele or gmsh .msh (2.2, 4.1 ASCII) file.
+
+Returns (V, T): V float64 (#V, 3) positions in the file's order, T int64 (#T, 4) 0-based vertex indices,
+every tetrahedron of positive volume (a file whose tetrahedra are all negative is reoriented). Raises
+InputError (a ValueError) naming path:line for malformed files, indices out of range, a repeated vertex, a
+tetrahedron of zero volume or mixed orientations.)");
+  m.def("write_tet_mesh", &write_tet_mesh_py, py::arg("path"), py::arg("V"), py::arg("T"),
+        R"(Writes V (#V, 3) and T (#T, 4) to a MEDIT .mesh file, atomically, coordinates with 17 significant
+digits. Raises ValueError for bad arrays, another extension or an unwritable path.)");
+  m.def(
+      "tet_boundary_faces",
+      [](const py::object& T) { return to_numpy(tet_boundary_faces(to_faces(T, "T", -1, 4))); }, py::arg("T"),
+      R"(The boundary faces (#B, 3) of tetrahedra T (#T, 4): the faces used by one tetrahedron, outward for
+positive tetrahedra, in the order of their tetrahedra. What ARAP(V, T, ...) indexes with soft_faces.)");
   m.def("check_mesh", &check_mesh_py, py::arg("V"), py::arg("F"),
         R"(Validation report of a triangle mesh before ARAP, as a dict.
 

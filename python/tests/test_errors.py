@@ -41,8 +41,11 @@ CASES = {
     # faces
     "F float": (lambda: iarap.ARAP(V, F.astype(float), FIXED), r"F must hold integer vertex indices, got dtype float64"),
     "F bool": (lambda: iarap.laplacian(V, F > 0), r"F must hold integer vertex indices, got dtype bool"),
+    "F five columns": (lambda: iarap.ARAP(V, np.hstack([F, F[:, :2]]), FIXED),
+                       r"F must be a #F x 3 array of vertex indices, got shape \(4, 5\)"),
+    # four columns are tetrahedra (volumetric ARAP), checked as such
     "F four columns": (lambda: iarap.ARAP(V, np.hstack([F, F[:, :1]]), FIXED),
-                       r"F must be a #F x 3 array of vertex indices, got shape \(4, 4\)"),
+                       r"tetrahedron 0 \(0, 1, 2, 0\) uses vertex 0 twice"),
     "F negative": (lambda: iarap.ARAP(V, with_value(F, (1, 2), -1), FIXED),
                    r"F\[1, 2\] \(face 1\) is -1, not a vertex: indices are 0-based and the mesh has 4 vertices"),
     "F too large": (lambda: iarap.intrinsic_delaunay(V, with_value(F, (3, 0), 4)), r"F\[3, 0\] \(face 3\) is 4, not a vertex"),

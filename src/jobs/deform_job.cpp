@@ -9,6 +9,7 @@
 #include "iarap/mesh/repair.h"
 #include "iarap/scene/remap_constraints.h"
 #include "iarap/scene/remap_scenario.h"
+#include "iarap/solver/arap_tets.h"
 #include "iarap/solver/solve_option_fields.h"
 
 #include <cmath>
@@ -108,8 +109,30 @@ DeformScene prepare_deform(MeshData mesh, const DeformConstraints& constraints,
   return scene;
 }
 
+DeformScene prepare_tet_deform(TetMesh tets, const DeformConstraints& constraints, Eigen::MatrixXd forces,
+                               Eigen::VectorXd stiffness) {
+  if (stiffness.size() > 0) check_arap_stiffness(stiffness, tets.V.rows());
+  DeformScene scene;
+  scene.constraints =
+      constraints.scenario ? resolve_scenario(*constraints.scenario, tets.V) : constraints.set;
+  scene.forces = std::move(forces);
+  scene.stiffness = std::move(stiffness);
+  scene.mesh.F = tet_boundary_faces(tets.T);
+  scene.mesh.V = std::move(tets.V);
+  scene.mesh.notes = std::move(tets.notes);
+  scene.tets = std::move(tets.T);
+  scene.check.vertices = static_cast<int>(scene.mesh.V.rows());
+  scene.check.faces = static_cast<int>(scene.mesh.F.rows());
+  if (scene.mesh.V.rows() > 0)
+    scene.check.bbox_diagonal =
+        (scene.mesh.V.colwise().maxCoeff() - scene.mesh.V.colwise().minCoeff()).norm();
+  return scene;
+}
+
 DeformResult solve_deform(const DeformScene& scene, ArapOptions options, ArapSolveOptions solve,
                           const StaticForces& forces) {
+  if (scene.tets.rows() > 0 && forces.present && forces.gravity != Eigen::Vector3d::Zero())
+    throw InputError("gravity on a tetrahedral mesh is not supported yet: the lumped masses are a surface's");
   const MeshData& mesh = scene.mesh;
   const ConstraintSet& constraints = scene.constraints;
   const double s = normalizing_scale(mesh.V);
@@ -125,7 +148,8 @@ DeformResult solve_deform(const DeformScene& scene, ArapOptions options, ArapSol
   DeformResult result;
   result.planar = options.planar;
   const auto precompute_start = Clock::now();
-  result.data = arap_precompute(V, mesh.F, constraints.fixed, soft, options);
+  result.data = scene.tets.rows() > 0 ? arap_precompute_tets(V, scene.tets, constraints.fixed, soft, options)
+                                      : arap_precompute(V, mesh.F, constraints.fixed, soft, options);
   result.precompute_ms = ms_since(precompute_start);
 
   result.U = V;

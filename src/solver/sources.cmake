@@ -10,5 +10,5 @@ list(APPEND IARAP_SOURCES
   solver/plain_iteration.cpp solver/anderson_acceleration.cpp solver/anderson_iteration.cpp
   solver/lbfgs_direction.cpp solver/lbfgs_iteration.cpp solver/newton_trust_region.cpp
   solver/local_global_loops.cpp
-  solver/arap_names.cpp solver/arap.cpp solver/arap_memory.cpp
+  solver/arap_names.cpp solver/arap.cpp solver/arap_memory.cpp solver/tet_elements.cpp solver/arap_tets.cpp
   solver/solve_option_fields.cpp)

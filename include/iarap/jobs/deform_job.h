@@ -14,6 +14,7 @@
 // precomputes, solves and returns positions and report in the input's units.
 #pragma once
 #include "iarap/io/read_mesh.h"
+#include "iarap/io/tet_mesh.h"
 #include "iarap/mesh/validate.h"
 #include "iarap/scene/constraint_set.h"
 #include "iarap/scene/scenario.h"
@@ -58,6 +59,9 @@ struct DeformScene {
   // in_input_numbering. Empty without repair.
   MeshData input;
   Eigen::VectorXi old_to_new, new_to_old;
+  // A tetrahedral mesh (prepare_tet_deform): #T x 4, mesh.F then holds its boundary faces and the solve is
+  // volumetric (arap_tets.h). Empty: a surface.
+  Eigen::MatrixXi tets;
 };
 
 // Repairs on request and carries the constraints, forces and stiffness over. forces: #V x 3 per-vertex
@@ -69,6 +73,14 @@ DeformScene prepare_deform(MeshData mesh, const DeformConstraints& constraints,
                            Eigen::MatrixXd forces = Eigen::MatrixXd(),
                            Eigen::VectorXd stiffness = Eigen::VectorXd());
 
+// The scene of a tetrahedral mesh (read_tet_mesh): mesh.V = tets.V, mesh.F = tet_boundary_faces(tets.T)
+// (soft points on faces and surface outputs use them), scene.tets = tets.T; constraints, forces and
+// stiffness are per vertex as for a surface. No repair; check holds the counts and the bounding box (the
+// reader has checked the tetrahedra). Throws what resolve_scenario throws.
+DeformScene prepare_tet_deform(TetMesh tets, const DeformConstraints& constraints,
+                               Eigen::MatrixXd forces = Eigen::MatrixXd(),
+                               Eigen::VectorXd stiffness = Eigen::VectorXd());
+
 struct DeformResult {
   Eigen::MatrixXd U;           // #V x 3 positions in the input's units
   ArapReport report;           // in the input's units (energies length^2, gradients and trust radius length)
@@ -78,13 +90,14 @@ struct DeformResult {
   double max_displacement = 0; // max_i |U_i - V_i|, input units
 };
 
-// Solves scene with `options` (method, boundary refinement, pin_unconstrained_components; planar is set
-// here, and stiffness to the scene's when it has one) and `solve` (lengths in mesh units:
-// scale_length_options is applied here). With forces.present every connected component must hold a fixed
-// vertex, a soft vertex or a point on a face (InputError otherwise: a free body under a force has no
-// equilibrium). Throws what arap_precompute and arap_solve throw; a HardPointConflict comes back as
-// InputError naming both lines (hard_point_conflict_message), and an energy that overflows as SolverError
-// naming the farthest target.
+// Solves scene with `options` (method, boundary refinement, pin_unconstrained_components; planar is set here,
+// and stiffness to the scene's when it has one; a scene with tets runs arap_precompute_tets, which refuses
+// methods other than the default, and gravity is refused on it: its masses would be the surface's) and
+// `solve` (lengths in mesh units: scale_length_options is applied here). With forces.present every connected
+// component must hold a fixed vertex, a soft vertex or a point on a face (InputError otherwise: a free body
+// under a force has no equilibrium). Throws what arap_precompute and arap_solve throw; a HardPointConflict
+// comes back as InputError naming both lines (hard_point_conflict_message), and an energy that overflows as
+// SolverError naming the farthest target.
 DeformResult solve_deform(const DeformScene& scene, ArapOptions options, ArapSolveOptions solve,
                           const StaticForces& forces = {});
 
