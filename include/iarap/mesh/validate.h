@@ -51,7 +51,8 @@ double bounding_box_diagonal(const Eigen::MatrixXd& V);
 // lengths that make no triangle in double precision (the cotangents from the lengths, as the elements
 // compute them, are not finite: a needle 1e-10 high on a unit base rounds its two short sides to exactly
 // half the base). check_mesh counts these as zero-area faces and repair_mesh (remove_zero_area) drops them,
-// so that both agree with what the precompute refuses.
+// so that both agree with what the precompute refuses. False for a face with a non-finite corner (an error
+// of its own).
 bool is_degenerate_face(const Eigen::RowVector3d& a, const Eigen::RowVector3d& b, const Eigen::RowVector3d& c,
                         double bbox_diagonal);
 
