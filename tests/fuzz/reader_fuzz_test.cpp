@@ -1,4 +1,5 @@
-// Deterministic mutation fuzzing of every reader: OBJ, OFF, PLY, STL, constraints files and scenarios.
+// Deterministic mutation fuzzing of every reader: OBJ, OFF, PLY, STL, constraints, forces and stiffness
+// files, scenarios, and the tetrahedral meshes (MEDIT .mesh, gmsh .msh).
 //
 // Each test mutates the seed files of tests/fuzz/corpus/<reader>/ (bit flips, byte edits, deleted,
 // duplicated and spliced spans, hostile numbers such as 1e400, -1, 2^32, nan, a byte-order mark) with a
@@ -8,15 +9,18 @@
 // this driver runs inside the normal suite and, with IARAP_SANITIZE, under ASan/UBSan.
 //
 // Budget per reader: IARAP_FUZZ_SECONDS when set; else 1 s (Release suite) or 6 s under the sanitizers
-// (CI's bounded campaign: 6 readers x 6 s, run two at a time). The sequence of inputs is fixed by the seed;
-// the budget only decides how far along it a run gets. A failing input is saved under the test's temp
-// folder and its path printed, to be added to the corpus once fixed.
+// (CI's bounded campaign: 10 readers x 6 s, run two at a time; scripts/fuzz.sh runs the long one). The
+// sequence of inputs is fixed by the seed; the budget only decides how far along it a run gets. A failing
+// input is saved under the test's temp folder and its path printed, to be added to the corpus once fixed.
 #include "iarap/core/errors.h"
 #include "iarap/io/read_mesh.h"
+#include "iarap/io/read_tet_mesh.h"
 #include "iarap/mesh/repair.h"
 #include "iarap/mesh/validate.h"
 #include "iarap/scene/read_constraints.h"
+#include "iarap/scene/read_forces.h"
 #include "iarap/scene/read_scenario.h"
+#include "iarap/scene/read_stiffness.h"
 #include "iarap/scene/scenario.h"
 #include "mutator.h"
 #include "test_support.h"
@@ -135,4 +139,20 @@ TEST(Fuzz, ScenarioReader) {
   EXPECT_GT(fuzz("scenario", ".json", 6,
                  [&](const std::string& path) { iarap::resolve_scenario(iarap::read_scenario(path), V); }),
             0);
+}
+
+TEST(Fuzz, ForcesReader) {
+  EXPECT_GT(fuzz("forces", ".txt", 7, [](const std::string& path) { iarap::read_forces(path, 4); }), 0);
+}
+
+TEST(Fuzz, StiffnessReader) {
+  EXPECT_GT(fuzz("stiffness", ".txt", 8, [](const std::string& path) { iarap::read_stiffness(path, 4); }), 0);
+}
+
+TEST(Fuzz, MeditTetReader) {
+  EXPECT_GT(fuzz("medit", ".mesh", 9, [](const std::string& path) { iarap::read_tet_mesh(path); }), 0);
+}
+
+TEST(Fuzz, GmshTetReader) {
+  EXPECT_GT(fuzz("gmsh", ".msh", 10, [](const std::string& path) { iarap::read_tet_mesh(path); }), 0);
 }
