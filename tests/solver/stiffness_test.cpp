@@ -159,9 +159,9 @@ double rigid_residual(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B) {
   return (a * R - b).rowwise().norm().maxCoeff();
 }
 
-// A band across the middle of the bent bunny with stiffness 1e6 stays rigid (measured 7e-7 of the
-// diagonal after plain iterations, 1.6e-6 with Newton; the issue asks for 1e-4) while without it the band
-// bends by over 1e-2 of the diagonal.
+// A band across the middle of the bent bunny with stiffness 1e6 stays rigid (measured 7.9e-7 of the
+// diagonal after 20 Newton iterations; the issue asks for 1e-4) while without it the band bends by over
+// 1e-2 of the diagonal.
 TEST(Stiffness, StiffBandStaysRigid) {
   const BunnyScene scene = bunny_scene(0.15);
   const SolverMesh& m = scene.m;
@@ -175,8 +175,8 @@ TEST(Stiffness, StiffBandStaysRigid) {
   const Eigen::VectorXi band = test::to_vector(band_list);
   Eigen::VectorXd s = Eigen::VectorXd::Ones(m.V.rows());
   for (const int i : band_list) s(i) = 1e6;
-  ArapSolveOptions solve;
-  solve.max_iterations = 300;
+  ArapSolveOptions solve; // Newton (the default), 20 iterations: measured 7.9e-7 with the band, 0.1 without
+  solve.max_iterations = 20;
   for (const bool stiff : {false, true}) {
     ArapData data = arap_precompute(m.V, m.F, fixed, with(ArapMethod::Iarap, stiff ? s : Eigen::VectorXd()));
     Eigen::MatrixXd U = m.V;
