@@ -101,7 +101,10 @@ struct RegistrationReport {
 
 struct RegistrationOptions {
   ArapMethod method = ArapMethod::Iarap;
-  // Per round (warm-started); a few iterations suffice since the targets move little between rounds.
+  // Per round (warm-started): 3 plain iterations, since the targets move little between rounds. Measured
+  // against 8 Newton iterations (examples/register_scan, mean / 90th percentile vertex error of the
+  // diagonal): elephant 0.0035 / 0.0098 against 0.0036 / 0.0100, camelhead 0.0043 / 0.0085 against
+  // 0.0045 / 0.0097, in 1.7 s against 2.6 s and 3.6 s against 4.9 s.
   ArapSolveOptions solve = default_round_solve();
   Prealignment prealignment = Prealignment::Rigid;
   int prealign_rounds = 50;
@@ -132,7 +135,8 @@ struct RegistrationOptions {
 
   static ArapSolveOptions default_round_solve() {
     ArapSolveOptions solve;
-    solve.max_iterations = 8;
+    solve.max_iterations = 3;
+    solve.accelerator = ArapAccelerator::None;
     solve.tolerance = 1e-5;
     return solve;
   }
