@@ -18,9 +18,6 @@
 #include "iarap/io/write_tet_mesh.h"
 #include "iarap/jobs/deform_job.h"
 #include "iarap/mesh/validate.h"
-#include "iarap/scene/read_constraints.h"
-#include "iarap/scene/read_scenario.h"
-#include "iarap/scene/read_stiffness.h"
 #include "iarap/solver/arap.h"
 
 #include <nlohmann/json.hpp>
@@ -42,43 +39,17 @@ struct DeformArguments {
   ExternalForceArguments forces; // statics under gravity / per-vertex forces (none: the plain deformation)
 };
 
-// A tetrahedral mesh (.mesh .node .ele .msh) and its constraints: per vertex as for a surface; soft points on
-// faces index its boundary faces (tet_boundary_faces). No --repair.
-DeformScene read_and_prepare_tets(const DeformArguments& args) {
-  if (args.repair)
-    throw CLI::ValidationError("--repair is for triangle meshes; " + args.mesh + " is a tetrahedral mesh");
-  TetMesh tets = read_tet_mesh(args.mesh);
-  const auto n = static_cast<int>(tets.V.rows());
-  DeformConstraints constraints;
-  if (!args.scenario.empty())
-    constraints.scenario = read_scenario(args.scenario);
-  else
-    constraints.set =
-        read_constraints(args.constraints, n, static_cast<int>(tet_boundary_faces(tets.T).rows()));
-  Eigen::MatrixXd forces = file_forces(args.forces, n);
-  Eigen::VectorXd stiffness;
-  if (!args.stiffness.empty()) stiffness = read_stiffness(args.stiffness, n);
-  return prepare_tet_deform(std::move(tets), constraints, std::move(forces), std::move(stiffness));
-}
-
-// The mesh to deform and its constraints, read from the files and prepared by the library's job
-// (prepare_deform: with --repair the mesh is repaired, a scenario resolved on the repaired mesh, a
-// constraints file's indices and the forces and stiffness files' rows carried over).
+// The mesh to deform and its constraints, read and prepared by the library's job (read_deform_scene: with
+// --repair the mesh is repaired, a scenario resolved on the repaired mesh, a constraints file's indices and
+// the forces and stiffness files' rows carried over; a tetrahedral mesh (.mesh .node .ele .msh) is read as
+// one, its constraints per vertex and its `b` lines on its boundary faces).
 DeformScene read_and_prepare(const DeformArguments& args) {
-  if (is_tet_mesh_path(args.mesh)) return read_and_prepare_tets(args);
-  MeshData mesh = read_mesh(args.mesh);
-  DeformConstraints constraints;
-  if (!args.scenario.empty())
-    constraints.scenario = read_scenario(args.scenario);
-  else
-    constraints.set =
-        read_constraints(args.constraints, static_cast<int>(mesh.V.rows()), static_cast<int>(mesh.F.rows()));
-  Eigen::MatrixXd forces = file_forces(args.forces, static_cast<int>(mesh.V.rows()));
-  Eigen::VectorXd stiffness;
-  if (!args.stiffness.empty()) stiffness = read_stiffness(args.stiffness, static_cast<int>(mesh.V.rows()));
+  if (args.repair && is_tet_mesh_path(args.mesh))
+    throw CLI::ValidationError("--repair is for triangle meshes; " + args.mesh + " is a tetrahedral mesh");
   DeformPrepareOptions options;
   options.repair = args.repair;
-  return prepare_deform(std::move(mesh), constraints, options, std::move(forces), std::move(stiffness));
+  return read_deform_scene({args.mesh, args.scenario, args.constraints, args.forces.forces, args.stiffness},
+                           options);
 }
 
 // Original ARAP's energy is bounded below only with non-negative cotangent weights: on meshes with many

@@ -6,12 +6,7 @@
 #include "solve_option_keywords.h"
 
 #include "iarap/core/errors.h"
-#include "iarap/io/read_mesh.h"
 #include "iarap/jobs/deform_job.h"
-#include "iarap/scene/read_constraints.h"
-#include "iarap/scene/read_forces.h"
-#include "iarap/scene/read_scenario.h"
-#include "iarap/scene/read_stiffness.h"
 #include "iarap/solver/solve_report_fields.h"
 
 #include <memory>
@@ -84,27 +79,17 @@ py::tuple deform_file_py(const BoundArguments& arguments) {
   if (arguments.as<bool>("keep_numbering") && !prepare.repair)
     throw InputError("deform_file: keep_numbering=True needs repair=True (without a repair the numbering is "
                      "the file's already)");
-  const std::string mesh_path = path_text(arguments["mesh"]);
-  const std::string scenario_path = scenario.is_none() ? "" : path_text(scenario);
-  const std::string constraints_path = constraints.is_none() ? "" : path_text(constraints);
-  const std::string forces_path = arguments["forces"].is_none() ? "" : path_text(arguments["forces"]);
-  const std::string stiffness_path =
-      arguments["stiffness"].is_none() ? "" : path_text(arguments["stiffness"]);
+  const auto path_or_empty = [&](const char* name) {
+    return arguments[name].is_none() ? std::string() : path_text(arguments[name]);
+  };
+  const DeformFiles files{path_text(arguments["mesh"]), path_or_empty("scenario"),
+                          path_or_empty("constraints"), path_or_empty("forces"), path_or_empty("stiffness")};
+  const std::string& mesh_path = files.mesh;
   DeformScene scene;
   DeformResult result;
   {
     py::gil_scoped_release release;
-    MeshData mesh = read_mesh(mesh_path);
-    const auto n = static_cast<int>(mesh.V.rows());
-    DeformConstraints given;
-    if (!scenario_path.empty())
-      given.scenario = read_scenario(scenario_path);
-    else
-      given.set = read_constraints(constraints_path, n, static_cast<int>(mesh.F.rows()));
-    Eigen::MatrixXd forces = forces_path.empty() ? Eigen::MatrixXd() : read_forces(forces_path, n);
-    Eigen::VectorXd stiffness =
-        stiffness_path.empty() ? Eigen::VectorXd() : read_stiffness(stiffness_path, n);
-    scene = prepare_deform(std::move(mesh), given, prepare, std::move(forces), std::move(stiffness));
+    scene = read_deform_scene(files, prepare);
     if (!scene.check.usable()) {
       std::string message =
           mesh_path + ": mesh not usable for ARAP" + (prepare.repair ? " after repair:" : ":");

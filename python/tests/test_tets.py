@@ -79,3 +79,31 @@ def test_tetrahedra_refuse_surface_methods():
     V, T = tet_bar(1, 1, 1)
     with pytest.raises(ValueError, match="surface energy"):
         iarap.ARAP(V, T, [0], method="arap")
+
+
+def test_deform_file_reads_a_tet_mesh_as_the_tool_does(cli, tmp_path):
+    """deform_file and `iarap deform` read a tetrahedral mesh through the same library job
+    (read_deform_scene): the same positions, to the bit, and the boundary faces as F."""
+    import json
+    import subprocess
+    V, T = tet_bar(6, 2, 2)
+    path = tmp_path / "bar.mesh"
+    iarap.write_tet_mesh(path, V, T)
+    x = V[:, 0]
+    held = np.flatnonzero(x <= x.min() + 1e-12)
+    moved = np.flatnonzero(x >= x.max() - 1e-12)
+    constraints = tmp_path / "c.txt"
+    constraints.write_text("".join(f"{i} {V[i, 0]} {V[i, 1]} {V[i, 2]}\n" for i in held) +
+                           "".join(f"{i} {V[i, 0]} {V[i, 1] + 0.5} {V[i, 2]}\n" for i in moved))
+    out = tmp_path / "out.mesh"
+    run = subprocess.run([str(cli), "deform", str(path), "--constraints", str(constraints), "--threads", "1",
+                          "--out", str(out), "--json", "--quiet"], capture_output=True, text=True)
+    assert run.returncode == 0, run.stderr
+    iarap.set_thread_count(1)
+    U, F, report = iarap.deform_file(path, constraints=constraints)
+    U_tool, T_tool = iarap.read_tet_mesh(out)
+    assert np.array_equal(U, U_tool) and np.array_equal(T_tool, T)
+    assert np.array_equal(F, iarap.tet_boundary_faces(T))
+    assert list(report["energies"]) == json.loads(run.stdout)["energies"]
+    with pytest.raises(ValueError, match="tetrahedral"):
+        iarap.deform_file(path, constraints=constraints, repair=True)

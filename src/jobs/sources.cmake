@@ -1,2 +1,2 @@
 # Sources of the jobs module (the pipelines every front-end calls), relative to src/.
-list(APPEND IARAP_SOURCES jobs/deform_job.cpp)
+list(APPEND IARAP_SOURCES jobs/deform_job.cpp jobs/read_deform_scene.cpp)

@@ -81,6 +81,21 @@ DeformScene prepare_tet_deform(TetMesh tets, const DeformConstraints& constraint
                                Eigen::MatrixXd forces = Eigen::MatrixXd(),
                                Eigen::VectorXd stiffness = Eigen::VectorXd());
 
+// The files of a deformation, as `iarap deform` and `iarap.deform_file` take them.
+struct DeformFiles {
+  std::string mesh;        // .obj .off .ply .stl, or a tetrahedral mesh (.mesh .node .ele .msh)
+  std::string scenario;    // exactly one of scenario and constraints
+  std::string constraints; // indices in the mesh's file order; `b` lines index its (boundary) faces
+  std::string forces;      // optional: `index fx fy fz` lines
+  std::string stiffness;   // optional: `index s` lines
+};
+
+// Reads the files and prepares the scene: prepare_deform for a triangle mesh, prepare_tet_deform for a
+// tetrahedral one (repair is for triangle meshes: InputError). Every front-end reads through here, so that
+// the same files give the same scene through every door. Throws InputError naming the file (and line) of a
+// missing or malformed file, and what the prepare functions throw.
+DeformScene read_deform_scene(const DeformFiles& files, const DeformPrepareOptions& options = {});
+
 struct DeformResult {
   Eigen::MatrixXd U;           // #V x 3 positions in the input's units
   ArapReport report;           // in the input's units (energies length^2, gradients and trust radius length)
