@@ -123,9 +123,7 @@ DeformScene prepare_tet_deform(TetMesh tets, const DeformConstraints& constraint
   scene.tets = std::move(tets.T);
   scene.check.vertices = static_cast<int>(scene.mesh.V.rows());
   scene.check.faces = static_cast<int>(scene.mesh.F.rows());
-  if (scene.mesh.V.rows() > 0)
-    scene.check.bbox_diagonal =
-        (scene.mesh.V.colwise().maxCoeff() - scene.mesh.V.colwise().minCoeff()).norm();
+  scene.check.bbox_diagonal = bounding_box_diagonal(scene.mesh.V);
   return scene;
 }
 

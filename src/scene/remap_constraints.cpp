@@ -62,15 +62,6 @@ std::string origin_of(const SoftConstraintSet& soft, Eigen::Index k, const std::
                                                                        : what;
 }
 
-// Every copy of each vertex a split made (the first copy, old_to_new's, included), by the old vertex
-// they stand for.
-std::vector<std::vector<int>> copies_by_old(const MeshRenumbering& r) {
-  std::vector<std::vector<int>> copies(static_cast<size_t>(r.old_to_new.size()));
-  for (Eigen::Index n = 0; n < r.new_to_old.size(); ++n)
-    copies[static_cast<size_t>(r.new_to_old(n))].push_back(static_cast<int>(n));
-  return copies;
-}
-
 // Soft vertices: W / k on each of the k copies; welded ones merged (summed weight, weighted mean target).
 void remap_soft_vertices(const SoftConstraintSet& soft, const std::vector<std::vector<int>>& copies,
                          const MeshRenumbering& r, SoftConstraintSet& out) {
@@ -161,18 +152,26 @@ void remap_face_points(const FaceFinder& finder, const Eigen::VectorXi& faces, c
   }
 }
 
+// Every copy of each vertex a split made, by the old vertex they stand for, in increasing new index (the
+// first copy, old_to_new's, first).
+std::vector<std::vector<int>> copies_by_old(const Eigen::VectorXi& new_to_old) {
+  std::vector<std::vector<int>> copies(new_to_old.size() > 0 ? static_cast<size_t>(new_to_old.maxCoeff()) + 1
+                                                             : 0);
+  for (Eigen::Index n = 0; n < new_to_old.size(); ++n)
+    copies[static_cast<size_t>(new_to_old(n))].push_back(static_cast<int>(n));
+  return copies;
+}
+
 } // namespace
 
 void constrain_split_copies(ConstraintSet& constraints, const Eigen::VectorXi& new_to_old) {
   const Eigen::Index n = new_to_old.size(), count = constraints.fixed.size();
-  // The first copy of each old vertex is the smallest new index standing for it.
-  std::unordered_map<int, int> first_copy;
-  for (Eigen::Index v = n - 1; v >= 0; --v) first_copy[new_to_old(v)] = static_cast<int>(v);
+  const std::vector<std::vector<int>> copies = copies_by_old(new_to_old);
   std::vector<Eigen::Index> row_of(static_cast<size_t>(n), -1);
   for (Eigen::Index k = 0; k < count; ++k) row_of[static_cast<size_t>(constraints.fixed(k))] = k;
   std::vector<std::pair<int, Eigen::Index>> added; // (copy, row of its constrained first copy)
   for (Eigen::Index v = 0; v < n; ++v) {
-    const int first = first_copy[new_to_old(v)];
+    const int first = copies[static_cast<size_t>(new_to_old(v))].front();
     if (first != v && row_of[static_cast<size_t>(v)] < 0 && row_of[static_cast<size_t>(first)] >= 0)
       added.emplace_back(static_cast<int>(v), row_of[static_cast<size_t>(first)]);
   }
@@ -194,7 +193,7 @@ ConstraintSet remap_constraints(const ConstraintSet& constraints, const MeshRenu
   hard.soft = SoftConstraintSet{};
   ConstraintSet result = remap_constraints(hard, renumbering.old_to_new);
   constrain_split_copies(result, renumbering.new_to_old);
-  const std::vector<std::vector<int>> copies = copies_by_old(renumbering);
+  const std::vector<std::vector<int>> copies = copies_by_old(renumbering.new_to_old);
   const SoftConstraintSet& soft = constraints.soft;
   if (soft.size() == 0) return result;
   SoftConstraintSet& out = result.soft;
