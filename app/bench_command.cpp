@@ -6,6 +6,7 @@
 #include "solve_report_json.h"
 #include "write_text_file.h"
 
+#include "iarap/core/blas_library.h"
 #include "iarap/core/errors.h"
 #include "iarap/core/stopwatch.h"
 #include "iarap/core/threads.h"
@@ -35,6 +36,7 @@ struct BenchArguments {
   int rounds = 1;
   int threads = 0;
   int subdivide = 0;
+  std::string ordering = "amd";
   bool json = false;
   std::string report;
   double converge = 0; // > 0: the convergence bench (bench_converge.h) with this gap
@@ -101,7 +103,8 @@ IterationFloor iteration_floor(ArapData& data, const Eigen::MatrixXd& U, int rep
 }
 
 nlohmann::json bench_one(const std::string& path, const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
-                         const ConstraintSet& constraints, const std::string& name, int iterations) {
+                         const ConstraintSet& constraints, const std::string& name, int iterations,
+                         FillOrdering ordering) {
   // "iarap" is the tool's default iARAP, with boundary refinement (issue 8, as `deform --boundary refine`);
   // "iarap-paper" is the paper's exact discretization (`deform --boundary paper`).
   ArapOptions options;
@@ -110,6 +113,7 @@ nlohmann::json bench_one(const std::string& path, const Eigen::MatrixXd& V, cons
   // Real-world meshes (e.g. ogre.obj, 44 components) have pieces the fixed scene does not reach; pinning
   // one vertex of each keeps them benchmarkable instead of singular.
   options.pin_unconstrained_components = true;
+  options.ordering = ordering;
   const auto start = Clock::now();
   ArapData data = arap_precompute(V, F, constraints.fixed, options);
   const double precompute_ms = ms_since(start);
@@ -251,6 +255,8 @@ nlohmann::json error_entry(const std::string& path, const MeshData& mesh, const 
 nlohmann::json bench_header(const BenchArguments& args) {
   nlohmann::json j;
   j["cpu"] = cpu_name();
+  j["blas"] = blas_library_name();
+  j["ordering"] = args.ordering;
   j["threads"] = thread_count();
   // The malloc settings the figures ran under (the tool's own, app/malloc_settings.cpp, or the user's).
   const char* tunables = std::getenv("GLIBC_TUNABLES");
@@ -332,7 +338,8 @@ int time_mesh(const BenchArguments& args, const std::string& path, const MeshDat
         std::cerr << "bench: " << path << " (" << mesh.V.rows() << " vertices), " << method << "\n";
       }
       try {
-        nlohmann::json r = bench_one(path, mesh.V, mesh.F, constraints, method, args.iterations);
+        nlohmann::json r = bench_one(path, mesh.V, mesh.F, constraints, method, args.iterations,
+                                     parse_fill_ordering(args.ordering));
         r["rounds"] = args.rounds;
         keep_fastest(best[m], r);
       } catch (const Error& e) { // e.g. original ARAP on zero-area faces: report it, time the others
@@ -346,11 +353,13 @@ int time_mesh(const BenchArguments& args, const std::string& path, const MeshDat
 
 void print_results(const BenchArguments& args, const nlohmann::json& j) {
   if (args.converge > 0) {
-    std::printf("cpu: %s, threads: %d\n", j["cpu"].get<std::string>().c_str(), thread_count());
+    std::printf("cpu: %s, threads: %d, blas: %s\n", j["cpu"].get<std::string>().c_str(), thread_count(),
+                j["blas"].get<std::string>().c_str());
     print_converge_table(j["results"], args.converge);
   } else {
-    std::printf("cpu: %s, threads: %d, %d measured iterations after 1 warm-up\n",
-                j["cpu"].get<std::string>().c_str(), thread_count(), args.iterations);
+    std::printf("cpu: %s, threads: %d, blas: %s, ordering: %s, %d measured iterations after 1 warm-up\n",
+                j["cpu"].get<std::string>().c_str(), thread_count(), j["blas"].get<std::string>().c_str(),
+                j["ordering"].get<std::string>().c_str(), args.iterations);
     print_table(j["results"]);
   }
 }
@@ -417,6 +426,10 @@ const bool registered = register_command(
        sub->add_option("--subdivide", args->subdivide,
                        "Apply K midpoint 1-to-4 subdivisions first (4^K x faces)")
            ->check(CLI::Range(0, 6))
+           ->capture_default_str();
+       sub->add_option("--ordering", args->ordering,
+                       "CHOLMOD's fill-reducing ordering: amd (faster precompute) or metis (smaller factor)")
+           ->check(CLI::IsMember({"amd", "metis"}))
            ->capture_default_str();
        sub->add_option(
               "--converge", args->converge,

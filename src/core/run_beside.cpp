@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <exception>
+#include <optional>
 #include <system_error>
 #include <thread>
 
@@ -19,6 +20,10 @@ void run_beside(const std::function<void()>& side, const std::function<void()>& 
   }
   const int threads = omp_get_max_threads();
   std::exception_ptr side_error, main_error;
+  // side()'s core, given back to main()'s loops as soon as side() ends: with an optimized BLAS the
+  // numeric factorization ends well before the intrinsic build beside it (armadillo subdivided twice,
+  // 0.7 of 6 s), whose later loops (tracing, elements, the streamed layout) then run on every core.
+  std::optional<CoreReservation> core;
   auto run_side = [&] {
     const int saved = omp_get_max_threads();
     omp_set_num_threads(1);
@@ -28,6 +33,7 @@ void run_beside(const std::function<void()>& side, const std::function<void()>& 
       side_error = std::current_exception();
     }
     omp_set_num_threads(saved);
+    core.reset();
   };
   auto run_main = [&] {
     try {
@@ -38,7 +44,7 @@ void run_beside(const std::function<void()>& side, const std::function<void()>& 
   };
   bool beside = false; // false: the runtime gave one thread, or no thread could be made
   {
-    const CoreReservation core;
+    core.emplace();
     if (where == Beside::SecondTeamThread) {
       // main()'s loops may open nested teams on machines with more cores: allowed for the region's duration.
       const int active_levels = omp_get_max_active_levels();
@@ -71,6 +77,7 @@ void run_beside(const std::function<void()>& side, const std::function<void()>& 
         helper.join();
       }
     }
+    core.reset();
   }
   if (!beside) {
     side();

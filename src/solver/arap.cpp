@@ -231,6 +231,7 @@ ArapData arap_precompute(const Eigen::MatrixXd& V_in, const Eigen::MatrixXi& F, 
   const bool stiffness = !detail::is_unit_stiffness(options.stiffness);
   detail::ConstraintLayout layout = detail::constraint_layout(data, fixed, soft);
   SystemBuild system;
+  system.solver.set_ordering(options.ordering);
   system.Q = detail::soft_system_matrix(detail::soft_points(soft, F), static_cast<int>(V.rows()));
   if (options.method == ArapMethod::Iarap)
     build_intrinsic_elements(V, F, options.intrinsic, !stiffness, layout, data, system);
@@ -254,7 +255,9 @@ void arap_set_fixed(ArapData& data, const Eigen::VectorXi& fixed) {
   detail::ConstraintLayout layout = detail::constraint_layout(data, fixed, data.soft);
   Eigen::SparseMatrix<double> L_ff, L_fc;
   detail::split_system(detail::with_soft(data.L, data.Q), layout, L_ff, &L_fc);
-  SparseCholesky solver(L_ff); // throws SolverError; data is untouched until here
+  SparseCholesky solver;
+  solver.set_ordering(data.solver.ordering());
+  solver.factorize(L_ff); // throws SolverError; data is untouched until here
   detail::commit_layout(data, fixed, layout, solver, L_fc);
   data.timings.analyze_ms = 0.0; // inside factor_ms here
   data.timings.factor_ms = ms_since(start);

@@ -83,7 +83,9 @@ ArapData arap_precompute_tets(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T
   data.Q = detail::soft_system_matrix(detail::soft_points(soft, data.F), n);
   Eigen::SparseMatrix<double> L_ff, L_fc;
   detail::split_system(detail::with_soft(data.L, data.Q), layout, L_ff, &L_fc);
-  SparseCholesky solver(L_ff); // throws SolverError
+  SparseCholesky solver;
+  solver.set_ordering(options.ordering);
+  solver.factorize(L_ff); // throws SolverError
   detail::commit_layout(data, fixed, layout, solver, L_fc);
   data.soft = soft;
   data.R.assign(static_cast<size_t>(data.elements.num_cells), Eigen::Matrix3d::Identity());
