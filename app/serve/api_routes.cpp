@@ -21,6 +21,7 @@ void register_routes(httplib::Server& server, const ServeConfig& config, SharedS
   add_frame_route(routes, session);
   add_scenario_routes(routes, config, session);
   add_param_route(routes, config, session);
+  add_fit_routes(routes, config, session, temp);
   routes.answer_other_methods_with_405();
   add_static_route(server, config);
 }

@@ -18,9 +18,11 @@
 #include "refine_job.h"
 #include "solve_progress.h"
 #include "solve_request.h"
+#include "solver_constraints.h"
 
 #include "iarap/core/errors.h"
 #include "iarap/io/read_mesh.h"
+#include "iarap/registration/registration_target.h"
 #include "iarap/solver/arap.h"
 
 #include <Eigen/Core>
@@ -65,6 +67,21 @@ struct MeshSnapshot {
   Eigen::MatrixXd V;
   Eigen::MatrixXi F;
   std::string name;
+};
+
+// A fit's target (POST /api/target): what the viewer draws, and the target the registration fits to.
+struct FitTarget {
+  std::string name;
+  RegistrationTarget target;
+};
+
+// What a fit (fit_runner.h) takes from the session when it starts: the rest mesh, the target and the
+// generation the fit belongs to.
+struct FitStart {
+  Eigen::MatrixXd V;
+  Eigen::MatrixXi F;
+  std::shared_ptr<const FitTarget> target;
+  std::uint64_t generation = 0;
 };
 
 class Session {
@@ -119,6 +136,17 @@ public:
   // Ends the pending refinement (its last iterate stays): the frame saying so, nullopt when none was pending.
   std::optional<SessionFrame> stop_refinement();
 
+  // The target of the next fits, replacing any (a new mesh drops it); nullptr without one.
+  void load_target(std::shared_ptr<const FitTarget> target);
+  const std::shared_ptr<const FitTarget>& target() const;
+  // A fit of the rest mesh to the target starts a new generation (ending the refinement). Throws
+  // SessionConflict without a mesh or a target.
+  FitStart begin_fit();
+  // The fit's shape U (#V x 3) becomes the method's positions, its anchors re-taken there (a drag goes on
+  // from the fitted shape), unless the session moved to another generation since begin_fit: false then,
+  // and nothing changes.
+  bool finish_fit(std::uint64_t generation, ArapMethod method, const Eigen::MatrixXd& U);
+
   // Every method back to the rest positions; anchors re-taken there; constraints and factorizations kept.
   void reset();
 
@@ -138,6 +166,7 @@ private:
     Eigen::MatrixXd anchor;       // #constrained x 3 positions of the constrained vertices when set
     Eigen::MatrixXd soft_anchor;  // #soft x 3 positions of the soft points (solver order) when set
     int data_soft_version = 0;    // soft_version_ of the soft constraints data was built with
+    bool data_soft_handle = false; // data was built with the handle as soft vertices
   };
 
   void require_mesh() const;
@@ -147,7 +176,8 @@ private:
   int record_revision();
   MethodState& state_of(ArapMethod method);
   const MethodState& state_of(ArapMethod method) const;
-  void prepare_data(MethodState& state, ArapMethod method, bool planar, SolveResult& result);
+  void prepare_data(MethodState& state, ArapMethod method, bool planar, const SolverConstraints& solver,
+                    SolveResult& result);
   void new_generation(); // ends the refinement; a new state for frames
 
   std::optional<MeshData> mesh_;
@@ -157,6 +187,7 @@ private:
   int soft_version_ = 0; // counts the soft sets loaded (a method's data is rebuilt for a new one)
   std::array<MethodState, 3> methods_;
   std::shared_ptr<const IntrinsicOverlay> overlay_;
+  std::shared_ptr<const FitTarget> target_;
   ConstraintHistory history_;
   std::uint64_t generation_ = 0;
   std::optional<RefineJob> refine_job_;

@@ -31,6 +31,7 @@ json state_json(const ServeConfig& config, const Session& session) {
                  {"max_upload_bytes", config.max_upload_bytes},
                  {"max_iterations", config.max_iterations}};
   j["upload_formats"] = {"obj", "off", "ply", "stl"};
+  j["target_formats"] = {"xyz", "ply", "obj", "off", "stl"};
   j["mesh"] = nullptr;
   if (session.has_mesh()) {
     const MeshSummary& summary = session.mesh_summary();
@@ -43,6 +44,13 @@ json state_json(const ServeConfig& config, const Session& session) {
     j["handle"] = std::vector<int>(handle.data(), handle.data() + handle.size());
     j["soft"] = soft_json(session.soft());
     j["revision"] = session.revision();
+    j["target"] = nullptr;
+    if (const auto& target = session.target()) {
+      j["target"] = {{"name", target->name},
+                     {"points", target->target.points.rows()},
+                     {"faces", target->target.faces.rows()},
+                     {"diagonal", target->target.diagonal}};
+    }
   }
   return j;
 }
