@@ -5,7 +5,8 @@
 //   GET  /api/state            JSON: mesh summary, server mesh names, fixed / handle indices, constraint
 //                              revision, limits, upload formats                               (mesh_routes)
 //   POST /api/load             {"mesh": NAME}: one of the meshes named on the command line (never a path)
-//   POST /api/upload?name=N    body: an OBJ / OFF / PLY / STL file (N only gives the format and a label)
+//   POST /api/upload?name=N    body: an OBJ / OFF / PLY / STL file, or a MEDIT .mesh / gmsh .msh
+//                              tetrahedral mesh (N only gives the format and a label)
 //   GET  /api/faces            uint32 #F x 3;  GET /api/positions?method=M|rest  float32 #V x 3
 //   GET  /api/intrinsic_edges  binary frame: traced intrinsic Delaunay edges (start, a, c, t, original)
 //   GET  /api/download?method=M&format=obj|off|ply   the deformed mesh as a file
@@ -50,7 +51,10 @@ class Server;
 
 namespace iarap::serve {
 
-// Reads a server mesh into the session; throws InputError / TopologyError.
+// Reads the mesh file at path into the session under name: a tetrahedral mesh by its extension (.mesh .msh
+// .node .ele: is_tet_mesh_path), else a triangle mesh. Throws InputError / TopologyError.
+void load_mesh_file(SharedSession& session, const std::string& name, const std::string& path);
+// The same for a server mesh.
 void load_server_mesh(SharedSession& session, const ServerMesh& mesh);
 
 // Registers every route and the error handlers. config, session and temp must outlive the server.

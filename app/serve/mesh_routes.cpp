@@ -67,12 +67,11 @@ void add_mesh_routes(RouteTable& routes, const ServeConfig& config, SharedSessio
   routes.post("/api/upload", [&](const httplib::Request& req, httplib::Response& res) {
     const std::string name = safe_label(req.has_param("name") ? req.get_param_value("name") : "");
     const std::string ext = lower_extension(name);
-    if (ext != "obj" && ext != "off" && ext != "ply" && ext != "stl")
-      throw HttpError(400, "upload name \"" + name + "\" must end in .obj, .off, .ply or .stl");
-    MeshData mesh;
+    if (ext != "obj" && ext != "off" && ext != "ply" && ext != "stl" && ext != "mesh" && ext != "msh")
+      throw HttpError(400, "upload name \"" + name +
+                               "\" must end in .obj, .off, .ply or .stl, or .mesh or .msh (tetrahedra)");
     read_uploaded_file(req, name, ext, "mesh file", config, temp,
-                       [&](const std::string& path) { mesh = read_mesh(path); });
-    session.change([&](Session& s) { s.load_mesh(name, std::move(mesh)); });
+                       [&](const std::string& path) { load_mesh_file(session, name, path); });
     send_json(res, state_json(config, session));
   });
 

@@ -8,6 +8,7 @@
 
 #include "iarap/core/stopwatch.h"
 #include "iarap/mesh/validate.h"
+#include "iarap/solver/arap_tets.h"
 
 #include <algorithm>
 #include <cmath>
@@ -99,9 +100,34 @@ void Session::load_mesh(const std::string& name, MeshData mesh) {
   summary_ = MeshSummary{name,
                          static_cast<int>(mesh.V.rows()),
                          static_cast<int>(mesh.F.rows()),
+                         0,
                          report.bbox_diagonal,
                          mesh.notes,
                          cli::name_repair(report.warnings, viewer_repair)};
+  use_mesh(std::move(mesh), std::nullopt);
+}
+
+void Session::load_tet_mesh(const std::string& name, TetMesh tets) {
+  if (tets.T.rows() == 0) throw InputError(name + ": the tetrahedral mesh has no tetrahedron");
+  for (Eigen::Index v = 0; v < tets.V.rows(); ++v)
+    if (!tets.V.row(v).allFinite()) throw InputError(name + ": vertex " + std::to_string(v) + " is not finite");
+  const TetProblem problem = find_tet_problem(tets.V, tets.T);
+  if (problem.tet >= 0) throw InputError(name + ": " + problem.message);
+  MeshData mesh;
+  mesh.F = tet_boundary_faces(tets.T);
+  mesh.V = std::move(tets.V);
+  mesh.notes = std::move(tets.notes);
+  summary_ = MeshSummary{name,
+                         static_cast<int>(mesh.V.rows()),
+                         static_cast<int>(mesh.F.rows()),
+                         static_cast<int>(tets.T.rows()),
+                         bounding_box_diagonal(mesh.V),
+                         mesh.notes,
+                         {}};
+  use_mesh(std::move(mesh), std::move(tets.T));
+}
+
+void Session::use_mesh(MeshData mesh, std::optional<Eigen::MatrixXi> tets) {
   for (MethodState& state : methods_) {
     state.data.reset();
     state.U = mesh.V;
@@ -118,10 +144,23 @@ void Session::load_mesh(const std::string& name, MeshData mesh) {
   new_generation();
   history_.clear(); // revisions index the previous mesh's vertices
   mesh_ = std::move(mesh);
+  tets_ = std::move(tets);
 }
 
 void Session::require_mesh() const {
   if (!mesh_) throw SessionConflict("no mesh loaded; load one of the server's meshes or upload one first");
+}
+
+void Session::require_surface(const char* what) const {
+  if (tets_)
+    throw InputError(std::string(what) + " works on triangle meshes; " + summary_.name +
+                     " is a tetrahedral mesh (shown by its boundary)");
+}
+
+void Session::require_method_for_mesh(ArapMethod method) const {
+  if (tets_ && method != ArapMethod::Iarap)
+    throw InputError(std::string("method ") + arap_method_name(method) + ": " + summary_.name +
+                     " is a tetrahedral mesh, deformed by the volumetric ARAP energy only (method iarap)");
 }
 
 const MeshSummary& Session::mesh_summary() const {
@@ -282,8 +321,13 @@ void Session::prepare_data(MethodState& state, ArapMethod method, bool planar, c
     // Uploaded meshes may have pieces the user did not select; pin them rather than refuse to solve.
     options.pin_unconstrained_components = true;
     state.data.reset(); // a throw leaves no data, rebuilt next time
-    state.data = !soft ? arap_precompute(mesh_->V, mesh_->F, solver.hard, options)
-                       : arap_precompute(mesh_->V, mesh_->F, solver.hard, soft_constraints_of(solver.soft), options);
+    if (tets_) {
+      state.data = !soft ? arap_precompute_tets(mesh_->V, *tets_, solver.hard, options)
+                         : arap_precompute_tets(mesh_->V, *tets_, solver.hard, soft_constraints_of(solver.soft), options);
+    } else {
+      state.data = !soft ? arap_precompute(mesh_->V, mesh_->F, solver.hard, options)
+                         : arap_precompute(mesh_->V, mesh_->F, solver.hard, soft_constraints_of(solver.soft), options);
+    }
     state.data_soft_version = soft_version_;
     state.data_soft_handle = solver.soft_handle;
     result.precompute_ms = ms_since(precompute_start);
@@ -305,6 +349,10 @@ SolveResult Session::solve(const SolveRequest& request, SolveProgress& progress)
   require_mesh();
   if (constrained_.size() == 0 && soft_.soft.size() == 0)
     throw SessionConflict("no fixed or handle vertices; select some before solving");
+  require_method_for_mesh(request.method);
+  // One rotation per tetrahedron, and masses of a volume: the surface's cell energies and forces do not apply.
+  if (request.cell_energy) require_surface("cell_energy (the energy per vertex)");
+  if (request.gravity || request.forces) require_surface("gravity / forces in the viewer");
   MethodState& state = state_of(request.method);
   const Eigen::MatrixXd targets = constrained_targets(state.anchor, handle_.size(), request);
   SoftConstraintSet file_soft = soft_.soft;
@@ -319,7 +367,7 @@ SolveResult Session::solve(const SolveRequest& request, SolveProgress& progress)
   new_generation();
   // `iarap deform`'s rule (solve_deform): a mesh and targets in z = 0 deform in their plane. Its initial
   // guess is the rest mesh; the session's is the method's U, which must lie in the plane too.
-  result.planar = deforms_in_plane(mesh_->V, targets, soft_targets, forces) &&
+  result.planar = !tets_ && deforms_in_plane(mesh_->V, targets, soft_targets, forces) &&
                   deforms_in_plane(state.U, Eigen::MatrixXd(), Eigen::MatrixXd(), Eigen::MatrixXd());
   prepare_data(state, request.method, result.planar, solver, result);
 
@@ -379,6 +427,7 @@ const std::shared_ptr<const FitTarget>& Session::target() const {
 
 FitStart Session::begin_fit() {
   require_mesh();
+  require_surface("fitting to a target");
   if (!target_) throw SessionConflict("no fit target loaded; upload a point cloud or mesh to fit first");
   new_generation();
   return {mesh_->V, mesh_->F, target_, generation_};
@@ -426,6 +475,7 @@ MeshSnapshot Session::snapshot(std::optional<ArapMethod> method) const {
 
 std::shared_ptr<const IntrinsicOverlay> Session::intrinsic_overlay() {
   require_mesh();
+  require_surface("the intrinsic edge overlay");
   if (!overlay_)
     overlay_ = std::make_shared<const IntrinsicOverlay>(make_intrinsic_overlay(mesh_->V, mesh_->F));
   return overlay_;

@@ -22,6 +22,7 @@
 
 #include "iarap/core/errors.h"
 #include "iarap/io/read_mesh.h"
+#include "iarap/io/tet_mesh.h"
 #include "iarap/registration/registration_target.h"
 #include "iarap/solver/arap.h"
 
@@ -48,7 +49,8 @@ public:
 
 struct MeshSummary {
   std::string name;
-  int vertices = 0, faces = 0;
+  int vertices = 0, faces = 0; // a tetrahedral mesh: every vertex (interior ones too), its boundary faces
+  int tetrahedra = 0;          // 0 for a triangle mesh
   double bbox_diagonal = 0;
   std::vector<std::string> notes, warnings; // reader notes and check_mesh warnings
 };
@@ -89,6 +91,11 @@ public:
   // Replaces the mesh (and clears constraints and solver states) after check_mesh. Throws TopologyError
   // listing check_mesh's errors; the previous mesh then stays.
   void load_mesh(const std::string& name, MeshData mesh);
+  // A tetrahedral mesh (read_tet_mesh): deformed by the volumetric energy (arap_tets.h, method iarap only),
+  // shown by its boundary faces (tet_boundary_faces: faces() and snapshot() give them; positions() every
+  // vertex, interior ones included). Throws InputError without a tetrahedron, and what
+  // arap_precompute_tets' checks throw (find_tet_problem).
+  void load_tet_mesh(const std::string& name, TetMesh mesh);
 
   bool has_mesh() const { return mesh_.has_value(); }
   // The calls below throw SessionConflict when no mesh is loaded.
@@ -170,6 +177,7 @@ private:
   };
 
   void require_mesh() const;
+  void use_mesh(MeshData mesh, std::optional<Eigen::MatrixXi> tets); // the rest of a load
   void check_sets(const Eigen::VectorXi& fixed, const Eigen::VectorXi& handle,
                   const SoftConstraintSet& soft) const;
   void use_sets(const Eigen::VectorXi& fixed, const Eigen::VectorXi& handle);
@@ -180,7 +188,12 @@ private:
                     SolveResult& result);
   void new_generation(); // ends the refinement; a new state for frames
 
+  // A tetrahedral mesh's volume energy (only iarap), or none; mesh_ then holds its boundary faces.
+  void require_surface(const char* what) const;
+  void require_method_for_mesh(ArapMethod method) const;
+
   std::optional<MeshData> mesh_;
+  std::optional<Eigen::MatrixXi> tets_; // #T x 4 of a tetrahedral mesh
   MeshSummary summary_;
   Eigen::VectorXi fixed_, handle_, constrained_;
   SoftSession soft_;

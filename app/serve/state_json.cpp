@@ -30,14 +30,15 @@ json state_json(const ServeConfig& config, const Session& session) {
   j["limits"] = {{"max_json_bytes", config.max_json_bytes},
                  {"max_upload_bytes", config.max_upload_bytes},
                  {"max_iterations", config.max_iterations}};
-  j["upload_formats"] = {"obj", "off", "ply", "stl"};
+  j["upload_formats"] = {"obj", "off", "ply", "stl", "mesh", "msh"};
   j["target_formats"] = {"xyz", "ply", "obj", "off", "stl"};
   j["mesh"] = nullptr;
   if (session.has_mesh()) {
     const MeshSummary& summary = session.mesh_summary();
-    j["mesh"] = {{"name", summary.name},   {"vertices", summary.vertices},
-                 {"faces", summary.faces}, {"bbox_diagonal", summary.bbox_diagonal},
-                 {"notes", summary.notes}, {"warnings", summary.warnings}};
+    j["mesh"] = {{"name", summary.name},           {"vertices", summary.vertices},
+                 {"faces", summary.faces},         {"tetrahedra", summary.tetrahedra},
+                 {"bbox_diagonal", summary.bbox_diagonal}, {"notes", summary.notes},
+                 {"warnings", summary.warnings}};
     const Eigen::VectorXi& fixed = session.fixed();
     const Eigen::VectorXi& handle = session.handle();
     j["fixed"] = std::vector<int>(fixed.data(), fixed.data() + fixed.size());

@@ -5,7 +5,8 @@
 // colour scale, takes a screenshot (a test artefact, not blank), uploads an STL (nothing of the bunny's
 // session left), flattens an uploaded disk in the UV tab (layout, report, checkerboard on the mesh) and
 // makes the handle soft (it lags behind, less as its weight grows), fits the bunny to a point cloud of its
-// deformed shape (progress per round, final distance) and finally stops the server (the banner says so). Exit 77 (CTest: skipped) without
+// deformed shape (progress per round, final distance), uploads a tetrahedral mesh (shown by its boundary,
+// iarap only) and finally stops the server (the banner says so). Exit 77 (CTest: skipped) without
 // chromium or playwright-core.
 // Usage: node tests/web/browser_test.mjs [--screenshot PATH]
 import assert from 'node:assert/strict';
@@ -444,7 +445,7 @@ try {
   // every round, and says the final distance.
   await page.click('#reset');
   await settle();
-  await dragGizmo(0, 30);
+  await dragGizmo(0, 20);
   await converge();
   const scanRows = await viewer('displayedPositions');
   const scan = [];
@@ -465,14 +466,40 @@ try {
   console.log(`fit in the page: ${fitFrames.length} frames seen, ${lastFit.round} rounds, residual ${residuals[0].toExponential(2)} -> final mean ${lastFit.final_mean.toExponential(2)} of the target's diagonal; "${fitInfo}"`);
   assert.match(fitInfo, /^fit done after \d+ rounds: mean distance/);
   assert.ok(residuals.length >= 2, `residuals seen: ${residuals.length}`);
-  // The scan holds every vertex of the deformed bunny: the fit ends closer than the rigid pre-alignment left
-  // it, within 0.4% of the scan's diagonal on average (tests/web/soft_fit_http_test.mjs: 0.26% for a drag of
-  // 6% of the height, the same fit as `iarap register`'s).
-  assert.ok(lastFit.final_mean < 0.004 && lastFit.final_mean < residuals[0], JSON.stringify(lastFit));
+  // The scan holds every vertex of the deformed bunny: the fit ends within 0.5% of the scan's diagonal on
+  // average and 30% closer than the rigid pre-alignment left it (a drag of 20 px: 0.28% from 0.47%;
+  // tests/web/soft_fit_http_test.mjs: 0.26% from 0.48% for a drag of 6% of the height, the same fit as
+  // `iarap register`'s).
+  assert.ok(lastFit.final_mean < 0.005 && lastFit.final_mean < 0.7 * residuals[0], JSON.stringify(lastFit));
   const kept = Array.from(new Float32Array(await (await fetch(`${server.url}api/positions?method=iarap`)).arrayBuffer()));
   assert.deepEqual(await viewer('displayedPositions'), kept, 'the page does not show the fitted shape the server keeps');
   assert.ok(Array.from(await page.evaluate(() => document.getElementById('fit-plot').getContext('2d').getImageData(0, 0, 260, 90).data)).some((v) => v !== 0), 'no residual plot');
   await page.screenshot({ path: path.join(artefactDir, 'viewer_fit.png') });
+  assert.equal(await viewer('errors'), 0, await page.textContent('#banner-text'));
+  assert.deepEqual(problems, []);
+
+  // 10. A tetrahedral mesh (a MEDIT bar of 2 cubes, 12 tetrahedra) is shown by its boundary, with iarap as
+  // its only method and the surface-only choices off.
+  const barVertices = [];
+  for (let k = 0; k <= 1; ++k) for (let j = 0; j <= 1; ++j) for (let i = 0; i <= 2; ++i) barVertices.push(`${i} ${j} ${k} 0`);
+  const at = (i, j, k) => 1 + i + 3 * (j + 2 * k);
+  const barTets = [];
+  for (let i = 0; i < 2; ++i) { // two cubes, each 6 tetrahedra around its diagonal, all positive
+    barTets.push([at(i, 0, 0), at(i + 1, 0, 0), at(i + 1, 1, 0), at(i + 1, 1, 1)], [at(i, 0, 0), at(i + 1, 1, 0), at(i, 1, 0), at(i + 1, 1, 1)],
+      [at(i, 0, 0), at(i, 1, 0), at(i, 1, 1), at(i + 1, 1, 1)], [at(i, 0, 0), at(i, 1, 1), at(i, 0, 1), at(i + 1, 1, 1)],
+      [at(i, 0, 0), at(i, 0, 1), at(i + 1, 0, 1), at(i + 1, 1, 1)], [at(i, 0, 0), at(i + 1, 0, 1), at(i + 1, 0, 0), at(i + 1, 1, 1)]);
+  }
+  const medit = ['MeshVersionFormatted 1', 'Dimension 3', `Vertices ${barVertices.length}`, ...barVertices, `Tetrahedra ${barTets.length}`, ...barTets.map((t) => `${t.join(' ')} 0`), 'End'].join('\n');
+  await page.setInputFiles('#upload', { name: 'bar.mesh', mimeType: 'application/octet-stream', buffer: Buffer.from(medit) });
+  await page.waitForFunction(() => document.getElementById('status').textContent === 'loaded bar.mesh', null, { timeout: 30000 });
+  const tetPage = await page.evaluate(() => ({
+    info: document.getElementById('mesh-info').textContent.split('\n')[0],
+    method: document.getElementById('method').value,
+    disabled: Array.from(document.getElementById('method').options).filter((o) => o.disabled).map((o) => o.value),
+    sideBySide: document.getElementById('side-by-side').disabled,
+    vertices: window.iarapViewer.labels().length,
+  }));
+  assert.deepEqual(tetPage, { info: 'bar.mesh: 12 tetrahedra, 12 vertices, shown by its 20 boundary faces', method: 'iarap', disabled: ['arap', 'spokes-rims'], sideBySide: true, vertices: 12 });
   assert.equal(await viewer('errors'), 0, await page.textContent('#banner-text'));
   assert.deepEqual(problems, []);
 

@@ -184,3 +184,60 @@ describe('fitting to a target', () => {
     assert.equal((await (await postJson('/api/cancel', {})).json()).fit_cancelled, false);
   });
 });
+
+// A bar of n unit cubes along x, each split into 6 tetrahedra around its diagonal (Kuhn), as MEDIT text
+// (1-based), every tetrahedron positive (the readers refuse mixed signs).
+function tetBarMedit(n) {
+  const index = (i, j, k) => i + (n + 1) * (j + 2 * k);
+  const vertices = [];
+  for (let k = 0; k <= 1; ++k) for (let j = 0; j <= 1; ++j) for (let i = 0; i <= n; ++i) vertices.push([i, j, k]);
+  const orders = [[0, 1, 2], [0, 2, 1], [1, 0, 2], [1, 2, 0], [2, 0, 1], [2, 1, 0]];
+  const tets = [];
+  for (let i = 0; i < n; ++i) {
+    for (const order of orders) {
+      const at = [i, 0, 0];
+      const corners = [index(...at)];
+      for (const axis of order) {
+        at[axis] += 1;
+        corners.push(index(...at));
+      }
+      const [a, b, c, d] = corners.map((v) => vertices[v]);
+      const e = [b, c, d].map((p) => p.map((x, r) => x - a[r]));
+      const det = e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1]) - e[0][1] * (e[1][0] * e[2][2] - e[1][2] * e[2][0]) + e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0]);
+      if (det < 0) [corners[2], corners[3]] = [corners[3], corners[2]];
+      tets.push(corners);
+    }
+  }
+  return { vertices, text: ['MeshVersionFormatted 1', 'Dimension 3', `Vertices ${vertices.length}`, ...vertices.map((v) => `${v.join(' ')} 0`),
+    `Tetrahedra ${tets.length}`, ...tets.map((t) => `${t.map((c) => c + 1).join(' ')} 0`), 'End'].join('\n') + '\n' };
+}
+
+describe('tetrahedral meshes', () => {
+  test('a .mesh upload is shown by its boundary and deformed by the volume energy, iarap only', async () => {
+    const { vertices, text } = tetBarMedit(4);
+    const response = await postFile('/api/upload?name=bar.mesh', text);
+    assert.equal(response.status, 200, await response.clone().text());
+    const { mesh } = await response.json();
+    // 5 x 2 x 2 vertices, 24 tetrahedra; the boundary: 2 triangles per unit square, 4 x 4 + 2 squares.
+    assert.deepEqual([mesh.vertices, mesh.tetrahedra, mesh.faces], [20, 24, 36]);
+    assert.equal(new Uint32Array(await (await fetch(`${base}/api/faces`)).arrayBuffer()).length, 3 * 36);
+    const fixed = [], handle = [];
+    vertices.forEach(([x], i) => { if (x === 0) fixed.push(i); else if (x === 4) handle.push(i); });
+    await postJson('/api/constraints', { fixed, handle });
+    const lifted = handle.flatMap((i) => [vertices[i][0], vertices[i][1], vertices[i][2] + 1]);
+    const solved = await postJson('/api/solve', { handle_targets: lifted, iterations: 50, accelerator: 'newton' });
+    assert.equal(solved.status, 200, await solved.clone().text());
+    const { header, arrays } = decodeFrame(await solved.arrayBuffer());
+    assert.equal(arrays.positions.length, 3 * 20);
+    assert.equal(header.planar, false);
+    handle.forEach((v, k) => assert.ok(Math.abs(arrays.positions[3 * v + 2] - lifted[3 * k + 2]) <= 1e-6));
+    // The middle of the bar rises by a fraction of the end's lift (a bent bar), the fixed end stays.
+    const middle = vertices.findIndex(([x, y, z]) => x === 2 && y === 0 && z === 0);
+    assert.ok(arrays.positions[3 * middle + 2] > 0.1 && arrays.positions[3 * middle + 2] < 0.9, `middle at z = ${arrays.positions[3 * middle + 2]}`);
+    await expectError(postJson('/api/solve', { method: 'arap' }), 400, /method arap: bar\.mesh is a tetrahedral mesh, deformed by the volumetric ARAP energy only/);
+    await expectError(postJson('/api/solve', { cell_energy: true }), 400, /cell_energy .* works on triangle meshes; bar\.mesh is a tetrahedral mesh/);
+    await expectError(fetch(`${base}/api/intrinsic_edges`), 400, /intrinsic edge overlay works on triangle meshes/);
+    await expectError(postFile('/api/upload?name=bad.mesh', 'MeshVersionFormatted 1\nDimension 3\nVertices 1\n0 0 0 0\nEnd\n'), 400, /bad\.mesh/);
+    assert.equal((await postJson('/api/load', { mesh: 'bunny.off' })).status, 200);
+  });
+});

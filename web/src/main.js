@@ -301,14 +301,33 @@ function showMeshChoice(state) {
   }
 }
 
+// A tetrahedral mesh is deformed by the volume energy only (method iarap) and has no per-vertex cells or
+// intrinsic edges: the choices that need a triangle mesh are switched off and disabled for it.
+function allowSurfaceChoices(mesh) {
+  const tets = (mesh?.tetrahedra ?? 0) > 0;
+  for (const option of $('method').options) option.disabled = tets && option.value !== 'iarap';
+  if (tets) $('method').value = 'iarap';
+  for (const id of ['side-by-side', 'show-energy', 'show-intrinsic']) {
+    if (tets) $(id).checked = false;
+    $(id).disabled = tets;
+  }
+}
+
+function describeMesh(mesh) {
+  if (!mesh) return 'no mesh: upload one';
+  const size = mesh.tetrahedra > 0
+    ? `${mesh.tetrahedra} tetrahedra, ${mesh.vertices} vertices, shown by its ${mesh.faces} boundary faces`
+    : `${mesh.vertices} vertices, ${mesh.faces} faces`;
+  return [`${mesh.name}: ${size}`, ...mesh.notes, ...mesh.warnings].join('\n');
+}
+
 async function loadMesh(state) {
   refinement.stop(); // frames of the previous mesh's refinement must not land on this one
   app.mesh = state.mesh;
   clearResults();
   showMeshChoice(state);
-  $('mesh-info').textContent = state.mesh
-    ? [`${state.mesh.name}: ${state.mesh.vertices} vertices, ${state.mesh.faces} faces`, ...state.mesh.notes, ...state.mesh.warnings].join('\n')
-    : 'no mesh: upload one';
+  allowSurfaceChoices(state.mesh);
+  $('mesh-info').textContent = describeMesh(state.mesh);
   if (!state.mesh) return;
   const [faces, rest] = await Promise.all([api.faces(), api.positions('rest')]);
   viewer.setMesh(faces, rest, shownMethods());
