@@ -63,7 +63,7 @@ void add_fit_routes(RouteTable& routes, const ServeConfig& config, SharedSession
     const std::shared_ptr<const FitTarget> target = session.read([](const Session& s) { return s.target(); });
     if (!target) throw SessionConflict("no fit target loaded; upload a point cloud or mesh to fit first");
     const RegistrationTarget& t = target->target;
-    const Eigen::MatrixXi faces = t.faces;
+    const Eigen::MatrixXi& faces = t.faces;
     std::vector<std::uint32_t> face_indices(static_cast<std::size_t>(faces.size()));
     for (Eigen::Index f = 0; f < faces.rows(); ++f)
       for (int k = 0; k < 3; ++k) face_indices[static_cast<std::size_t>(3 * f + k)] = static_cast<std::uint32_t>(faces(f, k));

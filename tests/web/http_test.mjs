@@ -540,13 +540,13 @@ describe('undo revisions, scenario files, progress', () => {
     assert.ok(progress.running && progress.iteration > 0, JSON.stringify(progress));
     assert.equal(progress.iterations, 1000);
     assert.equal(progress.method, 'arap');
-    assert.deepEqual(await (await postJson('/api/cancel', {})).json(), { cancelling: true, refinement_stopped: false });
+    assert.deepEqual(await (await postJson('/api/cancel', {})).json(), { cancelling: true, refinement_stopped: false, fit_cancelled: false });
     const { header } = decodeFrame(await (await solving).arrayBuffer());
     assert.equal(header.cancelled, true);
     assert.ok(header.iterations >= progress.iteration && header.iterations < 1000, `${header.iterations}`);
     assert.equal(header.energies.length, header.iterations);
     assert.equal((await (await fetch(base + '/api/progress')).json()).running, false);
-    assert.deepEqual(await (await postJson('/api/cancel', {})).json(), { cancelling: false, refinement_stopped: false });
+    assert.deepEqual(await (await postJson('/api/cancel', {})).json(), { cancelling: false, refinement_stopped: false, fit_cancelled: false });
   });
 });
 
@@ -635,7 +635,7 @@ describe('background refinement', () => {
       // On an idle machine the refinement can reach the server's iteration limit before the cancel arrives
       // (seen once in a clean clone, where the shared-mesh tests beside it were skipped): nothing was left
       // to stop, and its own last frame must say it ended there.
-      assert.deepEqual(cancel, { cancelling: false, refinement_stopped: false });
+      assert.deepEqual(cancel, { cancelling: false, refinement_stopped: false, fit_cancelled: false });
       assert.ok(last.header.iterations >= 1 && !last.header.refining, 'the refinement neither ended nor was stopped');
       console.log(`# the refinement ended (${last.header.iterations} iterations) before the cancel: not exercised`);
       return;
