@@ -43,14 +43,14 @@ void add_fit_routes(RouteTable& routes, const ServeConfig& config, SharedSession
     const std::string name = safe_label(req.has_param("name") ? req.get_param_value("name") : "");
     const std::string ext = lower_extension(name);
     if (ext != "xyz" && ext != "ply" && ext != "obj" && ext != "off" && ext != "stl")
-      throw HttpError(400, "target name \"" + name +
-                               "\" must end in .xyz, .ply, .obj (point clouds: their vertices), .off or .stl");
+      throw HttpError(400,
+                      "target name \"" + name +
+                          "\" must end in .xyz, .ply, .obj (point clouds: their vertices), .off or .stl");
     session.read([](const Session& s) { return s.mesh_summary(); }); // 409 before reading without a mesh
     auto target = std::make_shared<FitTarget>();
     target->name = name;
-    read_uploaded_file(req, name, ext, "target file", config, temp, [&](const std::string& path) {
-      target->target = read_registration_target(path);
-    });
+    read_uploaded_file(req, name, ext, "target file", config, temp,
+                       [&](const std::string& path) { target->target = read_registration_target(path); });
     if (target->target.points.rows() > max_target_points)
       throw HttpError(400, name + ": the target has " + std::to_string(target->target.points.rows()) +
                                " points; this server takes at most " + std::to_string(max_target_points));
@@ -66,11 +66,14 @@ void add_fit_routes(RouteTable& routes, const ServeConfig& config, SharedSession
     const Eigen::MatrixXi& faces = t.faces;
     std::vector<std::uint32_t> face_indices(static_cast<std::size_t>(faces.size()));
     for (Eigen::Index f = 0; f < faces.rows(); ++f)
-      for (int k = 0; k < 3; ++k) face_indices[static_cast<std::size_t>(3 * f + k)] = static_cast<std::uint32_t>(faces(f, k));
+      for (int k = 0; k < 3; ++k)
+        face_indices[static_cast<std::size_t>(3 * f + k)] = static_cast<std::uint32_t>(faces(f, k));
     BinaryFrame frame;
     frame.add("points", to_float_rows(t.points));
     frame.add("faces", face_indices);
-    send_binary(res, frame.encode({{"name", target->name}, {"points", t.points.rows()}, {"faces", faces.rows()},
+    send_binary(res, frame.encode({{"name", target->name},
+                                   {"points", t.points.rows()},
+                                   {"faces", faces.rows()},
                                    {"diagonal", t.diagonal}}));
   });
 

@@ -19,7 +19,9 @@ SessionFrame fit_frame(const FitStart& start, ArapMethod method, const Eigen::Ma
 
 } // namespace
 
-FitRunner::~FitRunner() { stop(); }
+FitRunner::~FitRunner() {
+  stop();
+}
 
 FitStarted FitRunner::start(SharedSession& shared, const FitRequest& request) {
   const std::lock_guard<std::mutex> lock(mutex_);
@@ -34,9 +36,8 @@ FitStarted FitRunner::start(SharedSession& shared, const FitRequest& request) {
   started.generation = fit.generation;
   cancel_ = false;
   running_ = true;
-  thread_ = std::thread([this, &shared, fit = std::move(fit), request]() mutable {
-    run(shared, std::move(fit), request);
-  });
+  thread_ = std::thread(
+      [this, &shared, fit = std::move(fit), request]() mutable { run(shared, std::move(fit), request); });
   return started;
 }
 
@@ -66,16 +67,18 @@ void FitRunner::run(SharedSession& shared, FitStart start, FitRequest request) {
     SessionFrame frame = fit_frame(start, request.method, U, progress);
     frame.energy = r.energy;
     shared.frames().publish(std::move(frame));
-    return !cancel_.load() && shared.read([](const Session& s) { return s.generation(); }) == start.generation;
+    return !cancel_.load() &&
+           shared.read([](const Session& s) { return s.generation(); }) == start.generation;
   };
   SessionFrame last;
   try {
     const RegistrationResult result = register_to_target(start.V, start.F, start.target->target, {}, options);
+    progress.initial_mean = result.report.initial_distance.mean;
     progress.final_mean = result.report.final_distance.mean;
     progress.final_p90 = result.report.final_distance.p90;
     progress.cancelled = result.report.stopped;
-    progress.committed = shared.change(
-        [&](Session& s) { return s.finish_fit(start.generation, request.method, result.U); });
+    progress.committed =
+        shared.change([&](Session& s) { return s.finish_fit(start.generation, request.method, result.U); });
     last = fit_frame(start, request.method, result.U, progress);
     if (!result.report.rounds.empty()) last.energy = result.report.rounds.back().energy;
   } catch (const std::exception& e) { // the fit's refusal ends it; the session keeps its shape

@@ -18,13 +18,14 @@ namespace iarap::serve {
 
 // A fit's progress (fit_runner.h): after each registration round, and once at its end.
 struct FitFrame {
-  int round = 0;         // rounds done, over every stage (1-based)
-  int stage = 0;         // the round's stage (0-based)
-  int max_rounds = 0;    // stages x rounds per stage (stages usually settle sooner)
-  double residual = 0;   // mean source -> target distance at the round's start / the target's diagonal
-  bool running = false;  // more rounds follow
-  // The last frame's: the mean distance of the final shape / diagonal, and how the fit ended.
-  double final_mean = 0, final_p90 = 0;
+  int round = 0;        // rounds done, over every stage (1-based)
+  int stage = 0;        // the round's stage (0-based)
+  int max_rounds = 0;   // stages x rounds per stage (stages usually settle sooner)
+  double residual = 0;  // mean source -> target distance at the round's start / the target's diagonal
+  bool running = false; // more rounds follow
+  // The last frame's: the mean distance after the pre-alignment and of the final shape, the final shape's
+  // 90th percentile (/ diagonal), and how the fit ended.
+  double initial_mean = 0, final_mean = 0, final_p90 = 0;
   bool cancelled = false; // stopped by POST /api/cancel or a newer generation, at that round's shape
   bool committed = false; // the shape became the method's positions (the session had not moved on)
 };

@@ -110,7 +110,8 @@ void Session::load_mesh(const std::string& name, MeshData mesh) {
 void Session::load_tet_mesh(const std::string& name, TetMesh tets) {
   if (tets.T.rows() == 0) throw InputError(name + ": the tetrahedral mesh has no tetrahedron");
   for (Eigen::Index v = 0; v < tets.V.rows(); ++v)
-    if (!tets.V.row(v).allFinite()) throw InputError(name + ": vertex " + std::to_string(v) + " is not finite");
+    if (!tets.V.row(v).allFinite())
+      throw InputError(name + ": vertex " + std::to_string(v) + " is not finite");
   const TetProblem problem = find_tet_problem(tets.V, tets.T);
   if (problem.tet >= 0) throw InputError(name + ": " + problem.message);
   MeshData mesh;
@@ -288,8 +289,9 @@ ConstraintTargets Session::constraint_targets(ArapMethod method, const SolveRequ
   SoftConstraintSet file_soft = soft_.soft;
   set_soft_targets(file_soft, soft_point_targets(state.soft_anchor, soft_, request));
   // A soft handle is saved as the file's soft vertices ("index x y z w"), as the solver sees it.
-  SolverConstraints solver = solver_constraints(fixed_, handle_, constrained_targets(state.anchor, handle_.size(), request),
-                                                file_soft, request.handle_weights);
+  SolverConstraints solver =
+      solver_constraints(fixed_, handle_, constrained_targets(state.anchor, handle_.size(), request),
+                         file_soft, request.handle_weights);
   ConstraintTargets out;
   out.fixed = fixed_;
   out.handle = solver.soft_handle ? Eigen::VectorXi() : handle_;
@@ -307,8 +309,8 @@ ConstraintTargets Session::constraint_targets(ArapMethod method, const SolveRequ
 // The method's data for the solver's constraints: built on first use, for new soft constraints (the
 // file's, or a handle turned soft or hard), for a change of planar mode, or for new hard or soft sets while
 // soft points exist; refactorized when only the hard set changed, or only a soft handle's weights.
-void Session::prepare_data(MethodState& state, ArapMethod method, bool planar, const SolverConstraints& solver,
-                           SolveResult& result) {
+void Session::prepare_data(MethodState& state, ArapMethod method, bool planar,
+                           const SolverConstraints& solver, SolveResult& result) {
   const auto precompute_start = Clock::now();
   const bool soft = solver.soft.size() > 0;
   if (!state.data || state.data_soft_version != soft_version_ || state.data->planar != planar ||
@@ -323,10 +325,12 @@ void Session::prepare_data(MethodState& state, ArapMethod method, bool planar, c
     state.data.reset(); // a throw leaves no data, rebuilt next time
     if (tets_) {
       state.data = !soft ? arap_precompute_tets(mesh_->V, *tets_, solver.hard, options)
-                         : arap_precompute_tets(mesh_->V, *tets_, solver.hard, soft_constraints_of(solver.soft), options);
+                         : arap_precompute_tets(mesh_->V, *tets_, solver.hard,
+                                                soft_constraints_of(solver.soft), options);
     } else {
-      state.data = !soft ? arap_precompute(mesh_->V, mesh_->F, solver.hard, options)
-                         : arap_precompute(mesh_->V, mesh_->F, solver.hard, soft_constraints_of(solver.soft), options);
+      state.data =
+          !soft ? arap_precompute(mesh_->V, mesh_->F, solver.hard, options)
+                : arap_precompute(mesh_->V, mesh_->F, solver.hard, soft_constraints_of(solver.soft), options);
     }
     state.data_soft_version = soft_version_;
     state.data_soft_handle = solver.soft_handle;
@@ -350,7 +354,8 @@ SolveResult Session::solve(const SolveRequest& request, SolveProgress& progress)
   if (constrained_.size() == 0 && soft_.soft.size() == 0)
     throw SessionConflict("no fixed or handle vertices; select some before solving");
   require_method_for_mesh(request.method);
-  // One rotation per tetrahedron, and masses of a volume: the surface's cell energies and forces do not apply.
+  // One rotation per tetrahedron, and masses of a volume: the surface's cell energies and forces do not
+  // apply.
   if (request.cell_energy) require_surface("cell_energy (the energy per vertex)");
   if (request.gravity || request.forces) require_surface("gravity / forces in the viewer");
   MethodState& state = state_of(request.method);

@@ -168,11 +168,11 @@ public:
 
 private:
   struct MethodState {
-    std::optional<ArapData> data; // built lazily; its fixed set may lag behind constrained_ until a solve
-    Eigen::MatrixXd U;            // #V x 3 current positions
-    Eigen::MatrixXd anchor;       // #constrained x 3 positions of the constrained vertices when set
-    Eigen::MatrixXd soft_anchor;  // #soft x 3 positions of the soft points (solver order) when set
-    int data_soft_version = 0;    // soft_version_ of the soft constraints data was built with
+    std::optional<ArapData> data;  // built lazily; its fixed set may lag behind constrained_ until a solve
+    Eigen::MatrixXd U;             // #V x 3 current positions
+    Eigen::MatrixXd anchor;        // #constrained x 3 positions of the constrained vertices when set
+    Eigen::MatrixXd soft_anchor;   // #soft x 3 positions of the soft points (solver order) when set
+    int data_soft_version = 0;     // soft_version_ of the soft constraints data was built with
     bool data_soft_handle = false; // data was built with the handle as soft vertices
   };
 

@@ -64,7 +64,8 @@ void read_target_fields(const json& body, SolveRequest& request) {
     request.handle_targets =
         Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>>(t.data(), rows, 3);
   }
-  if (body.contains("handle_weights")) { // count and sign are checked against the handle (solver_constraints.h)
+  if (body.contains(
+          "handle_weights")) { // count and sign are checked against the handle (solver_constraints.h)
     const std::vector<double> w = number_array_field(body, "handle_weights");
     request.handle_weights = Eigen::Map<const Eigen::VectorXd>(w.data(), static_cast<Eigen::Index>(w.size()));
   }
@@ -74,8 +75,8 @@ void read_target_fields(const json& body, SolveRequest& request) {
 
 SolveRequest parse_solve_request(const json& body, int max_iterations) {
   std::vector<std::string> known = solve_option_names();
-  known.insert(known.end(), {"method", "transform", "handle_targets", "handle_weights", "cell_energy", "refine",
-                             "refine_accelerator", "gravity", "density", "forces"});
+  known.insert(known.end(), {"method", "transform", "handle_targets", "handle_weights", "cell_energy",
+                             "refine", "refine_accelerator", "gravity", "density", "forces"});
   require_known_fields(body, known);
   SolveRequest request;
   request.method = parse_arap_method(string_field(body, "method", "iarap"));

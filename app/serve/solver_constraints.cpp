@@ -33,8 +33,8 @@ SolverConstraints solver_constraints(const Eigen::VectorXi& fixed, const Eigen::
   if (handle.size() == 0)
     throw InputError("handle_weights: there is no handle vertex to make soft; select a handle first");
   if (w.size() != handle.size())
-    throw InputError("handle_weights has " + std::to_string(w.size()) + " weights; expected one per handle vertex (" +
-                     std::to_string(handle.size()) + ")");
+    throw InputError("handle_weights has " + std::to_string(w.size()) +
+                     " weights; expected one per handle vertex (" + std::to_string(handle.size()) + ")");
   for (Eigen::Index k = 0; k < w.size(); ++k)
     if (!std::isfinite(w[k]) || !(w[k] > 0))
       throw InputError("handle_weights[" + std::to_string(k) + "] = " + std::to_string(w[k]) +
@@ -52,10 +52,12 @@ SolverConstraints solver_constraints(const Eigen::VectorXi& fixed, const Eigen::
   out.soft.vertex_targets.bottomRows(nh) = targets.bottomRows(nh);
   // origins: vertices first, then the face points (constraint_set.h); the handle's go after the file's.
   const auto vertex_origins = std::min<std::size_t>(file_soft.origins.size(), static_cast<std::size_t>(sv));
-  std::vector<std::string> origins(file_soft.origins.begin(), file_soft.origins.begin() + static_cast<long>(vertex_origins));
+  std::vector<std::string> origins(file_soft.origins.begin(),
+                                   file_soft.origins.begin() + static_cast<long>(vertex_origins));
   for (Eigen::Index k = 0; k < nh; ++k) origins.push_back("soft handle vertex " + std::to_string(handle[k]));
   if (file_soft.origins.size() > vertex_origins)
-    origins.insert(origins.end(), file_soft.origins.begin() + static_cast<long>(vertex_origins), file_soft.origins.end());
+    origins.insert(origins.end(), file_soft.origins.begin() + static_cast<long>(vertex_origins),
+                   file_soft.origins.end());
   out.soft.origins = std::move(origins);
   return out;
 }

@@ -35,9 +35,12 @@ json state_json(const ServeConfig& config, const Session& session) {
   j["mesh"] = nullptr;
   if (session.has_mesh()) {
     const MeshSummary& summary = session.mesh_summary();
-    j["mesh"] = {{"name", summary.name},           {"vertices", summary.vertices},
-                 {"faces", summary.faces},         {"tetrahedra", summary.tetrahedra},
-                 {"bbox_diagonal", summary.bbox_diagonal}, {"notes", summary.notes},
+    j["mesh"] = {{"name", summary.name},
+                 {"vertices", summary.vertices},
+                 {"faces", summary.faces},
+                 {"tetrahedra", summary.tetrahedra},
+                 {"bbox_diagonal", summary.bbox_diagonal},
+                 {"notes", summary.notes},
                  {"warnings", summary.warnings}};
     const Eigen::VectorXi& fixed = session.fixed();
     const Eigen::VectorXi& handle = session.handle();

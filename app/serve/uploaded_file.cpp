@@ -22,7 +22,8 @@ void read_uploaded_file(const httplib::Request& req, const std::string& name, co
                         const char* what, const ServeConfig& config, PrivateTempDir& temp,
                         const std::function<void(const std::string& path)>& read) {
   require_raw_file(req);
-  if (req.body.empty()) throw HttpError(400, std::string("upload body is empty; send the ") + what + "'s bytes");
+  if (req.body.empty())
+    throw HttpError(400, std::string("upload body is empty; send the ") + what + "'s bytes");
   if (req.body.size() > config.max_upload_bytes)
     throw HttpError(413, "upload has " + std::to_string(req.body.size()) +
                              " bytes; the limit for file uploads is " +

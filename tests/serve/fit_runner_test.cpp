@@ -53,7 +53,8 @@ void load_strip_and_bent_samples(SharedSession& shared) {
 }
 
 // The frames after `after` until the fit's last one (fit->running false), at most 120 s on a loaded machine.
-std::vector<std::shared_ptr<const SessionFrame>> frames_until_fit_ends(SharedSession& shared, std::uint64_t after) {
+std::vector<std::shared_ptr<const SessionFrame>> frames_until_fit_ends(SharedSession& shared,
+                                                                       std::uint64_t after) {
   std::vector<std::shared_ptr<const SessionFrame>> frames;
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
   while (std::chrono::steady_clock::now() < deadline) {
@@ -89,11 +90,14 @@ TEST(ServeFit, FindsTheBentStripAndPublishesEveryRound) {
   // a fit that found the bend ends within about half that spacing. Measured 0.0022 after 39 rounds, from
   // 0.0088 after the rigid pre-alignment.
   EXPECT_LT(last.fit->final_mean, 0.005);
-  const FitFrame& first = *frames.front()->fit;
-  std::cout << "fit: " << last.fit->round << " rounds, residual " << first.residual << " -> final mean "
-            << last.fit->final_mean << ", p90 " << last.fit->final_p90 << "\n";
-  EXPECT_EQ(first.round, 1);
-  EXPECT_LT(last.fit->final_mean, 0.5 * first.residual); // the rigid start leaves the bend to the fit
+  std::cout << "fit: " << last.fit->round << " rounds, mean distance " << last.fit->initial_mean
+            << " after the pre-alignment -> " << last.fit->final_mean << ", p90 " << last.fit->final_p90
+            << "\n";
+  // The rounds come in order (a waiter may skip some: the board keeps the newest frame only); the last
+  // frame repeats the last round's number.
+  for (std::size_t k = 1; k < frames.size(); ++k)
+    EXPECT_GE(frames[k]->fit->round, frames[k - 1]->fit->round + (k + 1 < frames.size() ? 1 : 0));
+  EXPECT_LT(last.fit->final_mean, 0.5 * last.fit->initial_mean); // the rigid start leaves the bend to the fit
   EXPECT_LE(last.fit->round, 4 * 20);
   // The committed shape is the method's positions.
   EXPECT_EQ(shared.read([&](const Session& s) { return s.positions(request.method); }), last.positions);

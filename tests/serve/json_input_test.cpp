@@ -14,8 +14,8 @@
 
 namespace {
 
-using iarap::test::contains;
 using iarap::serve::HttpError;
+using iarap::test::contains;
 using nlohmann::json;
 namespace serve = iarap::serve;
 

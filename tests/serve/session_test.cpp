@@ -9,15 +9,15 @@
 
 namespace {
 
-using iarap::test::rows_of;
-using iarap::test::contains;
 using iarap::InputError;
 using iarap::serve::Session;
 using iarap::serve::SessionConflict;
 using iarap::serve::SolveProgress;
 using iarap::serve::SolveRequest;
+using iarap::test::contains;
 using iarap::test::grid_column;
 using iarap::test::grid_mesh;
+using iarap::test::rows_of;
 
 constexpr int columns = 8, rows = 3;
 constexpr double width = 2.0, lift = 0.3;

@@ -10,14 +10,14 @@
 
 namespace {
 
-using iarap::test::rows_of;
-using iarap::test::contains;
 using iarap::InputError;
 using iarap::serve::Session;
 using iarap::serve::SolveProgress;
 using iarap::serve::SolveRequest;
+using iarap::test::contains;
 using iarap::test::grid_column;
 using iarap::test::grid_mesh;
+using iarap::test::rows_of;
 
 constexpr int columns = 8, rows = 3;
 
@@ -65,10 +65,11 @@ TEST(ServeSoftHandle, LagsBehindItsTargetsLessAsTheWeightGrows) {
   for (const double w : weights) lag.push_back(handle_lag(session, lift(session, up, w)));
   const Eigen::MatrixXd U = session.snapshot(SolveRequest().method).V;
   const Eigen::MatrixXd V = session.snapshot(std::nullopt).V;
-  EXPECT_LE((rows_of(U, session.fixed()) - rows_of(V, session.fixed())).cwiseAbs().maxCoeff(), 1e-12 * diagonal);
+  EXPECT_LE((rows_of(U, session.fixed()) - rows_of(V, session.fixed())).cwiseAbs().maxCoeff(),
+            1e-12 * diagonal);
   for (std::size_t k = 0; k < weights.size(); ++k) {
     EXPECT_GT(lag[k], 1e-6 * up) << "w = " << weights[k]; // a soft handle does lag
-    EXPECT_LT(lag[k], up) << "w = " << weights[k];         // ... but is pulled up at all
+    EXPECT_LT(lag[k], up) << "w = " << weights[k];        // ... but is pulled up at all
     if (k > 0) {
       EXPECT_LT(lag[k], lag[k - 1]) << "w = " << weights[k];
     }
@@ -87,7 +88,8 @@ TEST(ServeSoftHandle, BadWeightsAreNamed) {
     session.solve(request, progress);
     FAIL() << "2 weights for 4 handle vertices were accepted";
   } catch (const InputError& e) {
-    EXPECT_TRUE(contains(e.what(), "handle_weights has 2 weights; expected one per handle vertex (4)")) << e.what();
+    EXPECT_TRUE(contains(e.what(), "handle_weights has 2 weights; expected one per handle vertex (4)"))
+        << e.what();
   }
   request.handle_weights = Eigen::VectorXd::Ones(4);
   (*request.handle_weights)[3] = 0;

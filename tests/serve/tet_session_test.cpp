@@ -63,7 +63,8 @@ TEST(ServeTetSession, ShownByItsBoundaryAndDeformedByTheVolumeEnergy) {
   const iarap::serve::SolveResult result = s.session.solve(request, progress);
   EXPECT_FALSE(result.planar);
   // The same iterates as the library's tetrahedral solve from the rest shape with the same options.
-  iarap::ArapData data = iarap::arap_precompute_tets(s.bar.V, s.bar.T, (Eigen::VectorXi(s.fixed.size() + s.handle.size()) << s.fixed, s.handle).finished());
+  iarap::ArapData data = iarap::arap_precompute_tets(
+      s.bar.V, s.bar.T, (Eigen::VectorXi(s.fixed.size() + s.handle.size()) << s.fixed, s.handle).finished());
   Eigen::MatrixXd targets(s.fixed.size() + s.handle.size(), 3);
   targets << rows_of(s.bar.V, s.fixed), *request.handle_targets;
   Eigen::MatrixXd U = s.bar.V;
@@ -94,7 +95,8 @@ TEST(ServeTetSession, SurfaceMethodsAndFeaturesAreRefusedByName) {
     s.session.solve(request, progress);
     FAIL() << "cell energies were accepted on a tetrahedral mesh";
   } catch (const InputError& e) {
-    EXPECT_TRUE(contains(e.what(), "cell_energy (the energy per vertex) works on triangle meshes")) << e.what();
+    EXPECT_TRUE(contains(e.what(), "cell_energy (the energy per vertex) works on triangle meshes"))
+        << e.what();
   }
   EXPECT_THROW(s.session.intrinsic_overlay(), InputError);
   EXPECT_THROW(s.session.begin_fit(), InputError);

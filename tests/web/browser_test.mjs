@@ -463,14 +463,16 @@ try {
   const fitFrames = await viewer('fitFrames');
   const residuals = await viewer('fitResiduals');
   const lastFit = fitFrames.at(-1).fit;
-  console.log(`fit in the page: ${fitFrames.length} frames seen, ${lastFit.round} rounds, residual ${residuals[0].toExponential(2)} -> final mean ${lastFit.final_mean.toExponential(2)} of the target's diagonal; "${fitInfo}"`);
+  console.log(`fit in the page: ${fitFrames.length} frames seen, ${lastFit.round} rounds, mean distance ${lastFit.initial_mean.toExponential(2)} after the pre-alignment -> final ${lastFit.final_mean.toExponential(2)} of the target's diagonal; "${fitInfo}"`);
   assert.match(fitInfo, /^fit done after \d+ rounds: mean distance/);
-  assert.ok(residuals.length >= 2, `residuals seen: ${residuals.length}`);
+  // The page draws each frame it gets; under load it gets fewer than the rounds (the server keeps the
+  // newest frame only): 4 to 14 of 40 seen.
+  assert.ok(residuals.length >= 1 && fitFrames.every((f, k) => k === 0 || f.fit.round >= fitFrames[k - 1].fit.round), `rounds seen: ${fitFrames.map((f) => f.fit.round)}`);
   // The scan holds every vertex of the deformed bunny: the fit ends within 0.5% of the scan's diagonal on
   // average and 30% closer than the rigid pre-alignment left it (a drag of 20 px: 0.28% from 0.47%;
   // tests/web/soft_fit_http_test.mjs: 0.26% from 0.48% for a drag of 6% of the height, the same fit as
   // `iarap register`'s).
-  assert.ok(lastFit.final_mean < 0.005 && lastFit.final_mean < 0.7 * residuals[0], JSON.stringify(lastFit));
+  assert.ok(lastFit.final_mean < 0.005 && lastFit.final_mean < 0.7 * lastFit.initial_mean, JSON.stringify(lastFit));
   const kept = Array.from(new Float32Array(await (await fetch(`${server.url}api/positions?method=iarap`)).arrayBuffer()));
   assert.deepEqual(await viewer('displayedPositions'), kept, 'the page does not show the fitted shape the server keeps');
   assert.ok(Array.from(await page.evaluate(() => document.getElementById('fit-plot').getContext('2d').getImageData(0, 0, 260, 90).data)).some((v) => v !== 0), 'no residual plot');

@@ -112,7 +112,7 @@ export class FitPanel {
       const how = header.error ? `failed: ${header.error}` : fit.cancelled ? 'stopped' : 'done';
       $('fit-info').textContent = header.error
         ? `fit ${how}`
-        : `fit ${how} after ${fit.round} rounds: mean distance ${fit.final_mean.toExponential(3)}, 90th percentile ${fit.final_p90.toExponential(3)} of the target's diagonal${fit.committed ? '' : ' (not kept: the session moved on)'}`;
+        : `fit ${how} after ${fit.round} rounds: mean distance ${fit.final_mean.toExponential(3)} (${fit.initial_mean.toExponential(3)} after the rigid start), 90th percentile ${fit.final_p90.toExponential(3)} of the target's diagonal${fit.committed ? '' : ' (not kept: the session moved on)'}`;
       if (fit.committed) this.hooks.afterFit();
       return;
     }
