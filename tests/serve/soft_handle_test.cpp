@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <iostream>
 #include <string>
 #include <vector>
 
@@ -67,6 +68,9 @@ TEST(ServeSoftHandle, LagsBehindItsTargetsLessAsTheWeightGrows) {
   const Eigen::MatrixXd V = session.snapshot(std::nullopt).V;
   EXPECT_LE((rows_of(U, session.fixed()) - rows_of(V, session.fixed())).cwiseAbs().maxCoeff(),
             1e-12 * diagonal);
+  std::cout << "soft handle lag / lift:";
+  for (std::size_t k = 0; k < weights.size(); ++k) std::cout << " w = " << weights[k] << ": " << lag[k] / up;
+  std::cout << " (hard: " << hard / up << ")\n";
   for (std::size_t k = 0; k < weights.size(); ++k) {
     EXPECT_GT(lag[k], 1e-6 * up) << "w = " << weights[k]; // a soft handle does lag
     EXPECT_LT(lag[k], up) << "w = " << weights[k];        // ... but is pulled up at all
