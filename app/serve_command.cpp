@@ -149,7 +149,8 @@ const bool registered = register_command(
        auto* sub = app.add_subcommand(
            "serve", "Interactive web viewer: drag handles and watch the energies deform a mesh");
        sub->add_option("meshes", args->meshes,
-                       "Meshes the page can load (OBJ, OFF, PLY, STL); the first is loaded")
+                       "Meshes the page can load (OBJ, OFF, PLY, STL; tetrahedral .mesh, .node/.ele, .msh "
+                       "shown by their boundary); the first is loaded")
            ->check(CLI::ExistingFile);
        sub->add_option("--port", args->port, "TCP port (0: any free port)")->check(CLI::Range(0, 65535));
        auto* host =

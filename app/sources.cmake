@@ -14,7 +14,8 @@ list(APPEND IARAP_APP_SOURCES serve/session.cpp serve/constraint_history.cpp ser
   serve/shared_session.cpp serve/intrinsic_overlay.cpp serve/client_names.cpp serve/http_reply.cpp
   serve/http_policy.cpp serve/solve_request_json.cpp serve/state_json.cpp serve/mesh_routes.cpp
   serve/constraint_routes.cpp serve/solve_routes.cpp serve/frame_route.cpp serve/scenario_routes.cpp
-  serve/static_route.cpp serve/request_targets.cpp)
+  serve/static_route.cpp serve/request_targets.cpp serve/solver_constraints.cpp
+  serve/uploaded_file.cpp serve/fit_runner.cpp serve/fit_routes.cpp)
 list(APPEND IARAP_APP_SOURCES param_command.cpp common/param_report_json.cpp serve/param_route.cpp)
 list(APPEND IARAP_APP_SOURCES batch_command.cpp)
 list(APPEND IARAP_APP_SOURCES repair_command.cpp)

@@ -22,6 +22,11 @@ std::shared_ptr<const SessionFrame> FrameBoard::wait_newer(std::uint64_t after,
   return latest_;
 }
 
+std::uint64_t FrameBoard::latest_sequence() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return next_sequence_ - 1;
+}
+
 void FrameBoard::close() {
   {
     std::lock_guard<std::mutex> lock(mutex_);

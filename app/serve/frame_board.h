@@ -10,10 +10,25 @@
 #include <cstdint>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 
 namespace iarap::serve {
+
+// A fit's progress (fit_runner.h): after each registration round, and once at its end.
+struct FitFrame {
+  int round = 0;        // rounds done, over every stage (1-based)
+  int stage = 0;        // the round's stage (0-based)
+  int max_rounds = 0;   // stages x rounds per stage (stages usually settle sooner)
+  double residual = 0;  // mean source -> target distance at the round's start / the target's diagonal
+  bool running = false; // more rounds follow
+  // The last frame's: the mean distance after the pre-alignment and of the final shape, the final shape's
+  // 90th percentile (/ diagonal), and how the fit ended.
+  double initial_mean = 0, final_mean = 0, final_p90 = 0;
+  bool cancelled = false; // stopped by POST /api/cancel or a newer generation, at that round's shape
+  bool committed = false; // the shape became the method's positions (the session had not moved on)
+};
 
 struct SessionFrame {
   std::uint64_t sequence = 0;   // set by FrameBoard::publish: 1, 2, ... in the order of publication
@@ -28,6 +43,7 @@ struct SessionFrame {
   bool converged = false;       // the tolerance was reached
   std::string error;            // the refinement failed (the solver's message); positions stay the last
   std::vector<float> positions; // #V x 3 row-major
+  std::optional<FitFrame> fit;  // a fit's frame (refined false; energy the round's E_ARAP + P)
 };
 
 class FrameBoard {
@@ -37,6 +53,9 @@ public:
   // The latest frame once its sequence is above after, waiting at most timeout; nullptr when none came.
   std::shared_ptr<const SessionFrame> wait_newer(std::uint64_t after,
                                                  std::chrono::milliseconds timeout) const;
+  // The sequence of the latest frame (0 before any): a client waiting for the frames of a job it starts
+  // asks for those after it.
+  std::uint64_t latest_sequence() const;
   // Wakes every waiter with nothing (server shutdown); later waits return at once.
   void close();
 

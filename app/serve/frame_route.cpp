@@ -30,6 +30,14 @@ std::string session_frame(const SessionFrame& frame) {
                            {"converged", frame.converged},
                            {"vertices", frame.positions.size() / 3}};
   if (!frame.error.empty()) header["error"] = frame.error;
+  if (frame.fit) {
+    const FitFrame& fit = *frame.fit;
+    header["fit"] = {{"round", fit.round},           {"stage", fit.stage},
+                     {"max_rounds", fit.max_rounds}, {"residual", fit.residual},
+                     {"running", fit.running},       {"initial_mean", fit.initial_mean},
+                     {"final_mean", fit.final_mean}, {"final_p90", fit.final_p90},
+                     {"cancelled", fit.cancelled},   {"committed", fit.committed}};
+  }
   return body.encode(header);
 }
 

@@ -8,45 +8,16 @@
 #include "http_reply.h"
 #include "json_input.h"
 #include "state_json.h"
+#include "uploaded_file.h"
 
 #include "iarap/core/errors.h"
 #include "iarap/io/read_mesh.h"
 #include "iarap/io/write_mesh.h"
 
 #include <algorithm>
-#include <fstream>
 
 namespace iarap::serve {
 namespace {
-
-std::string replace_all(std::string text, const std::string& from, const std::string& to) {
-  for (std::size_t at = text.find(from); !from.empty() && at != std::string::npos;
-       at = text.find(from, at + to.size()))
-    text.replace(at, from.size(), to);
-  return text;
-}
-
-// The uploaded file read as a mesh (through a private temporary file: the readers take paths).
-MeshData read_upload(const httplib::Request& req, const std::string& name, const std::string& ext,
-                     const ServeConfig& config, PrivateTempDir& temp) {
-  require_raw_file(req);
-  if (req.body.empty()) throw HttpError(400, "upload body is empty; send the mesh file's bytes");
-  if (req.body.size() > config.max_upload_bytes)
-    throw HttpError(413, "upload has " + std::to_string(req.body.size()) +
-                             " bytes; the limit for file uploads is " +
-                             byte_limit_text(config.max_upload_bytes));
-  ScopedFile file(temp.unique_path("upload", ext));
-  {
-    std::ofstream out(file.path(), std::ios::binary);
-    out.write(req.body.data(), static_cast<std::streamsize>(req.body.size()));
-    if (!out) throw Error("cannot store the upload in the server's temporary folder");
-  }
-  try {
-    return read_mesh(file.path().string());
-  } catch (const InputError& e) { // name the upload, not the server's temporary path
-    throw InputError(replace_all(e.what(), file.path().string(), name));
-  }
-}
 
 void add_drawing_routes(RouteTable& routes, SharedSession& session) {
   routes.get("/api/faces", [&](const httplib::Request&, httplib::Response& res) {
@@ -96,10 +67,11 @@ void add_mesh_routes(RouteTable& routes, const ServeConfig& config, SharedSessio
   routes.post("/api/upload", [&](const httplib::Request& req, httplib::Response& res) {
     const std::string name = safe_label(req.has_param("name") ? req.get_param_value("name") : "");
     const std::string ext = lower_extension(name);
-    if (ext != "obj" && ext != "off" && ext != "ply" && ext != "stl")
-      throw HttpError(400, "upload name \"" + name + "\" must end in .obj, .off, .ply or .stl");
-    MeshData mesh = read_upload(req, name, ext, config, temp);
-    session.change([&](Session& s) { s.load_mesh(name, std::move(mesh)); });
+    if (ext != "obj" && ext != "off" && ext != "ply" && ext != "stl" && ext != "mesh" && ext != "msh")
+      throw HttpError(400, "upload name \"" + name +
+                               "\" must end in .obj, .off, .ply or .stl, or .mesh or .msh (tetrahedra)");
+    read_uploaded_file(req, name, ext, "mesh file", config, temp,
+                       [&](const std::string& path) { load_mesh_file(session, name, path); });
     send_json(res, state_json(config, session));
   });
 

@@ -8,6 +8,7 @@
 
 #include "iarap/core/stopwatch.h"
 #include "iarap/mesh/validate.h"
+#include "iarap/solver/arap_tets.h"
 
 #include <algorithm>
 #include <cmath>
@@ -99,9 +100,35 @@ void Session::load_mesh(const std::string& name, MeshData mesh) {
   summary_ = MeshSummary{name,
                          static_cast<int>(mesh.V.rows()),
                          static_cast<int>(mesh.F.rows()),
+                         0,
                          report.bbox_diagonal,
                          mesh.notes,
                          cli::name_repair(report.warnings, viewer_repair)};
+  use_mesh(std::move(mesh), std::nullopt);
+}
+
+void Session::load_tet_mesh(const std::string& name, TetMesh tets) {
+  if (tets.T.rows() == 0) throw InputError(name + ": the tetrahedral mesh has no tetrahedron");
+  for (Eigen::Index v = 0; v < tets.V.rows(); ++v)
+    if (!tets.V.row(v).allFinite())
+      throw InputError(name + ": vertex " + std::to_string(v) + " is not finite");
+  const TetProblem problem = find_tet_problem(tets.V, tets.T);
+  if (problem.tet >= 0) throw InputError(name + ": " + problem.message);
+  MeshData mesh;
+  mesh.F = tet_boundary_faces(tets.T);
+  mesh.V = std::move(tets.V);
+  mesh.notes = std::move(tets.notes);
+  summary_ = MeshSummary{name,
+                         static_cast<int>(mesh.V.rows()),
+                         static_cast<int>(mesh.F.rows()),
+                         static_cast<int>(tets.T.rows()),
+                         bounding_box_diagonal(mesh.V),
+                         mesh.notes,
+                         {}};
+  use_mesh(std::move(mesh), std::move(tets.T));
+}
+
+void Session::use_mesh(MeshData mesh, std::optional<Eigen::MatrixXi> tets) {
   for (MethodState& state : methods_) {
     state.data.reset();
     state.U = mesh.V;
@@ -114,13 +141,27 @@ void Session::load_mesh(const std::string& name, MeshData mesh) {
   handle_.resize(0);
   constrained_.resize(0);
   overlay_.reset();
+  target_.reset(); // fitted to the previous mesh's scan
   new_generation();
   history_.clear(); // revisions index the previous mesh's vertices
   mesh_ = std::move(mesh);
+  tets_ = std::move(tets);
 }
 
 void Session::require_mesh() const {
   if (!mesh_) throw SessionConflict("no mesh loaded; load one of the server's meshes or upload one first");
+}
+
+void Session::require_surface(const char* what) const {
+  if (tets_)
+    throw InputError(std::string(what) + " works on triangle meshes; " + summary_.name +
+                     " is a tetrahedral mesh (shown by its boundary)");
+}
+
+void Session::require_method_for_mesh(ArapMethod method) const {
+  if (tets_ && method != ArapMethod::Iarap)
+    throw InputError(std::string("method ") + arap_method_name(method) + ": " + summary_.name +
+                     " is a tetrahedral mesh, deformed by the volumetric ARAP energy only (method iarap)");
 }
 
 const MeshSummary& Session::mesh_summary() const {
@@ -245,16 +286,17 @@ ConstraintTargets Session::constraint_targets(ArapMethod method, const SolveRequ
   if (constrained_.size() == 0 && soft_.soft.size() == 0)
     throw SessionConflict("no fixed or handle vertices; select some first");
   const MethodState& state = state_of(method);
+  SoftConstraintSet file_soft = soft_.soft;
+  set_soft_targets(file_soft, soft_point_targets(state.soft_anchor, soft_, request));
+  // A soft handle is saved as the file's soft vertices ("index x y z w"), as the solver sees it.
+  SolverConstraints solver =
+      solver_constraints(fixed_, handle_, constrained_targets(state.anchor, handle_.size(), request),
+                         file_soft, request.handle_weights);
   ConstraintTargets out;
   out.fixed = fixed_;
-  out.handle = handle_;
-  out.targets = constrained_targets(state.anchor, handle_.size(), request);
-  out.soft = soft_.soft;
-  const Eigen::MatrixXd soft_targets = soft_point_targets(state.soft_anchor, soft_, request);
-  const Eigen::Index sv = out.soft.vertices.size(), sb = out.soft.faces.size();
-  out.soft.vertex_targets = soft_targets.topRows(sv);
-  out.soft.face_targets = soft_targets.middleRows(sv, sb);
-  out.soft.hard_targets = soft_targets.bottomRows(out.soft.hard_faces.size());
+  out.handle = solver.soft_handle ? Eigen::VectorXi() : handle_;
+  out.targets = std::move(solver.hard_targets);
+  out.soft = std::move(solver.soft);
   // Anchors re-taken after a solve that kept the shape (e.g. a handle selected, the identity solved) differ
   // from the rest rows by the solve's rounding (1e-16 relative, times the conditioning of L); 1e-9 of the
   // bounding-box diagonal lies far above that and far below anything a user's drag moves.
@@ -264,25 +306,45 @@ ConstraintTargets Session::constraint_targets(ArapMethod method, const SolveRequ
   return out;
 }
 
-// The method's data for the session's sets: built on first use, for new soft constraints (with them) and
-// for a change of planar mode, refactorized when only the constrained set changed.
-void Session::prepare_data(MethodState& state, ArapMethod method, bool planar, SolveResult& result) {
+// The method's data for the solver's constraints: built on first use, for new soft constraints (the
+// file's, or a handle turned soft or hard), for a change of planar mode, or for new hard or soft sets while
+// soft points exist; refactorized when only the hard set changed, or only a soft handle's weights.
+void Session::prepare_data(MethodState& state, ArapMethod method, bool planar,
+                           const SolverConstraints& solver, SolveResult& result) {
   const auto precompute_start = Clock::now();
+  const bool soft = solver.soft.size() > 0;
   if (!state.data || state.data_soft_version != soft_version_ || state.data->planar != planar ||
-      (soft_.soft.size() > 0 && state.data->fixed != constrained_)) {
+      state.data_soft_handle != solver.soft_handle ||
+      (soft && (!same_indices(state.data->fixed, solver.hard) ||
+                !same_indices(state.data->soft.vertices, solver.soft.vertices)))) {
     ArapOptions options;
     options.method = method;
     options.planar = planar;
     // Uploaded meshes may have pieces the user did not select; pin them rather than refuse to solve.
     options.pin_unconstrained_components = true;
     state.data.reset(); // a throw leaves no data, rebuilt next time
-    state.data = soft_.soft.size() == 0 ? arap_precompute(mesh_->V, mesh_->F, constrained_, options)
-                                        : arap_precompute(mesh_->V, mesh_->F, constrained_,
-                                                          soft_constraints_of(soft_.soft), options);
+    if (tets_) {
+      state.data = !soft ? arap_precompute_tets(mesh_->V, *tets_, solver.hard, options)
+                         : arap_precompute_tets(mesh_->V, *tets_, solver.hard,
+                                                soft_constraints_of(solver.soft), options);
+    } else {
+      state.data =
+          !soft ? arap_precompute(mesh_->V, mesh_->F, solver.hard, options)
+                : arap_precompute(mesh_->V, mesh_->F, solver.hard, soft_constraints_of(solver.soft), options);
+    }
     state.data_soft_version = soft_version_;
+    state.data_soft_handle = solver.soft_handle;
     result.precompute_ms = ms_since(precompute_start);
-  } else if (state.data->fixed.size() != constrained_.size() || state.data->fixed != constrained_) {
-    arap_set_fixed(*state.data, constrained_); // keeps the previous set on a throw
+  } else if (!same_indices(state.data->fixed, solver.hard)) {
+    arap_set_fixed(*state.data, solver.hard); // keeps the previous set on a throw
+    result.precompute_ms = ms_since(precompute_start);
+  } else if (solver.soft_handle && state.data->soft.vertex_weights != solver.soft.vertex_weights) {
+    try { // a numeric refactorization; a throw leaves no data, rebuilt next time
+      arap_set_soft_weights(*state.data, solver.soft.vertex_weights, solver.soft.face_weights);
+    } catch (...) {
+      state.data.reset();
+      throw;
+    }
     result.precompute_ms = ms_since(precompute_start);
   }
 }
@@ -291,25 +353,36 @@ SolveResult Session::solve(const SolveRequest& request, SolveProgress& progress)
   require_mesh();
   if (constrained_.size() == 0 && soft_.soft.size() == 0)
     throw SessionConflict("no fixed or handle vertices; select some before solving");
+  require_method_for_mesh(request.method);
+  // One rotation per tetrahedron, and masses of a volume: the surface's cell energies and forces do not
+  // apply.
+  if (request.cell_energy) require_surface("cell_energy (the energy per vertex)");
+  if (request.gravity || request.forces) require_surface("gravity / forces in the viewer");
   MethodState& state = state_of(request.method);
   const Eigen::MatrixXd targets = constrained_targets(state.anchor, handle_.size(), request);
-  const Eigen::MatrixXd soft_targets = soft_point_targets(state.soft_anchor, soft_, request);
+  SoftConstraintSet file_soft = soft_.soft;
+  const Eigen::MatrixXd file_soft_targets = soft_point_targets(state.soft_anchor, soft_, request);
+  set_soft_targets(file_soft, file_soft_targets);
+  const SolverConstraints solver =
+      solver_constraints(fixed_, handle_, targets, file_soft, request.handle_weights);
+  const Eigen::MatrixXd soft_targets = soft_targets_of(solver.soft);
   const Eigen::MatrixXd forces = request_forces(*mesh_, constrained_, soft_.soft, request);
   SolveResult result;
   result.refinement_preempted = refine_job_.has_value();
   new_generation();
   // `iarap deform`'s rule (solve_deform): a mesh and targets in z = 0 deform in their plane. Its initial
   // guess is the rest mesh; the session's is the method's U, which must lie in the plane too.
-  result.planar = deforms_in_plane(mesh_->V, targets, soft_targets, forces) &&
+  result.planar = !tets_ && deforms_in_plane(mesh_->V, targets, soft_targets, forces) &&
                   deforms_in_plane(state.U, Eigen::MatrixXd(), Eigen::MatrixXd(), Eigen::MatrixXd());
-  prepare_data(state, request.method, result.planar, result);
+  prepare_data(state, request.method, result.planar, solver, result);
 
   Eigen::MatrixXd U = state.U; // commit only a successful solve
   const auto solve_start = Clock::now();
   try {
-    result.report = solve_with_progress(*state.data, targets, soft_targets, forces, U, request, progress);
+    result.report =
+        solve_with_progress(*state.data, solver.hard_targets, soft_targets, forces, U, request, progress);
   } catch (const HardPointConflict& e) {
-    throw InputError(hard_point_conflict_message(e, soft_.soft));
+    throw InputError(hard_point_conflict_message(e, solver.soft));
   }
   result.cancelled = result.report.stop_reason == ArapStopReason::Callback; // not a time budget
   result.solve_ms = ms_since(solve_start);
@@ -323,7 +396,8 @@ SolveResult Session::solve(const SolveRequest& request, SolveProgress& progress)
   state.U = std::move(U);
   result.generation = generation_;
   result.refining = request.refine_iterations > 0 && !result.report.converged && !result.cancelled;
-  if (result.refining) refine_job_ = refine_job_after(request, result.report, targets, soft_targets, forces);
+  if (result.refining)
+    refine_job_ = refine_job_after(request, result.report, solver.hard_targets, soft_targets, forces);
   return result;
 }
 
@@ -344,6 +418,33 @@ std::optional<SessionFrame> Session::stop_refinement() {
   SessionFrame frame = stopped_refinement_frame(job, *state.data, state.U, mesh_->V);
   frame.generation = generation_;
   return frame;
+}
+
+void Session::load_target(std::shared_ptr<const FitTarget> target) {
+  require_mesh();
+  target_ = std::move(target);
+}
+
+const std::shared_ptr<const FitTarget>& Session::target() const {
+  require_mesh();
+  return target_;
+}
+
+FitStart Session::begin_fit() {
+  require_mesh();
+  require_surface("fitting to a target");
+  if (!target_) throw SessionConflict("no fit target loaded; upload a point cloud or mesh to fit first");
+  new_generation();
+  return {mesh_->V, mesh_->F, target_, generation_};
+}
+
+bool Session::finish_fit(std::uint64_t generation, ArapMethod method, const Eigen::MatrixXd& U) {
+  if (!mesh_ || generation != generation_ || U.rows() != mesh_->V.rows()) return false;
+  MethodState& state = state_of(method);
+  state.U = U;
+  state.anchor = gather_rows(U, constrained_);
+  state.soft_anchor = soft_points_at(soft_.soft, mesh_->F, U);
+  return true;
 }
 
 void Session::reset() {
@@ -379,6 +480,7 @@ MeshSnapshot Session::snapshot(std::optional<ArapMethod> method) const {
 
 std::shared_ptr<const IntrinsicOverlay> Session::intrinsic_overlay() {
   require_mesh();
+  require_surface("the intrinsic edge overlay");
   if (!overlay_)
     overlay_ = std::make_shared<const IntrinsicOverlay>(make_intrinsic_overlay(mesh_->V, mesh_->F));
   return overlay_;

@@ -18,9 +18,12 @@
 #include "refine_job.h"
 #include "solve_progress.h"
 #include "solve_request.h"
+#include "solver_constraints.h"
 
 #include "iarap/core/errors.h"
 #include "iarap/io/read_mesh.h"
+#include "iarap/io/tet_mesh.h"
+#include "iarap/registration/registration_target.h"
 #include "iarap/solver/arap.h"
 
 #include <Eigen/Core>
@@ -46,7 +49,8 @@ public:
 
 struct MeshSummary {
   std::string name;
-  int vertices = 0, faces = 0;
+  int vertices = 0, faces = 0; // a tetrahedral mesh: every vertex (interior ones too), its boundary faces
+  int tetrahedra = 0;          // 0 for a triangle mesh
   double bbox_diagonal = 0;
   std::vector<std::string> notes, warnings; // reader notes and check_mesh warnings
 };
@@ -67,11 +71,31 @@ struct MeshSnapshot {
   std::string name;
 };
 
+// A fit's target (POST /api/target): what the viewer draws, and the target the registration fits to.
+struct FitTarget {
+  std::string name;
+  RegistrationTarget target;
+};
+
+// What a fit (fit_runner.h) takes from the session when it starts: the rest mesh, the target and the
+// generation the fit belongs to.
+struct FitStart {
+  Eigen::MatrixXd V;
+  Eigen::MatrixXi F;
+  std::shared_ptr<const FitTarget> target;
+  std::uint64_t generation = 0;
+};
+
 class Session {
 public:
   // Replaces the mesh (and clears constraints and solver states) after check_mesh. Throws TopologyError
   // listing check_mesh's errors; the previous mesh then stays.
   void load_mesh(const std::string& name, MeshData mesh);
+  // A tetrahedral mesh (read_tet_mesh): deformed by the volumetric energy (arap_tets.h, method iarap only),
+  // shown by its boundary faces (tet_boundary_faces: faces() and snapshot() give them; positions() every
+  // vertex, interior ones included). Throws InputError without a tetrahedron, and what
+  // arap_precompute_tets' checks throw (find_tet_problem).
+  void load_tet_mesh(const std::string& name, TetMesh mesh);
 
   bool has_mesh() const { return mesh_.has_value(); }
   // The calls below throw SessionConflict when no mesh is loaded.
@@ -119,6 +143,17 @@ public:
   // Ends the pending refinement (its last iterate stays): the frame saying so, nullopt when none was pending.
   std::optional<SessionFrame> stop_refinement();
 
+  // The target of the next fits, replacing any (a new mesh drops it); nullptr without one.
+  void load_target(std::shared_ptr<const FitTarget> target);
+  const std::shared_ptr<const FitTarget>& target() const;
+  // A fit of the rest mesh to the target starts a new generation (ending the refinement). Throws
+  // SessionConflict without a mesh or a target.
+  FitStart begin_fit();
+  // The fit's shape U (#V x 3) becomes the method's positions, its anchors re-taken there (a drag goes on
+  // from the fitted shape), unless the session moved to another generation since begin_fit: false then,
+  // and nothing changes.
+  bool finish_fit(std::uint64_t generation, ArapMethod method, const Eigen::MatrixXd& U);
+
   // Every method back to the rest positions; anchors re-taken there; constraints and factorizations kept.
   void reset();
 
@@ -133,30 +168,39 @@ public:
 
 private:
   struct MethodState {
-    std::optional<ArapData> data; // built lazily; its fixed set may lag behind constrained_ until a solve
-    Eigen::MatrixXd U;            // #V x 3 current positions
-    Eigen::MatrixXd anchor;       // #constrained x 3 positions of the constrained vertices when set
-    Eigen::MatrixXd soft_anchor;  // #soft x 3 positions of the soft points (solver order) when set
-    int data_soft_version = 0;    // soft_version_ of the soft constraints data was built with
+    std::optional<ArapData> data;  // built lazily; its fixed set may lag behind constrained_ until a solve
+    Eigen::MatrixXd U;             // #V x 3 current positions
+    Eigen::MatrixXd anchor;        // #constrained x 3 positions of the constrained vertices when set
+    Eigen::MatrixXd soft_anchor;   // #soft x 3 positions of the soft points (solver order) when set
+    int data_soft_version = 0;     // soft_version_ of the soft constraints data was built with
+    bool data_soft_handle = false; // data was built with the handle as soft vertices
   };
 
   void require_mesh() const;
+  void use_mesh(MeshData mesh, std::optional<Eigen::MatrixXi> tets); // the rest of a load
   void check_sets(const Eigen::VectorXi& fixed, const Eigen::VectorXi& handle,
                   const SoftConstraintSet& soft) const;
   void use_sets(const Eigen::VectorXi& fixed, const Eigen::VectorXi& handle);
   int record_revision();
   MethodState& state_of(ArapMethod method);
   const MethodState& state_of(ArapMethod method) const;
-  void prepare_data(MethodState& state, ArapMethod method, bool planar, SolveResult& result);
+  void prepare_data(MethodState& state, ArapMethod method, bool planar, const SolverConstraints& solver,
+                    SolveResult& result);
   void new_generation(); // ends the refinement; a new state for frames
 
+  // A tetrahedral mesh's volume energy (only iarap), or none; mesh_ then holds its boundary faces.
+  void require_surface(const char* what) const;
+  void require_method_for_mesh(ArapMethod method) const;
+
   std::optional<MeshData> mesh_;
+  std::optional<Eigen::MatrixXi> tets_; // #T x 4 of a tetrahedral mesh
   MeshSummary summary_;
   Eigen::VectorXi fixed_, handle_, constrained_;
   SoftSession soft_;
   int soft_version_ = 0; // counts the soft sets loaded (a method's data is rebuilt for a new one)
   std::array<MethodState, 3> methods_;
   std::shared_ptr<const IntrinsicOverlay> overlay_;
+  std::shared_ptr<const FitTarget> target_;
   ConstraintHistory history_;
   std::uint64_t generation_ = 0;
   std::optional<RefineJob> refine_job_;

@@ -37,6 +37,7 @@ SharedSession::SessionLock::~SessionLock() {
 SharedSession::SharedSession() : refiner_([this] { refine_in_background(); }) {}
 
 SharedSession::~SharedSession() {
+  fits_.stop(); // its thread takes the session
   {
     std::lock_guard<std::mutex> lock(mutex_); // stopping_ is read under it by the refiner's wait
     stopping_ = true;

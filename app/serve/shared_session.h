@@ -7,6 +7,7 @@
 // it at the next iteration boundary: the chunk's callback sees the caller waiting and stops, the last
 // finished iterate is kept, and the caller gets the mutex.
 #pragma once
+#include "fit_runner.h"
 #include "frame_board.h"
 #include "session.h"
 #include "solve_progress.h"
@@ -55,8 +56,10 @@ public:
 
   // Read without the session mutex (see SolveProgress).
   SolveProgress& progress() { return progress_; }
-  // The answers and refinement frames, read without the session mutex.
+  // The answers, refinement and fit frames, read without the session mutex.
   FrameBoard& frames() { return frames_; }
+  // The fit of the rest mesh to the loaded target, on its own thread (fit_runner.h).
+  FitRunner& fits() { return fits_; }
 
 private:
   // The session mutex, taken so that a running refinement chunk stops at its next iteration boundary:
@@ -83,7 +86,8 @@ private:
   mutable std::condition_variable refine_wake_;
   mutable Clock::time_point last_release_; // when a caller last released the session (under mutex_)
   std::atomic<bool> stopping_{false};
-  std::thread refiner_; // last: starts once everything above exists
+  std::thread refiner_; // starts once everything above exists
+  FitRunner fits_;      // its thread uses everything above
 };
 
 } // namespace iarap::serve

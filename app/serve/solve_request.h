@@ -26,6 +26,8 @@ struct SolveRequest {
   // Handle targets: anchors moved by transform (4 x 4 affine, last row 0 0 0 1), or given as #handle x 3.
   std::optional<Eigen::Matrix4d> transform;
   std::optional<Eigen::MatrixXd> handle_targets;
+  // A soft handle (solver_constraints.h): one weight > 0 per handle vertex, in handle order; none: hard.
+  std::optional<Eigen::VectorXd> handle_weights;
   bool cell_energy = false; // also return arap_cell_energy of the result
   // Statics, as `iarap deform --gravity --density --forces`: forces f_i = m_i g (lumped masses of the
   // method, density x area) plus the given per-vertex forces (3 x #V numbers, row-major), and the solve

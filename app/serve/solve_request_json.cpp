@@ -48,7 +48,8 @@ void read_statics_fields(const json& body, SolveRequest& request) {
   if (body.contains("forces")) request.forces = number_array_field(body, "forces");
 }
 
-// transform (16 numbers, column-major 4 x 4) and handle_targets (x y z per handle vertex).
+// transform (16 numbers, column-major 4 x 4), handle_targets (x y z per handle vertex) and handle_weights
+// (one per handle vertex: a soft handle).
 void read_target_fields(const json& body, SolveRequest& request) {
   if (body.contains("transform")) {
     const std::vector<double> m = numbers_of_count(body, "transform", 16, "a column-major 4 x 4 matrix");
@@ -63,14 +64,19 @@ void read_target_fields(const json& body, SolveRequest& request) {
     request.handle_targets =
         Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>>(t.data(), rows, 3);
   }
+  if (body.contains(
+          "handle_weights")) { // count and sign are checked against the handle (solver_constraints.h)
+    const std::vector<double> w = number_array_field(body, "handle_weights");
+    request.handle_weights = Eigen::Map<const Eigen::VectorXd>(w.data(), static_cast<Eigen::Index>(w.size()));
+  }
 }
 
 } // namespace
 
 SolveRequest parse_solve_request(const json& body, int max_iterations) {
   std::vector<std::string> known = solve_option_names();
-  known.insert(known.end(), {"method", "transform", "handle_targets", "cell_energy", "refine",
-                             "refine_accelerator", "gravity", "density", "forces"});
+  known.insert(known.end(), {"method", "transform", "handle_targets", "handle_weights", "cell_energy",
+                             "refine", "refine_accelerator", "gravity", "density", "forces"});
   require_known_fields(body, known);
   SolveRequest request;
   request.method = parse_arap_method(string_field(body, "method", "iarap"));
@@ -88,7 +94,7 @@ SolveRequest parse_solve_request(const json& body, int max_iterations) {
 }
 
 SolveRequest parse_target_request(const json& body, int max_iterations) {
-  require_known_fields(body, {"method", "transform", "handle_targets"});
+  require_known_fields(body, {"method", "transform", "handle_targets", "handle_weights"});
   return parse_solve_request(body, max_iterations);
 }
 

@@ -64,7 +64,8 @@ void add_solve_routes(RouteTable& routes, const ServeConfig& config, SharedSessi
     const bool running = p.running.load();
     if (running) p.cancel_requested = true;
     const bool refining = session.stop_refinement();
-    send_json(res, {{"cancelling", running}, {"refinement_stopped", refining}});
+    const bool fitting = session.fits().cancel();
+    send_json(res, {{"cancelling", running}, {"refinement_stopped", refining}, {"fit_cancelled", fitting}});
   });
 }
 

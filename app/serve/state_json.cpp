@@ -30,19 +30,31 @@ json state_json(const ServeConfig& config, const Session& session) {
   j["limits"] = {{"max_json_bytes", config.max_json_bytes},
                  {"max_upload_bytes", config.max_upload_bytes},
                  {"max_iterations", config.max_iterations}};
-  j["upload_formats"] = {"obj", "off", "ply", "stl"};
+  j["upload_formats"] = {"obj", "off", "ply", "stl", "mesh", "msh"};
+  j["target_formats"] = {"xyz", "ply", "obj", "off", "stl"};
   j["mesh"] = nullptr;
   if (session.has_mesh()) {
     const MeshSummary& summary = session.mesh_summary();
-    j["mesh"] = {{"name", summary.name},   {"vertices", summary.vertices},
-                 {"faces", summary.faces}, {"bbox_diagonal", summary.bbox_diagonal},
-                 {"notes", summary.notes}, {"warnings", summary.warnings}};
+    j["mesh"] = {{"name", summary.name},
+                 {"vertices", summary.vertices},
+                 {"faces", summary.faces},
+                 {"tetrahedra", summary.tetrahedra},
+                 {"bbox_diagonal", summary.bbox_diagonal},
+                 {"notes", summary.notes},
+                 {"warnings", summary.warnings}};
     const Eigen::VectorXi& fixed = session.fixed();
     const Eigen::VectorXi& handle = session.handle();
     j["fixed"] = std::vector<int>(fixed.data(), fixed.data() + fixed.size());
     j["handle"] = std::vector<int>(handle.data(), handle.data() + handle.size());
     j["soft"] = soft_json(session.soft());
     j["revision"] = session.revision();
+    j["target"] = nullptr;
+    if (const auto& target = session.target()) {
+      j["target"] = {{"name", target->name},
+                     {"points", target->target.points.rows()},
+                     {"faces", target->target.faces.rows()},
+                     {"diagonal", target->target.diagonal}};
+    }
   }
   return j;
 }

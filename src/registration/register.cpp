@@ -285,11 +285,14 @@ RegistrationResult register_to_target(const Eigen::MatrixXd& V, const Eigen::Mat
       report.solve_ms += r.solve_ms;
       report.rounds.push_back(r);
       if (options.on_round) options.on_round(r);
+      report.stopped = options.on_round_shape && !options.on_round_shape(r, U);
+      if (report.stopped) break;
       const bool settled = previous_mean >= 0 && std::abs(previous_mean - r.mean_distance) <=
                                                      options.stage_tolerance * previous_mean;
       previous_mean = r.mean_distance;
       if (settled) break;
     }
+    if (report.stopped) break;
   }
   report.final_distance = distance_statistics(U, target);
   result.U = std::move(U);

@@ -3,6 +3,7 @@
 #include "../../app/serve/http_error.h" // the tool's sources: tests/ is on the include path, app/ is not
 #include "../../app/serve/json_input.h"
 #include "../../app/serve/solve_request_json.h"
+#include "serve_test_meshes.h"
 
 #include <gtest/gtest.h>
 
@@ -14,6 +15,7 @@
 namespace {
 
 using iarap::serve::HttpError;
+using iarap::test::contains;
 using nlohmann::json;
 namespace serve = iarap::serve;
 
@@ -35,10 +37,6 @@ std::string input_error(const std::function<void()>& f) {
     return e.what();
   }
   return "";
-}
-
-bool contains(const std::string& text, const std::string& part) {
-  return text.find(part) != std::string::npos;
 }
 
 } // namespace

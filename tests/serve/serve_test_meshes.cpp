@@ -30,4 +30,14 @@ Eigen::VectorXi grid_column(int columns, int rows, int i) {
   return column;
 }
 
+Eigen::MatrixXd rows_of(const Eigen::MatrixXd& X, const Eigen::VectorXi& index) {
+  Eigen::MatrixXd out(index.size(), X.cols());
+  for (Eigen::Index k = 0; k < index.size(); ++k) out.row(k) = X.row(index[k]);
+  return out;
+}
+
+bool contains(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
+
 } // namespace iarap::test

@@ -1,6 +1,8 @@
-// Small meshes built in code for the server's tests.
+// Small meshes built in code for the server's tests, and what the tests read of them.
 #pragma once
 #include "iarap/io/read_mesh.h"
+
+#include <string>
 
 namespace iarap::test {
 
@@ -10,5 +12,11 @@ MeshData grid_mesh(int columns, int rows, double width, double lift = 0);
 
 // The vertices of grid column i (bottom to top).
 Eigen::VectorXi grid_column(int columns, int rows, int i);
+
+// The rows of X listed in index, in that order.
+Eigen::MatrixXd rows_of(const Eigen::MatrixXd& X, const Eigen::VectorXi& index);
+
+// Whether text holds part (error messages).
+bool contains(const std::string& text, const std::string& part);
 
 } // namespace iarap::test

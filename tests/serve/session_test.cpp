@@ -14,8 +14,10 @@ using iarap::serve::Session;
 using iarap::serve::SessionConflict;
 using iarap::serve::SolveProgress;
 using iarap::serve::SolveRequest;
+using iarap::test::contains;
 using iarap::test::grid_column;
 using iarap::test::grid_mesh;
+using iarap::test::rows_of;
 
 constexpr int columns = 8, rows = 3;
 constexpr double width = 2.0, lift = 0.3;
@@ -28,12 +30,6 @@ Session loaded_session() {
   return session;
 }
 
-Eigen::MatrixXd rows_of(const Eigen::MatrixXd& X, const Eigen::VectorXi& index) {
-  Eigen::MatrixXd out(index.size(), X.cols());
-  for (Eigen::Index k = 0; k < index.size(); ++k) out.row(k) = X.row(index[k]);
-  return out;
-}
-
 // The handle moved up by `up` in z.
 SolveRequest lift_request(const Session& session, double up, int iterations) {
   const Eigen::MatrixXd V = session.snapshot(std::nullopt).V;
@@ -43,10 +39,6 @@ SolveRequest lift_request(const Session& session, double up, int iterations) {
   targets.col(2).array() += up;
   request.handle_targets = targets;
   return request;
-}
-
-bool contains(const std::string& text, const std::string& part) {
-  return text.find(part) != std::string::npos;
 }
 
 } // namespace

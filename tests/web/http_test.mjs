@@ -9,7 +9,8 @@ import http from 'node:http';
 import os from 'node:os';
 import path from 'node:path';
 import { after, before, describe, test } from 'node:test';
-import { cliPath, decodeFrame, repoRoot, startServer, stopServer } from './server.mjs';
+import { bottomAndTop as bunnyBottomAndTop, expectError } from './api_helpers.mjs';
+import { cliPath, decodeFrame, repoRoot, startServerAt, stopServerCleanly } from './server.mjs';
 
 const bunnyPath = path.join(repoRoot, 'data', 'bunny.off');
 let server;
@@ -33,15 +34,6 @@ function rawRequest(method, requestPath, headers = {}, body = null) {
 const postJson = (route, body) =>
   fetch(base + route, { method: 'POST', headers: { 'Content-Type': 'application/json' }, body: typeof body === 'string' ? body : JSON.stringify(body) });
 
-async function expectError(responsePromise, status, pattern) {
-  const response = await responsePromise;
-  const text = await response.text();
-  assert.equal(response.status, status, `expected ${status}, got ${response.status}: ${text}`);
-  const message = JSON.parse(text).error;
-  assert.match(message, pattern);
-  return message;
-}
-
 async function state() {
   const response = await fetch(base + '/api/state');
   assert.equal(response.status, 200);
@@ -50,29 +42,13 @@ async function state() {
 
 const restPositions = async () => new Float32Array(await (await fetch(base + '/api/positions?method=rest')).arrayBuffer());
 
-// Bottom tenth of the bunny fixed, top tenth the handle (by y).
-async function bottomAndTop() {
-  const X = await restPositions();
-  const ys = [];
-  for (let i = 1; i < X.length; i += 3) ys.push(X[i]);
-  const lo = Math.min(...ys), hi = Math.max(...ys);
-  const fixed = [], handle = [];
-  ys.forEach((y, i) => {
-    if (y < lo + 0.1 * (hi - lo)) fixed.push(i);
-    else if (y > hi - 0.1 * (hi - lo)) handle.push(i);
-  });
-  return { X, fixed, handle, height: hi - lo };
-}
+const bottomAndTop = () => bunnyBottomAndTop(base);
 
 before(async () => {
-  server = await startServer([bunnyPath]);
-  base = server.url.replace(/\/$/, '');
+  ({ server, base } = await startServerAt([bunnyPath]));
 });
 
-after(async () => {
-  const code = await stopServer(server);
-  assert.equal(code, 0, `server exit: ${code}\n${server.log()}`);
-});
+after(() => stopServerCleanly(server));
 
 describe('static files', () => {
   test('the app, its modules and three.js are served', async () => {
@@ -564,13 +540,13 @@ describe('undo revisions, scenario files, progress', () => {
     assert.ok(progress.running && progress.iteration > 0, JSON.stringify(progress));
     assert.equal(progress.iterations, 1000);
     assert.equal(progress.method, 'arap');
-    assert.deepEqual(await (await postJson('/api/cancel', {})).json(), { cancelling: true, refinement_stopped: false });
+    assert.deepEqual(await (await postJson('/api/cancel', {})).json(), { cancelling: true, refinement_stopped: false, fit_cancelled: false });
     const { header } = decodeFrame(await (await solving).arrayBuffer());
     assert.equal(header.cancelled, true);
     assert.ok(header.iterations >= progress.iteration && header.iterations < 1000, `${header.iterations}`);
     assert.equal(header.energies.length, header.iterations);
     assert.equal((await (await fetch(base + '/api/progress')).json()).running, false);
-    assert.deepEqual(await (await postJson('/api/cancel', {})).json(), { cancelling: false, refinement_stopped: false });
+    assert.deepEqual(await (await postJson('/api/cancel', {})).json(), { cancelling: false, refinement_stopped: false, fit_cancelled: false });
   });
 });
 
@@ -659,7 +635,7 @@ describe('background refinement', () => {
       // On an idle machine the refinement can reach the server's iteration limit before the cancel arrives
       // (seen once in a clean clone, where the shared-mesh tests beside it were skipped): nothing was left
       // to stop, and its own last frame must say it ended there.
-      assert.deepEqual(cancel, { cancelling: false, refinement_stopped: false });
+      assert.deepEqual(cancel, { cancelling: false, refinement_stopped: false, fit_cancelled: false });
       assert.ok(last.header.iterations >= 1 && !last.header.refining, 'the refinement neither ended nor was stopped');
       console.log(`# the refinement ended (${last.header.iterations} iterations) before the cancel: not exercised`);
       return;

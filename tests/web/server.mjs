@@ -38,5 +38,17 @@ export function stopServer(server) {
   });
 }
 
+// startServer, the base URL without its trailing slash beside it: {server, base}.
+export async function startServerAt(args) {
+  const server = await startServer(args);
+  return { server, base: server.url.replace(/\/$/, '') };
+}
+
+// stopServer, and a clean exit (code 0) asserted, with the server's log otherwise.
+export async function stopServerCleanly(server) {
+  const code = await stopServer(server);
+  if (code !== 0) throw new Error(`server exit: ${code}\n${server.log()}`);
+}
+
 // The binary frames of /api/solve and /api/intrinsic_edges, decoded as the page does.
 export { decodeFrame } from '../../web/src/api.js';

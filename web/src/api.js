@@ -74,9 +74,15 @@ export const api = {
   intrinsicEdges: async () => decodeFrame(await getBuffer('/api/intrinsic_edges')),
   downloadUrl: (method, format) => `/api/download?method=${method}&format=${format}`,
   // {name, blob}: the scenario (or constraints) file of the method's session.
-  saveScenario: async (method, transform) => {
-    const response = await postJson('/api/scenario', { method, transform });
+  saveScenario: async (method, transform, handleWeights) => {
+    const response = await postJson('/api/scenario', { method, transform, ...(handleWeights ? { handle_weights: handleWeights } : {}) });
     return { name: attachmentName(response, 'scenario.json'), blob: await response.blob() };
   },
+  // A point cloud or mesh to fit the mesh to (session JSON with `target`), its points for drawing
+  // ({header, arrays: {points, faces}}), and a fit started in the background: {generation, after, max_rounds}
+  // (its rounds come as frames after `after`).
+  uploadTarget: async (file) => (await postFile(`/api/target?name=${encodeURIComponent(file.name)}`, file)).json(),
+  target: async () => decodeFrame(await getBuffer('/api/target')),
+  fit: async (body) => (await postJson('/api/fit', body)).json(),
   loadScenario: async (file) => (await postFile(`/api/scenario/load?name=${encodeURIComponent(file.name)}`, file)).json(),
 };

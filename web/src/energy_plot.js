@@ -3,7 +3,8 @@
 // largest magnitude around 0, with the 0 line drawn) once one is not: original ARAP's energy can go below 0.
 export const methodColors = { arap: '#ff7b72', 'spokes-rims': '#79c0ff', iarap: '#7ee787' };
 
-export function drawEnergyPlot(canvas, curves) {
+// unit: what one step of the curves is (the x axis).
+export function drawEnergyPlot(canvas, curves, unit = 'iteration') {
   const ctx = canvas.getContext('2d');
   const { width, height } = canvas;
   ctx.clearRect(0, 0, width, height);
@@ -23,7 +24,7 @@ export function drawEnergyPlot(canvas, curves) {
   ctx.font = '10px sans-serif';
   ctx.fillStyle = '#9aa3b0';
   ctx.fillText(`${Math.max(...values).toExponential(2)}`, 2, 10);
-  ctx.fillText(`${Math.min(...values).toExponential(2)}  (${signed ? 'symlog' : 'log'} scale, per iteration)`, 2, height - 4);
+  ctx.fillText(`${Math.min(...values).toExponential(2)}  (${signed ? 'symlog' : 'log'} scale, per ${unit})`, 2, height - 4);
   if (signed && lo < 0 && hi > 0) {
     ctx.strokeStyle = '#555';
     ctx.setLineDash([3, 3]);

@@ -3,6 +3,7 @@
 import { api } from './api.js';
 import { drawColorBar, energyColors, energyScale } from './colormap.js';
 import { drawEnergyPlot, methodColors } from './energy_plot.js';
+import { FitPanel } from './fit_panel.js';
 import { UndoHistory } from './history.js';
 import { LatestOnly } from './latest_only.js';
 import { RefinementFeed } from './refinement.js';
@@ -72,6 +73,24 @@ function tolerance() {
   return value;
 }
 
+// The soft handle's weight from the log slider (10^value), or null for a hard handle.
+function handleWeight() {
+  return $('soft-handle').checked ? 10 ** Number($('handle-weight').value) : null;
+}
+
+// The solve's handle_weights: one per handle vertex when the handle is soft (none for a hard one).
+function handleWeights(handleCount) {
+  const weight = handleWeight();
+  return weight !== null && handleCount > 0 ? new Array(handleCount).fill(weight) : undefined;
+}
+
+function showHandleWeight() {
+  const soft = $('soft-handle').checked;
+  $('handle-weight').disabled = !soft;
+  $('handle-weight-value').textContent = soft ? `w = ${handleWeight().toPrecision(2)}` : '(hard handle)';
+  viewer.setSoftHandle(soft);
+}
+
 // Keeps only the last entries of a record list the tests read.
 const remember = (list, entry) => {
   list.push(entry);
@@ -99,7 +118,9 @@ function repaint() {
   const fixed = indicesWith(app.labels, FIXED).length;
   const handle = indicesWith(app.labels, HANDLE).length;
   const soft = app.soft.count ? `, ${app.soft.count} soft (from the file)` : '';
-  $('selection-info').textContent = `${fixed} fixed, ${handle} handle vertices${soft}`;
+  const weight = handleWeight();
+  const softHandle = weight !== null && handle > 0 ? ` (soft, w = ${weight.toPrecision(2)})` : '';
+  $('selection-info').textContent = `${fixed} fixed, ${handle} handle vertices${softHandle}${soft}`;
   $('undo').disabled = !app.history.canUndo();
   $('redo').disabled = !app.history.canRedo();
 }
@@ -161,11 +182,12 @@ async function solveShown() {
   // The server refines one method, and its frames carry no cell energies.
   const refine = $('refine').checked && methods.length === 1 && !cellEnergy && !converge;
   const refineAccelerator = $('refine-accelerator').value;
+  const weights = handleWeights(handle.length);
   refinement.stop();
   $('refine-info').textContent = '';
   const stopWatching = watchProgress();
   const results = await guarded(() =>
-    Promise.all(methods.map((method) => api.solve({ method, ...stopping, accelerator, transform, cell_energy: cellEnergy, refine, refine_accelerator: refineAccelerator }))),
+    Promise.all(methods.map((method) => api.solve({ method, ...stopping, accelerator, transform, cell_energy: cellEnergy, refine, refine_accelerator: refineAccelerator, ...(weights ? { handle_weights: weights } : {}) }))),
   ).finally(stopWatching);
   if (!results) return;
   const lines = [];
@@ -279,14 +301,33 @@ function showMeshChoice(state) {
   }
 }
 
+// A tetrahedral mesh is deformed by the volume energy only (method iarap) and has no per-vertex cells or
+// intrinsic edges: the choices that need a triangle mesh are switched off and disabled for it.
+function allowSurfaceChoices(mesh) {
+  const tets = (mesh?.tetrahedra ?? 0) > 0;
+  for (const option of $('method').options) option.disabled = tets && option.value !== 'iarap';
+  if (tets) $('method').value = 'iarap';
+  for (const id of ['side-by-side', 'show-energy', 'show-intrinsic']) {
+    if (tets) $(id).checked = false;
+    $(id).disabled = tets;
+  }
+}
+
+function describeMesh(mesh) {
+  if (!mesh) return 'no mesh: upload one';
+  const size = mesh.tetrahedra > 0
+    ? `${mesh.tetrahedra} tetrahedra, ${mesh.vertices} vertices, shown by its ${mesh.faces} boundary faces`
+    : `${mesh.vertices} vertices, ${mesh.faces} faces`;
+  return [`${mesh.name}: ${size}`, ...mesh.notes, ...mesh.warnings].join('\n');
+}
+
 async function loadMesh(state) {
   refinement.stop(); // frames of the previous mesh's refinement must not land on this one
   app.mesh = state.mesh;
   clearResults();
   showMeshChoice(state);
-  $('mesh-info').textContent = state.mesh
-    ? [`${state.mesh.name}: ${state.mesh.vertices} vertices, ${state.mesh.faces} faces`, ...state.mesh.notes, ...state.mesh.warnings].join('\n')
-    : 'no mesh: upload one';
+  allowSurfaceChoices(state.mesh);
+  $('mesh-info').textContent = describeMesh(state.mesh);
   if (!state.mesh) return;
   const [faces, rest] = await Promise.all([api.faces(), api.positions('rest')]);
   viewer.setMesh(faces, rest, shownMethods());
@@ -294,6 +335,7 @@ async function loadMesh(state) {
   await showPositions(shownMethods());
   setLabels(state);
   viewer.placeGizmo(gizmoVertices());
+  await fitPanel.setMesh(state);
   app.history.reset(snapshot());
   repaint();
   await refreshIntrinsic();
@@ -403,9 +445,27 @@ function setupSelectionTools() {
 }
 
 let uvPanel = null;
+let fitPanel = null;
 
 function setupPanel(state) {
   uvPanel = new UvPanel(api, viewer, guarded);
+  fitPanel = new FitPanel(api, viewer, guarded, {
+    method: () => $('method').value,
+    beforeFit: async () => {
+      await solver.idle();
+      refinement.stop();
+    },
+    // The server re-took the anchors on the fitted shape: the gizmo starts there.
+    afterFit: () => viewer.placeGizmo(gizmoVertices()),
+  });
+  const softHandleChanged = () => {
+    showHandleWeight();
+    repaint();
+    solver.request();
+  };
+  $('soft-handle').addEventListener('change', softHandleChanged);
+  $('handle-weight').addEventListener('input', softHandleChanged);
+  showHandleWeight();
   app.limits = state.limits;
   $('iterations').max = String(state.limits.max_iterations);
   $('iterations-limit').textContent = `(1 to ${state.limits.max_iterations})`;
@@ -451,7 +511,8 @@ function setupPanel(state) {
   });
   $('save-scenario').addEventListener('click', () => guarded(async () => {
     await solver.idle();
-    const { name, blob } = await api.saveScenario($('method').value, viewer.handleTransform());
+    const weights = handleWeights(indicesWith(app.labels, HANDLE).length);
+    const { name, blob } = await api.saveScenario($('method').value, viewer.handleTransform(), weights);
     const url = URL.createObjectURL(blob);
     download(url, name);
     setTimeout(() => URL.revokeObjectURL(url), 10000);
@@ -521,6 +582,8 @@ window.iarapViewer = {
   solves: () => app.solves,
   answers: () => app.answers,
   frames: () => app.frames,
+  fitFrames: () => fitPanel.frames,
+  fitResiduals: () => fitPanel.residuals.slice(),
   errors: () => app.errors,
   idle: () => solver.idle(),
   displayedPositions: (method) => Array.from(viewer.view(method ?? shownMethods()[0]).positions()),

@@ -15,6 +15,8 @@ import { checkerTexture } from './uv_layout.js';
 const baseColor = [0.72, 0.74, 0.78];
 const fixedColor = [0.9, 0.16, 0.16];
 const handleColor = [1.0, 0.76, 0.15];
+const softHandleColor = [1.0, 0.91, 0.66];
+const targetColor = 0xd070ff;
 
 class MethodView {
   constructor(method, faces, rest, offset) {
@@ -38,6 +40,7 @@ class MethodView {
     this.wire.position.copy(offset);
     this.wire.visible = false;
     this.intrinsic = null;
+    this.targetPoints = null; // the fit's target (Viewer.setTarget)
   }
 
   positions() {
@@ -70,6 +73,7 @@ class MethodView {
     }
     scene.remove(this.mesh, this.wire);
     if (this.intrinsic) scene.remove(this.intrinsic);
+    if (this.targetPoints) scene.remove(this.targetPoints);
     this.mesh.geometry.dispose();
     this.intrinsic?.geometry.dispose();
   }
@@ -100,6 +104,9 @@ export class Viewer {
     this.gizmoListeners = { change: [], dragEnd: [] };
 
     this.views = [];
+    this.softHandle = false;
+    this.targetGeometry = null; // the fit's target points, drawn beside every copy
+    this.targetVisible = true;
     this.faces = null;
     this.rest = null;
     this.overlay = null;
@@ -162,6 +169,7 @@ export class Viewer {
     });
     this.#buildGizmos();
     this.#buildLabels();
+    this.#buildTargetPoints();
     if (this.overlay) this.setIntrinsicOverlay(this.overlay);
     if (this.checker) this.setTexture(this.checker);
     this.requestRender();
@@ -265,16 +273,56 @@ export class Viewer {
     return this.views.find((v) => v.method === method);
   }
 
-  // Vertex colours from the selection labels (0 free, 1 fixed, 2 handle), or energy colours for free ones.
+  // Vertex colours from the selection labels (0 free, 1 fixed, 2 handle, paler when soft), or energy
+  // colours for free ones.
   paint(labels, energyColorsByMethod) {
+    const handle = this.softHandle ? softHandleColor : handleColor;
     for (const view of this.views) {
       const colors = view.mesh.geometry.attributes.color.array;
       const energy = energyColorsByMethod?.[view.method];
       for (let i = 0; i < labels.length; ++i) {
-        const c = labels[i] === 1 ? fixedColor : labels[i] === 2 ? handleColor : null;
+        const c = labels[i] === 1 ? fixedColor : labels[i] === 2 ? handle : null;
         for (let k = 0; k < 3; ++k) colors[3 * i + k] = c ? c[k] : energy ? energy[3 * i + k] : baseColor[k];
       }
       view.mesh.geometry.attributes.color.needsUpdate = true;
+    }
+    this.requestRender();
+  }
+
+  // Whether the handle is soft (painted paler by the next paint()).
+  setSoftHandle(soft) {
+    this.softHandle = soft;
+  }
+
+  // The fit's target (points: Float32Array #P x 3 in mesh coordinates) drawn as points beside every copy,
+  // or none (null).
+  setTarget(points) {
+    this.targetGeometry?.dispose();
+    this.targetGeometry = null;
+    if (points) {
+      this.targetGeometry = new THREE.BufferGeometry();
+      this.targetGeometry.setAttribute('position', new THREE.BufferAttribute(points, 3));
+      this.targetGeometry.computeBoundingSphere();
+    }
+    this.#buildTargetPoints();
+  }
+
+  setTargetVisible(visible) {
+    this.targetVisible = visible;
+    for (const view of this.views) if (view.targetPoints) view.targetPoints.visible = visible;
+    this.requestRender();
+  }
+
+  #buildTargetPoints() {
+    for (const view of this.views) {
+      if (view.targetPoints) this.scene.remove(view.targetPoints);
+      view.targetPoints = null;
+      if (!this.targetGeometry) continue;
+      // A few pixels whatever the distance: a scan's points stay visible from afar and do not hide the mesh.
+      view.targetPoints = new THREE.Points(this.targetGeometry, new THREE.PointsMaterial({ color: targetColor, size: 2.5, sizeAttenuation: false }));
+      view.targetPoints.position.copy(view.offset);
+      view.targetPoints.visible = this.targetVisible;
+      this.scene.add(view.targetPoints);
     }
     this.requestRender();
   }

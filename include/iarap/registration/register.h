@@ -97,6 +97,7 @@ struct RegistrationReport {
   DistanceStatistics final_distance;
   double target_diagonal = 0;
   double prealign_ms = 0, precompute_ms = 0, closest_ms = 0, factor_ms = 0, solve_ms = 0, total_ms = 0;
+  bool stopped = false; // RegistrationOptions::on_round_shape returned false before the last round
 };
 
 struct RegistrationOptions {
@@ -132,6 +133,10 @@ struct RegistrationOptions {
   double robust_scale = 2.0;        // Welsch's sigma = this times the median distance of the kept ones
   double stage_tolerance = 2e-3;    // relative change of the mean distance that ends a stage
   std::function<void(const RegistrationRound&)> on_round; // optional progress callback
+  // Optional, after on_round: the round with the source as that round's solve left it (#V x 3). Returning
+  // false stops the registration there (an interactive client's cancel): the result is that shape, with
+  // report.stopped set and final_distance measured on it.
+  std::function<bool(const RegistrationRound&, const Eigen::MatrixXd& U)> on_round_shape;
 
   static ArapSolveOptions default_round_solve() {
     ArapSolveOptions solve;
