@@ -36,7 +36,7 @@ struct BenchArguments {
   int rounds = 1;
   int threads = 0;
   int subdivide = 0;
-  std::string ordering = "amd";
+  std::string ordering = "auto";
   bool json = false;
   std::string report;
   double converge = 0; // > 0: the convergence bench (bench_converge.h) with this gap
@@ -132,6 +132,7 @@ nlohmann::json bench_one(const std::string& path, const Eigen::MatrixXd& V, cons
   j["vertices"] = V.rows();
   j["faces"] = F.rows();
   j["method"] = name;
+  j["ordering_used"] = fill_ordering_name(data.solver.used_ordering());
   j["threads"] = thread_count();
   j["precompute_ms"] = precompute_ms;
   j["intrinsic_ms"] = data.timings.intrinsic_ms;
@@ -428,8 +429,9 @@ const bool registered = register_command(
            ->check(CLI::Range(0, 6))
            ->capture_default_str();
        sub->add_option("--ordering", args->ordering,
-                       "CHOLMOD's fill-reducing ordering: amd (faster precompute) or metis (smaller factor)")
-           ->check(CLI::IsMember({"amd", "metis"}))
+                       "CHOLMOD's fill-reducing ordering: auto (amd below 1M free vertices, metis from there), amd "
+                       "(faster analysis) or metis (smaller factor)")
+           ->check(CLI::IsMember({"auto", "amd", "metis"}))
            ->capture_default_str();
        sub->add_option(
               "--converge", args->converge,

@@ -34,7 +34,7 @@ namespace {
 
 struct DeformArguments {
   std::string mesh, constraints, scenario, stiffness, method = "iarap", boundary = "refine", out, report;
-  std::string ordering = "amd";
+  std::string ordering = "auto";
   ArapSolveOptions solve; // the flags of solve_option_flags.h; forces are set from `forces` below
   int threads = 0;
   bool json = false, repair = false, keep_numbering = false, pin_unconstrained = false, quiet = false;
@@ -244,7 +244,7 @@ void run_deform(const DeformArguments& args) {
   j["factor_ms"] = arap.timings.factor_ms;
   j["analyze_ms"] = arap.timings.analyze_ms; // overlapped with intrinsic + assembly when threads > 1
   j["factorization"] = factorization_name(arap_factorization(arap));
-  j["ordering"] = fill_ordering_name(arap.solver.ordering());
+  j["ordering"] = fill_ordering_name(arap.solver.used_ordering());
   j["blas"] = blas_library_name();
   j["memory"] = memory_json(arap);
   j["max_displacement"] = result.max_displacement;
@@ -288,9 +288,10 @@ const bool registered = register_command(
            ->capture_default_str();
        add_solve_option_flags(*sub, args->solve);
        sub->add_option("--ordering", args->ordering,
-                       "CHOLMOD's fill-reducing ordering: amd (faster precompute) or metis (a 25-40% smaller "
-                       "factor on meshes of millions of vertices; docs/performance.md)")
-           ->check(CLI::IsMember({"amd", "metis"}))
+                       "CHOLMOD's fill-reducing ordering: auto (amd below 1M free vertices, metis from there), amd "
+                       "(faster analysis) or metis (a 25-40% smaller factor on meshes of millions of vertices; "
+                       "docs/performance.md)")
+           ->check(CLI::IsMember({"auto", "amd", "metis"}))
            ->capture_default_str();
        sub->add_option("--threads", args->threads, "Threads for the parallel loops; 0 = all hardware threads")
            ->check(CLI::Range(0, 4096))

@@ -42,6 +42,7 @@ namespace {
 // One fill-reducing ordering, chosen by the caller, instead of CHOLMOD's default (AMD, then METIS as well
 // when AMD's fill is high): measured on the armadillo subdivided 2 and 3 times (docs/performance.md), AMD
 // orders in a quarter of METIS's time and METIS's factor has 25-40% fewer entries, factorized faster.
+// ordering: Amd or Metis (resolved).
 void configure_ordering(cholmod_common& common, FillOrdering ordering) {
   common.nmethods = 1;
   common.method[0].ordering = ordering == FillOrdering::Metis ? CHOLMOD_METIS : CHOLMOD_AMD;
@@ -99,7 +100,8 @@ std::unique_ptr<detail::SupernodalSolve> supernodal_plan(const cholmod_factor* L
 struct SparseCholesky::Impl {
   Eigen::SparseMatrix<double> A; // kept so that copies can refactorize
   FactorizationKind kind = FactorizationKind::None;
-  FillOrdering ordering = FillOrdering::Amd;
+  FillOrdering ordering = FillOrdering::Auto;
+  FillOrdering used = FillOrdering::Amd; // what the last analysis ran
   Eigen::SparseMatrix<double> analyzed; // the pattern llt was analyzed on (analyze()), values unused
   std::unique_ptr<CholmodLlt> llt;
   std::unique_ptr<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>> ldlt;
@@ -117,6 +119,7 @@ struct SparseCholesky::Impl {
     A = std::move(other.A);
     kind = other.kind;
     ordering = other.ordering;
+    used = other.used;
     analyzed = std::move(other.analyzed);
     llt = std::move(other.llt);
     ldlt = std::move(other.ldlt);
@@ -143,14 +146,28 @@ std::string factorization_name(FactorizationKind kind) {
   return "unknown";
 }
 
+FillOrdering resolved_ordering(FillOrdering ordering, long n) {
+  if (ordering != FillOrdering::Auto) return ordering;
+  return n >= auto_metis_rows ? FillOrdering::Metis : FillOrdering::Amd;
+}
+
 FillOrdering parse_fill_ordering(const std::string& name) {
+  if (name == "auto") return FillOrdering::Auto;
   if (name == "amd") return FillOrdering::Amd;
   if (name == "metis") return FillOrdering::Metis;
-  throw InputError("unknown fill ordering '" + name + "' (choose amd or metis)");
+  throw InputError("unknown fill ordering '" + name + "' (choose auto, amd or metis)");
 }
 
 std::string fill_ordering_name(FillOrdering ordering) {
-  return ordering == FillOrdering::Metis ? "metis" : "amd";
+  switch (ordering) {
+  case FillOrdering::Auto:
+    return "auto";
+  case FillOrdering::Amd:
+    return "amd";
+  case FillOrdering::Metis:
+    return "metis";
+  }
+  return "unknown";
 }
 
 SparseCholesky::SparseCholesky() : impl_(std::make_unique<Impl>()) {}
@@ -189,7 +206,12 @@ void SparseCholesky::set_ordering(FillOrdering ordering) {
 }
 
 FillOrdering SparseCholesky::ordering() const {
-  return impl_ ? impl_->ordering : FillOrdering::Amd;
+  return impl_ ? impl_->ordering : FillOrdering::Auto;
+}
+
+FillOrdering SparseCholesky::used_ordering() const {
+  if (!impl_) return resolved_ordering(FillOrdering::Auto, 0);
+  return impl_->llt ? impl_->used : resolved_ordering(impl_->ordering, impl_->A.rows());
 }
 
 void SparseCholesky::analyze(const Eigen::SparseMatrix<double>& pattern) {
@@ -201,7 +223,8 @@ void SparseCholesky::analyze(const Eigen::SparseMatrix<double>& pattern) {
     return; // factorize() reports a non-square matrix; nothing to analyze for an empty one
   impl_->analyzed = pattern;
   impl_->llt = std::make_unique<CholmodLlt>();
-  configure_ordering(impl_->llt->cholmod(), ordering);
+  impl_->used = resolved_ordering(ordering, pattern.rows());
+  configure_ordering(impl_->llt->cholmod(), impl_->used);
   const CholmodTeams teams;
   impl_->llt->analyzePattern(impl_->analyzed);
 }
@@ -212,6 +235,7 @@ void SparseCholesky::factorize(const Eigen::SparseMatrix<double>& A) {
   // Reuse the symbolic analysis only for exactly the analyzed pattern: analyze()'s, or that of the matrix
   // the last LLT factorized (a numeric refactorization, e.g. new soft weights).
   std::unique_ptr<CholmodLlt> analyzed;
+  const FillOrdering analyzed_with = impl_->used;
   if (impl_->llt && same_pattern(impl_->analyzed.nonZeros() > 0 ? impl_->analyzed : impl_->A, A))
     analyzed = std::move(impl_->llt);
   *impl_ = Impl{};
@@ -237,10 +261,12 @@ void SparseCholesky::factorize(const Eigen::SparseMatrix<double>& A) {
   limit_blas_threads(loop_thread_count());
   if (analyzed) {
     next.llt = std::move(analyzed);
+    next.used = analyzed_with;
     next.llt->factorize(next.A);
   } else {
     next.llt = std::make_unique<CholmodLlt>();
-    configure_ordering(next.llt->cholmod(), ordering);
+    next.used = resolved_ordering(ordering, next.A.rows());
+    configure_ordering(next.llt->cholmod(), next.used);
     next.llt->compute(next.A);
   }
   if (next.llt->info() == Eigen::Success) {

@@ -223,6 +223,7 @@ TEST(SparseCholesky, FillOrderingIsTheCallersChoice) {
     chol.factorize(A);
     ASSERT_EQ(chol.kind(), FactorizationKind::CholmodSupernodalLLT);
     EXPECT_EQ(chol.ordering(), ordering);
+    EXPECT_EQ(chol.used_ordering(), ordering);
     // cond(A) <= 8 / 1e-3: a backward-stable Cholesky leaves a relative residual of a few machine epsilons.
     EXPECT_LT(residual(A, chol.solve(B), B), 1e-12) << iarap::fill_ordering_name(ordering);
     bytes[ordering == iarap::FillOrdering::Metis] = chol.factor_bytes();
@@ -234,7 +235,19 @@ TEST(SparseCholesky, FillOrderingIsTheCallersChoice) {
     EXPECT_EQ(chol.factor_bytes(), bytes[ordering == iarap::FillOrdering::Metis]);
   }
   EXPECT_NE(bytes[0], bytes[1]);
+  // Auto: AMD below a million rows (this matrix), METIS from there.
+  SparseCholesky automatic(A);
+  EXPECT_EQ(automatic.ordering(), iarap::FillOrdering::Auto);
+  EXPECT_EQ(automatic.used_ordering(), iarap::FillOrdering::Amd);
+  EXPECT_EQ(automatic.factor_bytes(), bytes[0]);
+  EXPECT_EQ(iarap::resolved_ordering(iarap::FillOrdering::Auto, iarap::auto_metis_rows - 1),
+            iarap::FillOrdering::Amd);
+  EXPECT_EQ(iarap::resolved_ordering(iarap::FillOrdering::Auto, iarap::auto_metis_rows),
+            iarap::FillOrdering::Metis);
+  EXPECT_EQ(iarap::resolved_ordering(iarap::FillOrdering::Amd, iarap::auto_metis_rows),
+            iarap::FillOrdering::Amd);
   EXPECT_EQ(iarap::parse_fill_ordering("metis"), iarap::FillOrdering::Metis);
   EXPECT_EQ(iarap::fill_ordering_name(iarap::parse_fill_ordering("amd")), "amd");
+  EXPECT_EQ(iarap::fill_ordering_name(iarap::parse_fill_ordering("auto")), "auto");
   EXPECT_THROW(iarap::parse_fill_ordering("nesdis"), iarap::InputError);
 }

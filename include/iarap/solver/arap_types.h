@@ -54,10 +54,10 @@ struct ArapOptions {
   // iARAP: the intrinsic spokes of i); a boundary point iARAP inserts takes the mean of the vertices its
   // elements reach. The rotations do not depend on it; L and the right-hand side weigh each cell's terms.
   Eigen::VectorXd stiffness;
-  // CHOLMOD's fill-reducing ordering of L_ff (sparse_cholesky.h): AMD, the faster precompute, or METIS, the
-  // smaller factor for meshes of millions of vertices. It changes the factor, not the solution beyond
-  // rounding.
-  FillOrdering ordering = FillOrdering::Amd;
+  // CHOLMOD's fill-reducing ordering of L_ff (sparse_cholesky.h): Auto (AMD below a million free vertices,
+  // METIS from there), AMD (the faster analysis) or METIS (the smaller factor). It changes the factor, not
+  // the solution beyond rounding.
+  FillOrdering ordering = FillOrdering::Auto;
 };
 
 // Wall-clock parts of arap_precompute; they add up to its duration.

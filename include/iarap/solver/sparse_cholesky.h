@@ -19,12 +19,18 @@ enum class FactorizationKind {
 // "none", "empty", "cholmod-supernodal-llt", "simplicial-ldlt".
 std::string factorization_name(FactorizationKind kind);
 
-// CHOLMOD's fill-reducing ordering (the symbolic analysis). Amd: the default, the faster precompute. Metis:
-// nested dissection, a factor with 25-40% fewer entries on large surface meshes (less memory, a faster
-// numeric factorization and solve) for an analysis about 4x as long (docs/performance.md).
-enum class FillOrdering { Amd, Metis };
+// CHOLMOD's fill-reducing ordering (the symbolic analysis), one ordering per analysis. Amd: the faster
+// analysis. Metis: nested dissection, a factor with 25-40% fewer entries on large surface meshes (less
+// memory, a faster numeric factorization and solve) for an analysis about 4x as long. Auto: AMD below
+// auto_metis_rows rows, METIS from there, the choice CHOLMOD's default makes on the armadillo family (AMD
+// at 622K free rows, METIS at 2.49M) without its cost of running both orderings (docs/performance.md).
+enum class FillOrdering { Auto, Amd, Metis };
+constexpr long auto_metis_rows = 1000000;
 
-// "amd" | "metis"; anything else throws InputError naming the value and the choices.
+// The ordering Auto stands for on an n x n matrix; Amd and Metis stand for themselves.
+FillOrdering resolved_ordering(FillOrdering ordering, long n);
+
+// "auto" | "amd" | "metis"; anything else throws InputError naming the value and the choices.
 FillOrdering parse_fill_ordering(const std::string& name);
 std::string fill_ordering_name(FillOrdering ordering);
 
@@ -43,9 +49,11 @@ public:
   ~SparseCholesky();
 
   // The ordering of the next analysis (analyze, or a factorize that is not a refactorization); kept by
-  // copies. Default FillOrdering::Amd.
+  // copies. Default FillOrdering::Auto. used_ordering(): what the last analysis ran (Amd or Metis; the
+  // requested ordering resolved for rows() before any).
   void set_ordering(FillOrdering ordering);
   FillOrdering ordering() const;
+  FillOrdering used_ordering() const;
 
   // The symbolic half of factorize (CHOLMOD's fill-reducing ordering and supernodal analysis) on the
   // pattern of the square, compressed matrix `pattern` (values ignored). Forgets any factorization.
