@@ -58,7 +58,7 @@ double rest_area(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
 
 RotationSmoothing::RotationSmoothing(const ArapElements& el, const std::vector<int>& position, double alpha,
                                      double area)
-    : alpha_(alpha), cells_(el.num_cells) {
+    : cells_(el.num_cells) {
   std::vector<std::set<int>> neighbours(static_cast<size_t>(cells_));
   bool shared = false;
   for (Eigen::Index e = 0; e < el.size(); ++e) {

@@ -9,11 +9,11 @@
 //
 // With it the local step is coupled: minimize over all rotations at once
 //   f(R) = -sum_i tr(R_i^T S_i) + E_smooth(R)      (S_i the cell's covariance, Eq. 15)
-// Its block minimizer in R_i alone is polar(T_i), T_i = S_i + 2 sum_j k_ij R_j. fit() alternates
-// Gauss-Seidel sweeps over a colouring of the neighbour graph (cells of one colour are independent: each
-// update is the exact block minimizer, so f never increases) with Riemannian Newton steps R_i <- R_i
-// exp([omega_i]) kept only when f decreases, until the stationarity residual g_i = -vee(P_i - P_i^T),
-// P_i = R_i^T T_i, is at rounding. The tangent Hessian of f (per cell omega, 3 #cells unknowns) is
+// Its block minimizer in R_i alone is polar(T_i), T_i = S_i + 2 sum_j k_ij R_j. fit() takes Riemannian
+// Newton steps R_i <- R_i exp([omega_i]), halved until f decreases, and falls back to a Gauss-Seidel sweep
+// over a colouring of the neighbour graph (cells of one colour are independent: each update is the exact
+// block minimizer) when no step does, so f never increases; it stops when the stationarity residual
+// g_i = -vee(P_i - P_i^T), P_i = R_i^T T_i, is at rounding. (A cold start begins with one sweep.) The tangent Hessian of f (per cell omega, 3 #cells unknowns) is
 //   H_ii = tr(P_i) I - sym(P_i),   H_ij = 2 k_ij (Q_ij^T - tr(Q_ij) I),   Q_ij = R_i^T R_j,
 // which also gives the rotations' derivative along a change of positions, H omega = vee(R^T dS - dS^T R),
 // for the Hessian of the reduced energy (LocalGlobalProblem::hessian_product). Internal to the solver;
@@ -58,8 +58,6 @@ public:
   // Returns the CG iterations.
   int tangent_solve(const std::vector<Eigen::Vector3d>& a, std::vector<Eigen::Vector3d>& omega) const;
 
-  double alpha() const { return alpha_; }
-
 private:
   Eigen::Matrix3d coupled_target(const std::vector<Eigen::Matrix3d>& S, const std::vector<Eigen::Matrix3d>& R,
                                  int i) const;
@@ -73,7 +71,6 @@ private:
                           double tolerance, int max_iterations) const;
   void apply(const std::vector<Eigen::Vector3d>& x, std::vector<Eigen::Vector3d>& y) const;
 
-  double alpha_ = 0;
   int cells_ = 0;
   // Directed neighbour pairs as CSR by visit position: the neighbours of i are neighbour_[start_[i] ..
   // start_[i + 1]) with coupling k_[..] (k_ij = k_ji).
