@@ -68,6 +68,7 @@ class ARAP:
         gradient_tolerance: float = 0.0,
         time_budget_ms: float = 0.0,
         newton_trust_radius: float = 0.0,
+        rotation_smoothing: float = 0.0,
         soft_targets: npt.ArrayLike | None = None,
         forces: npt.ArrayLike | None = None,
     ) -> _FloatArray: ...
@@ -144,6 +145,7 @@ def parameterize(
     gradient_tolerance: float = 0.0,
     time_budget_ms: float = 0.0,
     newton_trust_radius: float = 0.0,
+    rotation_smoothing: float = 0.0,
 ) -> tuple[_FloatArray, dict[str, Any]]: ...
 def deform_file(
     mesh: _StrPath,
@@ -166,6 +168,7 @@ def deform_file(
     gradient_tolerance: float = 0.0,
     time_budget_ms: float = 0.0,
     newton_trust_radius: float = 0.0,
+    rotation_smoothing: float = 0.0,
 ) -> tuple[_FloatArray, _IndexArray, dict[str, Any]]: ...
 def register(
     V: npt.ArrayLike,
@@ -195,6 +198,7 @@ def register(
     gradient_tolerance: float = 0.0,
     time_budget_ms: float = 0.0,
     newton_trust_radius: float = 0.0,
+    rotation_smoothing: float = 0.0,
 ) -> tuple[_FloatArray, dict[str, Any]]: ...
 def set_thread_count(n: int) -> None: ...
 def thread_count() -> int: ...
@@ -222,6 +226,7 @@ class Simulation:
         gradient_tolerance: float = 0.0,
         time_budget_ms: float = 0.0,
         newton_trust_radius: float = 0.0,
+        rotation_smoothing: float = 0.0,
     ) -> None: ...
     def step(self, targets: npt.ArrayLike | None = None) -> dict[str, Any]: ...
     @property

@@ -30,6 +30,9 @@ void check_options(const ParamOptions& options) {
   detail::check_solve_options_and_state(options.solve);
   if (options.solve.forces.size() > 0)
     throw InputError("forces do not apply to a UV map: the parameterization has no external forces");
+  if (options.solve.rotation_smoothing > 0)
+    throw InputError("rotation_smoothing does not apply to a UV map: the parameterization's rotations are "
+                     "fitted per triangle, uncoupled; use rotation_smoothing 0");
   if (!(options.step_fraction > 0 && options.step_fraction < 1))
     throw InputError("step_fraction must lie in (0, 1); got " + std::to_string(options.step_fraction));
   if (options.barrier_weight && (!(*options.barrier_weight > 0) || !std::isfinite(*options.barrier_weight)))

@@ -291,7 +291,7 @@ ArapReport solve_checked(ArapData& data, const Eigen::MatrixXd& targets, const E
                          Clock::time_point start) {
   ArapReport report;
   {
-    detail::LocalGlobalProblem problem(data, targets, U, soft_targets, forces);
+    detail::LocalGlobalProblem problem(data, targets, U, soft_targets, forces, options.rotation_smoothing);
     report = detail::run_local_global(problem, options, data.solver.kind(), start);
   } // U holds the result in the file's order from here
   // The terms' energies at the result, in the file's order.

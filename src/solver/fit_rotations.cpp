@@ -26,6 +26,15 @@ inline void add_covariance(const detail::CellEntry& x, const double (&s)[3], Eig
   for (int j = 0; j < 3; ++j)
     for (int i = 0; i < 3; ++i) S(i, j) += x.w * (s[i] * x.s_hat[j]);
 }
+// The element's term of its cell's energy, (w / 2) |s - R s_hat|^2 (Eq. 1), from the residual itself.
+inline double element_energy(const detail::CellEntry& x, const double (&s)[3], const Eigen::Matrix3d& R) {
+  double r2 = 0.0;
+  for (int i = 0; i < 3; ++i) {
+    const double r = s[i] - (R(i, 0) * x.s_hat[0] + R(i, 1) * x.s_hat[1] + R(i, 2) * x.s_hat[2]);
+    r2 += r * r;
+  }
+  return 0.5 * x.w * r2;
+}
 } // namespace
 
 namespace detail {
@@ -118,18 +127,31 @@ double fit_rotations_in_visit_order(const ArapElements& el, const ArapElements::
           for (int d = 0; d < 3; ++d) s[d] = kept[l][k - begin][d];
         else
           element_vector(x, u, s);
-        double r2 = 0.0;
-        for (int i = 0; i < 3; ++i) {
-          const double r =
-              s[i] - (Rc[l](i, 0) * x.s_hat[0] + Rc[l](i, 1) * x.s_hat[1] + Rc[l](i, 2) * x.s_hat[2]);
-          r2 += r * r;
-        }
-        energy += 0.5 * x.w * r2;
+        energy += element_energy(x, s, Rc[l]);
       }
       R[c] = Rc[l];
       if (covariances) (*covariances)[c] = S[l];
       cell_energy(sl.visit_order[c]) = energy;
     }
+  }
+  return cell_energy.sum();
+}
+
+double cell_energies_in_visit_order(const ArapElements& el, const ArapElements::ValueRows& U_rows,
+                                    const std::vector<Eigen::Matrix3d>& R, Eigen::VectorXd& cell_energy) {
+  const StreamedLayout& sl = streamed(el);
+  cell_energy.resize(el.num_cells);
+  const double* u = U_rows.data();
+#pragma omp parallel for schedule(dynamic, 256)
+  for (int c = 0; c < el.num_cells; ++c) {
+    double energy = 0.0;
+    for (int k = sl.cell_entry_start[static_cast<size_t>(c)]; k < sl.cell_entry_start[static_cast<size_t>(c) + 1];
+         ++k) {
+      double s[3];
+      element_vector(sl.cell_entry[static_cast<size_t>(k)], u, s);
+      energy += element_energy(sl.cell_entry[static_cast<size_t>(k)], s, R[static_cast<size_t>(c)]);
+    }
+    cell_energy(sl.visit_order[static_cast<size_t>(c)]) = energy;
   }
   return cell_energy.sum();
 }

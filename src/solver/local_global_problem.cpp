@@ -14,7 +14,8 @@
 namespace iarap::detail {
 
 LocalGlobalProblem::LocalGlobalProblem(ArapData& data, const Eigen::MatrixXd& targets, Eigen::MatrixXd& U,
-                                       const Eigen::MatrixXd& soft_targets, const Eigen::MatrixXd& forces)
+                                       const Eigen::MatrixXd& soft_targets, const Eigen::MatrixXd& forces,
+                                       double rotation_smoothing)
     : data_(data), U_(U) {
   // Constrained positions in L_fc's column order: targets, then pinned vertices where the guess has them.
   Eigen::MatrixXd U_c(data.fixed.size() + data.pinned.size(), 3);
@@ -64,6 +65,12 @@ LocalGlobalProblem::LocalGlobalProblem(ArapData& data, const Eigen::MatrixXd& ta
     Lfc_Uc_ -= linear_f_;
   }
   if (data.soft.hard_faces.size() > 0) set_up_hard_points(soft_targets);
+  if (rotation_smoothing > 0) {
+    if (data.planar)
+      throw InputError("ARAP: rotation_smoothing is not supported on planar data (rotations about z only); "
+                       "solve the mesh in 3D or use rotation_smoothing 0");
+    smoothing_ = std::make_unique<RotationSmoothing>(el, position_, rotation_smoothing, rest_area(data.V, data.F));
+  }
   B_.resize(nf, 3);
   X_.resize(nf, 3);
   // The first fit starts cold (fit_rotations warm-starts from rotations it is given): a solve's result then
@@ -145,9 +152,16 @@ void LocalGlobalProblem::set_positions(const Eigen::MatrixXd& x) {
 }
 
 double LocalGlobalProblem::local_step() {
-  const double E = fit_rotations_in_visit_order(data_.elements, U_rows_, data_.R, cell_energy_,
-                                                keep_covariances_ ? &S_ : nullptr);
-  double total = E;
+  double total = 0.0;
+  if (smoothing_) { // the coupled fit: from the covariances, all rotations at once (rotation_smoothing.h)
+    cell_covariances(data_.elements, U_rows_, S_);
+    smoothing_->fit(S_, data_.R);
+    total = cell_energies_in_visit_order(data_.elements, U_rows_, data_.R, cell_energy_) +
+            smoothing_->energy(data_.R);
+  } else {
+    total = fit_rotations_in_visit_order(data_.elements, U_rows_, data_.R, cell_energy_,
+                                         keep_covariances_ ? &S_ : nullptr);
+  }
   for (const auto& term : terms_) total += term->energy(U_rows_);
   return total;
 }
@@ -235,6 +249,10 @@ void LocalGlobalProblem::solve_into(const Eigen::MatrixXd& b, Eigen::MatrixXd& x
 // negative curvature there, which the step's line search covers).
 void LocalGlobalProblem::prepare_hessian() {
   constexpr double kFloor = 1e-6;
+  if (smoothing_) { // the local step kept S; H couples the rotations (rotation_smoothing.h)
+    smoothing_->prepare_tangent(S_, data_.R);
+    return;
+  }
   if (!keep_covariances_)                          // else the last local step kept them
     cell_covariances(data_.elements, U_rows_, S_); // U_rows_ holds the last local step's positions
   const auto n = static_cast<int>(S_.size());
@@ -285,13 +303,20 @@ Eigen::MatrixXd LocalGlobalProblem::hessian_product(const Eigen::MatrixXd& v) {
   cell_covariances(data_.elements, v_rows_, dS_); // dS_c
   const auto n = static_cast<int>(dS_.size());
   dR_.resize(dS_.size());
+  if (smoothing_) { // omega = H^{-1} a over all cells at once
+    tangent_rhs_.resize(dS_.size());
+#pragma omp parallel for schedule(static)
+    for (int k = 0; k < n; ++k)
+      tangent_rhs_[static_cast<size_t>(k)] =
+          vee_of_skew_part(data_.R[static_cast<size_t>(k)].transpose() * dS_[static_cast<size_t>(k)]);
+    smoothing_->tangent_solve(tangent_rhs_, tangent_omega_);
+  }
 #pragma omp parallel for schedule(static)
   for (int k = 0; k < n; ++k) {
     const auto c = static_cast<size_t>(k);
     const Eigen::Matrix3d& R = data_.R[c];
-    const Eigen::Matrix3d A = R.transpose() * dS_[c];
-    const Eigen::Vector3d a(A(2, 1) - A(1, 2), A(0, 2) - A(2, 0), A(1, 0) - A(0, 1));
-    const Eigen::Vector3d w = M_inverse_[c] * a;
+    const Eigen::Vector3d w =
+        smoothing_ ? tangent_omega_[c] : Eigen::Vector3d(M_inverse_[c] * vee_of_skew_part(R.transpose() * dS_[c]));
     Eigen::Matrix3d W;
     W << 0, -w.z(), w.y(), w.z(), 0, -w.x(), -w.y(), w.x(), 0;
     dR_[c] = R * W;

@@ -16,6 +16,7 @@
 #include "inner.h"
 #include "problem.h"
 #include "quadratic_terms.h"
+#include "rotation_smoothing.h"
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
@@ -34,9 +35,12 @@ public:
   // stream); the destructor writes U and data.R back in the file's order. soft_targets: #soft x 3 targets
   // of data.soft's points (ArapSoftConstraints::size rows; data.Q must be of data.soft). forces: #V x 3
   // external forces f (0 x 0: none; ArapSolveOptions::forces). Both become quadratic terms.
+  // rotation_smoothing: ALPHA >= 0 of ArapSolveOptions::rotation_smoothing; above 0 the rotations are
+  // coupled (rotation_smoothing.h): the local step solves for all of them at once and its energy includes
+  // E_smooth. Throws InputError for planar data and for tetrahedral ARAP with ALPHA > 0.
   LocalGlobalProblem(ArapData& data, const Eigen::MatrixXd& targets, Eigen::MatrixXd& U,
                      const Eigen::MatrixXd& soft_targets = Eigen::MatrixXd(0, 3),
-                     const Eigen::MatrixXd& forces = Eigen::MatrixXd(0, 3));
+                     const Eigen::MatrixXd& forces = Eigen::MatrixXd(0, 3), double rotation_smoothing = 0.0);
   ~LocalGlobalProblem() override;
   LocalGlobalProblem(const LocalGlobalProblem&) = delete;
   LocalGlobalProblem& operator=(const LocalGlobalProblem&) = delete;
@@ -99,6 +103,8 @@ private:
   std::vector<int> position_; // #V: the visit position of each vertex (its row of U_rows_)
   std::vector<std::unique_ptr<QuadraticTerm>> terms_; // evaluated on U_rows_
   Eigen::MatrixXd linear_f_; // #free x 3: sum_t s_t at the free rows (visit order), when there are terms
+  std::unique_ptr<RotationSmoothing> smoothing_; // ALPHA > 0 only
+  std::vector<Eigen::Vector3d> tangent_rhs_, tangent_omega_; // the coupled dR's system (hessian_product)
   HardPointProjection hard_; // empty without hard points
   Eigen::MatrixXd hard_d_;   // #hard x 3: their targets less the constrained corners' share
 };

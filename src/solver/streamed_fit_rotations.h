@@ -19,6 +19,11 @@ double fit_rotations_in_visit_order(const ArapElements& elements, const ArapElem
                                     std::vector<Eigen::Matrix3d>& R, Eigen::VectorXd& cell_energy,
                                     std::vector<Eigen::Matrix3d>* covariances = nullptr);
 
+// The cells' energies (cell order, as fit_rotations_in_visit_order) for given rotations R (visit order)
+// instead of fitted ones: the local step of a coupled fit (rotation_smoothing.h). Returns their sum.
+double cell_energies_in_visit_order(const ArapElements& elements, const ArapElements::ValueRows& U_rows,
+                                    const std::vector<Eigen::Matrix3d>& R, Eigen::VectorXd& cell_energy);
+
 // U_rows (#V x 3, row-major) = U's rows in visit order: row p is U's row visit_order[p].
 void visit_rows(const ArapElements& elements, const Eigen::MatrixXd& U, ArapElements::ValueRows& U_rows);
 

@@ -175,6 +175,12 @@ struct ArapSolveOptions {
   // the superlinear end-game.
   double newton_trust_radius = 0;
   double newton_reference_gradient = 0;
+  // Rotation smoothing ALPHA >= 0 (issue 45, docs/smoothing.md): the energy gains
+  // (ALPHA A / 2) sum_i (1 / (2 d_i)) sum_{j in N(i)} |R_i - R_j|_F^2 (A the rest area, N(i) the cells
+  // sharing an element with i's, d_i their number), the symmetric form of CGAL's SRE_ARAP with its alpha
+  // (the / 2: our data term is half CGAL's). The local step then solves for all rotations at once; every
+  // accelerator sees the total. 0: none, the same bytes as without. Refused on planar and tetrahedral data.
+  double rotation_smoothing = 0;
   ArapIterationCallback on_iteration; // optional
 };
 

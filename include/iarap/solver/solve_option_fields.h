@@ -92,6 +92,16 @@ inline constexpr SolveOptionField newton_trust_radius{
     mesh_units,
     "Newton's initial trust radius, the L_ff norm of a step (0: the first plain step's length; a report's "
     "newton_trust_radius continues that solve)"};
+// A ratio: ALPHA multiplies the rest area, so it does not change with the mesh's scale.
+inline constexpr SolveOptionField rotation_smoothing{
+    "rotation_smoothing",
+    "--rotation-smoothing",
+    SolveOptionKind::Number,
+    0,
+    unbounded,
+    "",
+    "Rotation smoothing ALPHA (CGAL's SRE_ARAP alpha, symmetric form; docs/smoothing.md): neighbouring cells' "
+    "rotations are pulled together (0: off)"};
 } // namespace solve_option
 
 // Calls visit(field, value) for each user-facing option of `options`, in a fixed order; value is an int&,
@@ -106,6 +116,7 @@ void visit_solve_option_fields(Options& options, Visitor&& visit) {
   visit(solve_option::gradient_tolerance, options.gradient_tolerance);
   visit(solve_option::time_budget_ms, options.time_budget_ms);
   visit(solve_option::newton_trust_radius, options.newton_trust_radius);
+  visit(solve_option::rotation_smoothing, options.rotation_smoothing);
 }
 
 // The names a Choice field accepts, comma-separated ("newton, lbfgs, anderson, none").
