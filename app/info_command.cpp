@@ -60,6 +60,10 @@ void print_text(const nlohmann::json& j) {
               << "): " << need["why"].get<std::string>() << "\n";
   }
   std::cout << (j["usable"].get<bool>() ? "usable for ARAP: yes" : "usable for ARAP: no") << "\n";
+  if (!j["usable"].get<bool>() && j.value("deformable", false))
+    std::cout
+        << "deformable as it is: yes (not an oriented manifold: `iarap deform` runs iARAP on its tufted "
+           "cover and original ARAP and spokes-and-rims on its own edges and faces; docs/nonmanifold.md)\n";
 }
 
 // What `iarap deform` needs beyond the defaults (deform_needs, the library's verdict), as JSON.
@@ -80,6 +84,7 @@ void run_info(const InfoArguments& args) {
     j.update(mesh_report_json(report));
     j["notes"] = mesh.notes;
     j["deform_needs"] = deform_needs_json(report);
+    j["deformable"] = report.deformable(); // `deform` takes it without --repair (maybe not usable elsewhere)
     ok = j["usable"].get<bool>();
     if (ok && !args.no_intrinsic) {
       try {

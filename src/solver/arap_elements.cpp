@@ -127,15 +127,21 @@ ArapElements arap_edge_elements(const Eigen::MatrixXd& V, const EdgeTopology& to
   el.num_vertices = el.num_cells = n;
   const Eigen::Index m = topo.E.rows();
   resize_elements(el, m, 2);
+  // An edge of 3 or more faces (a fin) sums the cotangents of all of them: Eq. 1 read as a sum over the
+  // faces of the edge, which needs neither manifoldness nor orientation. EdgeTopology keeps two faces per
+  // edge, so those edges are summed from the faces' side.
+  std::vector<double> fin_weight;
+  if (m > 0 && topo.face_count.maxCoeff() > 2) {
+    fin_weight.assign(static_cast<size_t>(m), 0.0);
+    for (Eigen::Index f = 0; f < topo.FE.rows(); ++f)
+      for (int k = 0; k < 3; ++k) fin_weight[static_cast<size_t>(topo.FE(f, k))] += 0.5 * C(f, k);
+  }
   for (Eigen::Index e = 0; e < m; ++e) {
     const int i = topo.E(e, 0), j = topo.E(e, 1);
-    if (topo.face_count(e) > 2)
-      throw TopologyError("ARAP: edge " + std::to_string(e) + " (" + std::to_string(i) + ", " +
-                          std::to_string(j) + ") has " + std::to_string(topo.face_count(e)) +
-                          " faces; the mesh must be manifold");
     double w = 0.0; // Eq. 1: w_ij = (cot a + cot b) / 2, kept negative where the mesh is not Delaunay
     for (int s = 0; s < 2; ++s)
       if (topo.EF(e, s) >= 0) w += 0.5 * C(topo.EF(e, s), topo.EK(e, s));
+    if (topo.face_count(e) > 2) w = fin_weight[static_cast<size_t>(e)];
     set_edge_vector(el, e, i, j);
     el.w(e) = w;
     el.face[static_cast<size_t>(e)] = topo.EF(e, 0);
