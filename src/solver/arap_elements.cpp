@@ -279,31 +279,33 @@ ArapElements traced_iarap_elements(const Eigen::MatrixXd& V, const IntrinsicTria
     empty[static_cast<size_t>(s)] =
         segment.value[0] == 0.0 && segment.value[1] == 0.0 && segment.value[2] == 0.0;
   });
-  const auto empties = std::count(empty.begin(), empty.end(), 1);
-  if (empties > 0) {
-    int m = 0;
-    for (int s = 0; s < ns; ++s) {
-      if (empty[static_cast<size_t>(s)]) continue;
-      el.b_index.row(m) = el.b_index.row(s);
-      el.b_value.row(m) = el.b_value.row(s);
-      el.s_hat.row(m) = el.s_hat.row(s);
-      el.w(m) = el.w(s);
-      el.face[static_cast<size_t>(m)] = el.face[static_cast<size_t>(s)];
-      el.cell[static_cast<size_t>(2 * m)] = el.cell[static_cast<size_t>(2 * s)];
-      el.cell[static_cast<size_t>(2 * m + 1)] = el.cell[static_cast<size_t>(2 * s + 1)];
-      ++m;
-    }
-    el.b_index.conservativeResize(m, 3);
-    el.b_value.conservativeResize(m, 3);
-    el.s_hat.conservativeResize(m, 3);
-    el.w.conservativeResize(m);
-    el.face.resize(static_cast<size_t>(m));
-    el.cell_start.resize(static_cast<size_t>(m) + 1);
-    el.cell.resize(static_cast<size_t>(2 * m));
-  }
-  const int m = static_cast<int>(el.size());
-  el.cell_start[static_cast<size_t>(m)] = 2 * m;
+  if (std::count(empty.begin(), empty.end(), 1) > 0) drop_two_cell_elements(el, empty);
+  el.cell_start[static_cast<size_t>(el.size())] = static_cast<int>(2 * el.size());
   return el;
+}
+
+void drop_two_cell_elements(ArapElements& el, const std::vector<char>& drop) {
+  const Eigen::Index count = el.size();
+  int m = 0;
+  for (Eigen::Index s = 0; s < count; ++s) {
+    if (drop[static_cast<size_t>(s)]) continue;
+    el.b_index.row(m) = el.b_index.row(s);
+    el.b_value.row(m) = el.b_value.row(s);
+    el.s_hat.row(m) = el.s_hat.row(s);
+    el.w(m) = el.w(s);
+    el.face[static_cast<size_t>(m)] = el.face[static_cast<size_t>(s)];
+    el.cell[static_cast<size_t>(2 * m)] = el.cell[static_cast<size_t>(2 * s)];
+    el.cell[static_cast<size_t>(2 * m + 1)] = el.cell[static_cast<size_t>(2 * s + 1)];
+    ++m;
+  }
+  el.b_index.conservativeResize(m, 3);
+  el.b_value.conservativeResize(m, 3);
+  el.s_hat.conservativeResize(m, 3);
+  el.w.conservativeResize(m);
+  el.face.resize(static_cast<size_t>(m));
+  el.cell_start.resize(static_cast<size_t>(m) + 1);
+  el.cell.resize(static_cast<size_t>(2 * m));
+  el.cell_start[static_cast<size_t>(m)] = 2 * m;
 }
 
 } // namespace detail

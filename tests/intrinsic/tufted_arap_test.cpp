@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <iostream>
 #include <random>
 #include <string>
 #include <vector>
@@ -93,9 +94,15 @@ TEST(TuftedArap, CoverReproducesTheNormalPathOnAClosedManifold) {
   EXPECT_GT(normal.intrinsic.flips, 0);
   EXPECT_LE((Eigen::MatrixXd(cover.L) - Eigen::MatrixXd(normal.L)).norm(),
             1e-12 * Eigen::MatrixXd(normal.L).norm());
-  // Each element appears once per copy, with half its weight.
-  EXPECT_NEAR(cover.min_weight, 0.5 * normal.min_weight, 1e-12);
-  EXPECT_EQ(cover.elements.size(), 2 * normal.elements.size());
+  // Each element appears once per copy with half its weight, and the two halves are merged where they are
+  // exactly equal (every unflipped edge: b = e_j - e_i); segments of flipped edges may differ in roundoff
+  // between the copies and stay halves.
+  EXPECT_GE(cover.min_weight, 0.5 * normal.min_weight - 1e-12);
+  EXPECT_LE(cover.min_weight, normal.min_weight + 1e-12);
+  EXPECT_GE(cover.elements.size(), normal.elements.size());
+  EXPECT_LT(cover.elements.size(), 2 * normal.elements.size());
+  std::cout << "elements: " << normal.elements.size() << " (normal path), " << cover.elements.size()
+            << " (cover, merged)\n";
   std::mt19937 random(3);
   std::uniform_real_distribution<double> move(-0.1, 0.1);
   Eigen::MatrixXd U = m.V;
