@@ -206,9 +206,11 @@ void run_deform(const DeformArguments& args) {
   if (!args.quiet) {
     for (const auto& warning : scene.check.warnings)
       std::cerr << "deform: mesh warning: " << name_repair(warning, deform_repair_flag) << "\n";
-    for (const auto& error : scene.check.errors) // deformable: each only says "not an oriented manifold"
+    // Deformable: each error only says "not an oriented manifold".
+    const std::string how = args.method == "iarap" ? "iARAP on the tufted cover" : "on the input's own edges";
+    for (const auto& error : scene.check.errors)
       std::cerr << "deform: mesh warning: " << name_repair(error, deform_repair_flag)
-                << " (deformed as it is: iARAP on the tufted cover, docs/nonmanifold.md)\n";
+                << " (deformed as it is: " << how << ", docs/nonmanifold.md)\n";
   }
 
   set_thread_count(args.threads == 0 ? automatic_thread_count(static_cast<int>(mesh.V.rows()))
