@@ -120,8 +120,9 @@ void write_tet_result(const DeformArguments& args, const DeformScene& scene, con
     std::cerr << "deform: " << scene.tets.rows() << " tetrahedra, volume after / before " << ratio << "\n";
 }
 
+// Refuses a mesh ARAP cannot deform; one that is only not an oriented manifold is deformed as it is.
 void require_usable(const DeformArguments& args, const MeshReport& check) {
-  if (check.usable()) return;
+  if (check.deformable()) return;
   std::string message = args.mesh + (args.repair ? ": mesh not usable for ARAP after --repair:"
                                                  : ": mesh not usable for ARAP:");
   for (const auto& error : check.errors) message += "\n  " + name_repair(error, deform_repair_flag);
@@ -157,7 +158,9 @@ nlohmann::json intrinsic_json(const ArapIntrinsicSummary& intrinsic, const std::
           {"boundary", boundary},
           {"obtuse_boundary_before", intrinsic.obtuse_boundary_before},
           {"obtuse_boundary_after", intrinsic.obtuse_boundary_after},
-          {"inserted_points", intrinsic.inserted_points}};
+          {"inserted_points", intrinsic.inserted_points},
+          {"tufted_cover", intrinsic.tufted_cover},
+          {"cover_vertices", intrinsic.cover_vertices}};
 }
 
 // The job's solve with the library's errors told in the tool's words (explain_solver_error).
@@ -205,6 +208,11 @@ void run_deform(const DeformArguments& args) {
   if (!args.quiet) {
     for (const auto& warning : scene.check.warnings)
       std::cerr << "deform: mesh warning: " << name_repair(warning, deform_repair_flag) << "\n";
+    // Deformable: each error only says "not an oriented manifold".
+    const std::string how = args.method == "iarap" ? "iARAP on the tufted cover" : "on the input's own edges";
+    for (const auto& error : scene.check.errors)
+      std::cerr << "deform: mesh warning: " << name_repair(error, deform_repair_flag)
+                << " (deformed as it is: " << how << ", docs/nonmanifold.md)\n";
   }
 
   set_thread_count(args.threads == 0 ? automatic_thread_count(static_cast<int>(mesh.V.rows()))
@@ -230,6 +238,7 @@ void run_deform(const DeformArguments& args) {
   j["faces"] = mesh.F.rows();
   j["constrained"] = constraints.fixed.size();
   j["pinned"] = arap.pinned.size();
+  j["min_weight"] = arap.min_weight;
   j["threads"] = thread_count();
   j["options"] = solve_options_json(args.solve);
   add_arap_report_json(report, j);

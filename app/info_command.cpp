@@ -59,7 +59,14 @@ void print_text(const nlohmann::json& j) {
     std::cout << "deform needs " << need["flag"].get<std::string>() << " (" << methods
               << "): " << need["why"].get<std::string>() << "\n";
   }
-  std::cout << (j["usable"].get<bool>() ? "usable for ARAP: yes" : "usable for ARAP: no") << "\n";
+  if (j["usable"].get<bool>())
+    std::cout << "usable for ARAP: yes\n";
+  else if (j.value("deformable", false))
+    std::cout << "usable for ARAP: yes, as it is (not an oriented manifold: `iarap deform` runs iARAP on its "
+                 "tufted cover, original ARAP and spokes-and-rims on its own edges and faces; "
+                 "docs/nonmanifold.md)\n";
+  else
+    std::cout << "usable for ARAP: no\n";
 }
 
 // What `iarap deform` needs beyond the defaults (deform_needs, the library's verdict), as JSON.
@@ -80,8 +87,12 @@ void run_info(const InfoArguments& args) {
     j.update(mesh_report_json(report));
     j["notes"] = mesh.notes;
     j["deform_needs"] = deform_needs_json(report);
-    ok = j["usable"].get<bool>();
-    if (ok && !args.no_intrinsic) {
+    // `deform` takes it without --repair: exit 0, though check_mesh's `usable` (a manifold, for the tools
+    // that need one) stays false.
+    j["deformable"] = report.deformable();
+    ok = report.deformable();
+    // The summary is of the input's own intrinsic triangulation, which needs an oriented manifold.
+    if (report.usable() && !args.no_intrinsic) {
       try {
         const auto start = Clock::now();
         IntrinsicOptions options;
@@ -116,9 +127,10 @@ void run_info(const InfoArguments& args) {
 const bool registered = register_command(
     {"info", [](CLI::App& app) {
        auto args = std::make_shared<InfoArguments>();
-       auto* sub =
-           app.add_subcommand("info", "Check a mesh (topology, degeneracies, Delaunay-ness) for ARAP; "
-                                      "exit 0 when usable, 1 when not or unreadable");
+       auto* sub = app.add_subcommand(
+           "info", "Check a mesh (topology, degeneracies, Delaunay-ness) for ARAP; "
+                   "exit 0 when usable (or deformable as it is: not an oriented manifold), 1 when not or "
+                   "unreadable");
        sub->add_option("MESH", args->mesh, "Mesh file (.obj .off .ply .stl)")->required();
        sub->add_flag("--json", args->json, "Print one JSON object instead of text");
        sub->add_flag("--no-intrinsic", args->no_intrinsic, "Skip the intrinsic Delaunay triangulation");

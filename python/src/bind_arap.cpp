@@ -226,6 +226,8 @@ py::dict intrinsic_py(const ArapSolver& solver) {
   d["mollify_delta"] = s.mollify_delta;
   d["intrinsic_edges"] = s.intrinsic_edges;
   d["segments"] = s.segments;
+  d["tufted_cover"] = s.tufted_cover;
+  d["cover_vertices"] = s.cover_vertices;
   return d;
 }
 
@@ -338,10 +340,16 @@ intrinsic_ms + assembly_ms when threads > 1). Times in milliseconds.)")
           },
           "(#pinned,) vertices pinned by pin_unconstrained_components (empty otherwise).")
       .def_property_readonly(
+          "min_weight",
+          [](const ArapSolver& s) { return without_gil(s, [](const ArapData& d) { return d.min_weight; }); },
+          "The smallest element weight w_e (original ARAP and spokes-and-rims: a cotangent, negative on "
+          "non-Delaunay edges; iARAP: >= 0 up to roundoff).")
+      .def_property_readonly(
           "intrinsic", &intrinsic_py,
           "Summary of the intrinsic Delaunay triangulation (iarap only; zeros otherwise): "
           "flips, non_delaunay_before, non_delaunay_after, mollify_delta, intrinsic_edges, "
-          "segments.");
+          "segments, tufted_cover (built on the tufted cover: the mesh is not an oriented manifold), "
+          "cover_vertices.");
 }
 
 // Evaluations at given positions: energy, cell_energy, gradient, the system matrix.

@@ -50,8 +50,13 @@ py::dict result_dict(const DeformScene& scene, const DeformResult& result) {
   d["constrained"] = scene.constraints.fixed.size();
   d["soft"] = scene.constraints.soft.size();
   d["pinned"] = result.data.pinned.size();
+  d["min_weight"] = result.data.min_weight;
+  d["tufted_cover"] = result.data.intrinsic.tufted_cover;
   d["repair"] = scene.repairs;
-  d["warnings"] = scene.check.warnings;
+  // A deformable mesh's errors only say that it is not an oriented manifold (deformed as it is).
+  std::vector<std::string> warnings = scene.check.warnings;
+  warnings.insert(warnings.end(), scene.check.errors.begin(), scene.check.errors.end());
+  d["warnings"] = warnings;
   // The total minimized, as `iarap deform` reports it: E_ARAP + penalty + potential (0 without forces).
   d["energy"] = result.report.arap_energy + result.report.penalty + result.report.potential;
   d["precompute_ms"] = result.precompute_ms;
@@ -90,7 +95,7 @@ py::tuple deform_file_py(const BoundArguments& arguments) {
   {
     py::gil_scoped_release release;
     scene = read_deform_scene(files, prepare);
-    if (!scene.check.usable()) {
+    if (!scene.check.deformable()) { // not an oriented manifold only: deformed as it is
       std::string message =
           mesh_path + ": mesh not usable for ARAP" + (prepare.repair ? " after repair:" : ":");
       for (const std::string& error : scene.check.errors) message += "\n  " + error;
@@ -124,7 +129,9 @@ over; keep_numbering (with repair): U and F in the file's numbering, each vertex
 every body held. stiffness: a stiffness file ('index s' lines, `iarap deform --stiffness`). The solve options:
 )" + solve_option_docs() +
           R"(The report: ARAP.report's fields (in the file's units) with planar, vertices, faces, constrained, soft,
-pinned, repair (what the repair did), warnings, energy (E_ARAP + penalty + potential), precompute_ms, max_displacement, bbox_diagonal.
+pinned, min_weight (the smallest element weight), tufted_cover (iARAP ran on the tufted cover: the mesh is not
+an oriented manifold), repair (what the repair did), warnings (with the errors of a mesh that is only not an
+oriented manifold), energy (E_ARAP + penalty + potential), precompute_ms, max_displacement, bbox_diagonal.
 Raises InputError, TopologyError (a mesh not usable: the checks' messages) and SolverError as the tool's
 exit code 1 does.)"));
 }

@@ -74,12 +74,10 @@ IntrinsicTriangulation export_triangulation(const detail::SignpostTriangulation&
 
 namespace detail {
 
-FlippedTriangulation flip_phase(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
-                                const IntrinsicOptions& options, SignpostInput* input) {
-  const auto t0 = Clock::now();
-  FlippedTriangulation out;
-  out.tri = build_signpost_triangulation(V, F, options.mollify, options.mollify_epsilon, out.fans,
-                                         options.refine_boundary, input);
+namespace {
+
+// Flips a built triangulation to Delaunay and, if asked, refines its obtuse boundary edges.
+void flip_built(FlippedTriangulation& out, const IntrinsicOptions& options) {
   // The tracer and the boundary refinement read the unflipped connectivity, lengths and angles only.
   out.input = input_triangulation(out.tri);
   out.stats = flip_to_delaunay(out.tri, options.delaunay_tolerance);
@@ -95,6 +93,27 @@ FlippedTriangulation flip_phase(const Eigen::MatrixXd& V, const Eigen::MatrixXi&
   }
   out.non_delaunay_after = out.refine.inserted > 0 ? count_non_delaunay(out.tri, options.delaunay_tolerance)
                                                    : out.stats.non_delaunay_after;
+}
+
+} // namespace
+
+FlippedTriangulation flip_phase(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
+                                const IntrinsicOptions& options, SignpostInput* input) {
+  const auto t0 = Clock::now();
+  FlippedTriangulation out;
+  out.tri = build_signpost_triangulation(V, F, options.mollify, options.mollify_epsilon, out.fans,
+                                         options.refine_boundary, input);
+  flip_built(out, options);
+  out.flip_ms = ms_since(t0);
+  return out;
+}
+
+FlippedTriangulation flip_cover_phase(const TuftedCover& cover, const IntrinsicOptions& options) {
+  const auto t0 = Clock::now();
+  FlippedTriangulation out;
+  out.tri = build_glued_signpost_triangulation(cover.V, cover.F, cover.twin, options.mollify,
+                                               options.mollify_epsilon, out.fans);
+  flip_built(out, options); // the cover has no boundary: nothing to refine
   out.flip_ms = ms_since(t0);
   return out;
 }

@@ -5,6 +5,7 @@
 #include "iarap/intrinsic/intrinsic_delaunay.h"
 #include "signpost_triangulation.h"
 #include "trace_edges.h"
+#include "tufted_cover.h"
 
 namespace iarap::detail {
 
@@ -24,6 +25,9 @@ struct FlippedTriangulation {
 // `input`, when given, is signpost_input(V, F, options.refine_boundary), which the build takes over.
 FlippedTriangulation flip_phase(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
                                 const IntrinsicOptions& options, SignpostInput* input = nullptr);
+
+// Phase 1 on the tufted cover (tufted_cover.h): its vertices are the cover's, its "input" faces the cover's.
+FlippedTriangulation flip_cover_phase(const TuftedCover& cover, const IntrinsicOptions& options);
 
 // The exported intrinsic triangulation with its traced edges.
 struct TracedTriangulation {

@@ -416,6 +416,59 @@ SignpostTriangulation build_signpost_triangulation(const Eigen::MatrixXd& V, con
   return tri;
 }
 
+namespace {
+
+// Halfedges, edges and lengths from given twins; returns the sum of the lengths. Edge e runs from its
+// smaller end E(e, 0) to E(e, 1) along edge_halfedge[e].
+double set_glued_edges(SignpostTriangulation& tri, const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
+                       const std::vector<int>& twin) {
+  const int nh = static_cast<int>(3 * F.rows());
+  if (static_cast<int>(twin.size()) != nh)
+    throw TopologyError("glued triangulation: " + std::to_string(twin.size()) + " twins for " +
+                        std::to_string(nh) + " halfedges");
+  tri.corner_vertex.resize(static_cast<size_t>(nh));
+  for (int h = 0; h < nh; ++h) tri.corner_vertex[static_cast<size_t>(h)] = F(h / 3, h % 3);
+  tri.twin = twin;
+  tri.edge.assign(static_cast<size_t>(nh), -1);
+  double length_sum = 0.0;
+  for (int h = 0; h < nh; ++h) {
+    const int t = twin[static_cast<size_t>(h)];
+    if (t >= nh || (t >= 0 && (twin[static_cast<size_t>(t)] != h || tri.tail(t) != tri.head(h) ||
+                               tri.head(t) != tri.tail(h))))
+      throw TopologyError("glued triangulation: halfedge " + std::to_string(h) + " " +
+                          edge_name(tri.tail(h), tri.head(h)) + " is not glued to a halfedge running back");
+    if (t >= 0 && t < h) continue; // numbered from its lower halfedge
+    const int e = static_cast<int>(tri.length.size());
+    tri.edge[static_cast<size_t>(h)] = e;
+    if (t >= 0) tri.edge[static_cast<size_t>(t)] = e;
+    const int along = t >= 0 && tri.tail(t) < tri.tail(h) ? t : h;
+    tri.edge_halfedge.push_back(along);
+    tri.edge_vertex.push_back(tri.tail(along));
+    tri.edge_vertex.push_back(tri.head(along));
+    tri.original_edge.push_back(e);
+    tri.length.push_back(input_distance(V, tri.tail(h), tri.head(h)));
+    length_sum += tri.length.back();
+  }
+  return length_sum;
+}
+
+} // namespace
+
+SignpostTriangulation build_glued_signpost_triangulation(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
+                                                         const std::vector<int>& twin, bool mollify,
+                                                         double mollify_epsilon, VertexFans& fans) {
+  check_signpost_input(V, F);
+  SignpostTriangulation tri;
+  tri.num_vertices = tri.num_input_vertices = static_cast<int>(V.rows());
+  const double length_sum = set_glued_edges(tri, V, F, twin);
+  tri.mollify_delta =
+      mollify_lengths(tri, mollify, mollify_epsilon * length_sum / std::max(tri.num_edges(), 1));
+  bucket_halfedges_by_tail(tri, fans);
+  set_corner_geometry(tri, nullptr);
+  sweep_vertex_fans(tri, fans);
+  return tri;
+}
+
 InputTriangulation input_triangulation(const SignpostTriangulation& unflipped) {
   InputTriangulation input;
   const int nh = 3 * unflipped.num_faces();

@@ -109,6 +109,15 @@ SignpostTriangulation build_signpost_triangulation(const Eigen::MatrixXd& V, con
                                                    bool room_for_boundary_splits = false,
                                                    SignpostInput* input = nullptr);
 
+// The same for a surface whose edges are given by their halfedges rather than by vertex pairs (the tufted
+// cover, where two edges may join the same two vertices): twin (3F) pairs each halfedge with the halfedge
+// running the other way along the same edge (-1: boundary). Edges are numbered by their lowest halfedge.
+// Throws TopologyError when twin is not an involution between opposite halfedges, or where a closed fan
+// meets another at a vertex.
+SignpostTriangulation build_glued_signpost_triangulation(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
+                                                         const std::vector<int>& twin, bool mollify,
+                                                         double mollify_epsilon, VertexFans& fans);
+
 // The unflipped input as the tracer and the boundary refinement read it. The tracer's walk jumps between
 // faces at random, so each halfedge is one record (a face's three records share one or two cache lines)
 // rather than four arrays: tail, twin, length and corner angle each cost a cache miss otherwise.

@@ -3,4 +3,5 @@ list(APPEND IARAP_SOURCES
   intrinsic/signpost_triangulation.cpp
   intrinsic/trace_edges.cpp
   intrinsic/segments.cpp
+  intrinsic/tufted_cover.cpp
   intrinsic/intrinsic_delaunay.cpp)

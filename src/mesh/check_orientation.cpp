@@ -16,17 +16,20 @@ void check_orientation(const CheckedFaces& faces, const EdgeTopology& t, MeshRep
   r.non_orientable_components = orientation.non_orientable;
   const int first_face = orientation.first_conflict;
   if (r.inconsistently_oriented_edges == 0) return;
+  ++r.oriented_manifold_errors; // one of the two messages below
   const auto face = [&](int g) { return std::to_string(faces.face[static_cast<std::size_t>(g)]); };
   const std::string where = "; first: " + edge_name(t, first_edge) + " between faces " +
                             face(t.EF(first_edge, 0)) + " and " + face(t.EF(first_edge, 1));
   const std::string edges = plural(r.inconsistently_oriented_edges, "edge joins", "edges join");
   if (r.non_orientable_components > 0)
-    r.errors.push_back("the surface is non-orientable (" +
-                       plural(r.non_orientable_components, "component has", "components have") +
-                       " no consistent orientation, like a Moebius strip or a Klein bottle; first: the "
-                       "component of face " +
-                       face(first_face) + "): no choice of face orientations fixes it, and ARAP needs one; " +
-                       edges + " faces oriented in the same direction" + where);
+    r.errors.push_back(
+        "the surface is non-orientable (" +
+        plural(r.non_orientable_components, "component has", "components have") +
+        " no consistent orientation, like a Moebius strip or a Klein bottle; first: the "
+        "component of face " +
+        face(first_face) +
+        "): no choice of face orientations fixes it (ARAP deforms it as it is, on its tufted cover); " +
+        edges + " faces oriented in the same direction" + where);
   else
     r.errors.push_back(edges + " inconsistently oriented faces" + where + "; the surface is orientable" +
                        repair_hint("reverses the faces that disagree with most of their piece", "orient"));

@@ -2,6 +2,9 @@
 
 #include "mesh_checks.h"
 
+#include <algorithm>
+#include <utility>
+
 namespace iarap::mesh_checks {
 
 Eigen::VectorXi corner_fans(const Eigen::MatrixXi& G, const EdgeTopology& t, const std::vector<int>& sheet,
@@ -35,6 +38,45 @@ Eigen::VectorXi corner_fans(const Eigen::MatrixXi& G, const EdgeTopology& t) {
   for (Eigen::Index g = 0; g < G.rows(); ++g)
     for (int k = 0; k < 3; ++k) sheet[static_cast<std::size_t>(3 * g + k)] = t.FE(g, k);
   return corner_fans(G, t, sheet, static_cast<int>(t.E.rows()));
+}
+
+PinchedVertices pinched_vertices(const Eigen::MatrixXi& G, const EdgeTopology& t, int num_vertices) {
+  const int ng = static_cast<int>(G.rows()), nv = num_vertices;
+  const Eigen::VectorXi fan = corner_fans(G, t);
+  std::vector<int> fan_of(static_cast<std::size_t>(nv), -1);
+  std::vector<char> pinched(static_cast<std::size_t>(nv), 0);
+  for (int c = 0; c < 3 * ng; ++c) {
+    const int v = G(c / 3, c % 3);
+    int& seen = fan_of[static_cast<std::size_t>(v)];
+    if (seen < 0)
+      seen = fan(c);
+    else if (seen != fan(c))
+      pinched[static_cast<std::size_t>(v)] = 1;
+  }
+  PinchedVertices out;
+  if (std::find(pinched.begin(), pinched.end(), 1) == pinched.end()) return out;
+  std::vector<std::pair<int, int>> vertex_fans;
+  for (int c = 0; c < 3 * ng; ++c) {
+    const int v = G(c / 3, c % 3);
+    if (pinched[static_cast<std::size_t>(v)]) vertex_fans.emplace_back(v, fan(c));
+  }
+  std::sort(vertex_fans.begin(), vertex_fans.end());
+  vertex_fans.erase(std::unique(vertex_fans.begin(), vertex_fans.end()), vertex_fans.end());
+  std::vector<int> fan_count(static_cast<std::size_t>(nv), 0), boundary_at(static_cast<std::size_t>(nv), 0);
+  for (const auto& vf : vertex_fans) ++fan_count[static_cast<std::size_t>(vf.first)];
+  for (int e = 0; e < static_cast<int>(t.E.rows()); ++e)
+    if (t.face_count(e) == 1) {
+      ++boundary_at[static_cast<std::size_t>(t.E(e, 0))];
+      ++boundary_at[static_cast<std::size_t>(t.E(e, 1))];
+    }
+  for (int v = 0; v < nv; ++v) {
+    if (!pinched[static_cast<std::size_t>(v)]) continue;
+    // Each open fan ends on two boundary edges at v.
+    const bool all_open =
+        boundary_at[static_cast<std::size_t>(v)] == 2 * fan_count[static_cast<std::size_t>(v)];
+    (all_open ? out.open : out.closed).push_back(v);
+  }
+  return out;
 }
 
 } // namespace iarap::mesh_checks

@@ -20,4 +20,12 @@ Eigen::VectorXi corner_fans(const Eigen::MatrixXi& G, const EdgeTopology& t, con
 // Every face of an edge meets every other: sheet = the edge.
 Eigen::VectorXi corner_fans(const Eigen::MatrixXi& G, const EdgeTopology& t);
 
+// The vertices of G (#G x 3 over num_vertices) where more than one fan of corner_fans(G, t) meets,
+// increasing: `open` where every fan there is open (ends on two boundary edges; sheets touching at a point),
+// `closed` where a closed fan touches another.
+struct PinchedVertices {
+  std::vector<int> open, closed;
+};
+PinchedVertices pinched_vertices(const Eigen::MatrixXi& G, const EdgeTopology& t, int num_vertices);
+
 } // namespace iarap::mesh_checks

@@ -10,7 +10,7 @@ namespace iarap {
 // repair, but it is not a need.
 std::vector<DeformNeed> deform_needs(const MeshReport& report) {
   std::vector<DeformNeed> needs;
-  if (!report.usable()) return needs;
+  if (!report.deformable()) return needs;
   if (report.zero_area_faces > 0)
     needs.push_back({"--repair",
                      std::to_string(report.zero_area_faces) +

@@ -13,6 +13,7 @@
 #include "../intrinsic/intrinsic_phases.h"
 #include "cell_stiffness.h"
 #include "constraint_layout.h"
+#include "cover_elements.h"
 #include "local_global_loops.h"
 #include "local_global_problem.h"
 #include "quadratic_terms.h"
@@ -148,6 +149,42 @@ void take_traced_elements(const Eigen::MatrixXd& V, std::optional<detail::Traced
   traced.reset();
 }
 
+// iARAP on input that is not an oriented manifold (or with IntrinsicOptions::tufted_cover): the intrinsic
+// Delaunay triangulation of the tufted cover (src/intrinsic/tufted_cover.h), its traced edges and the
+// elements on them, folded back to the input's vertices (fold_cover_elements); the pattern of L and its
+// analysis run beside. L is assembled from the elements afterwards (system.factorized stays false).
+void build_tufted_elements(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const EdgeTopology& topology,
+                           const IntrinsicOptions& intrinsic, const detail::ConstraintLayout& layout,
+                           ArapData& data, SystemBuild& system) {
+  double intrinsic_ms = 0.0, elements_ms = 0.0;
+  const auto start = Clock::now();
+  const int n = static_cast<int>(V.rows());
+  detail::run_beside(
+      [&] {
+        system.pattern = system_pattern(F, n, topology);
+        analyze(layout, system);
+      },
+      [&] {
+        std::optional<detail::TracedTriangulation> traced;
+        const detail::TuftedCover cover = timed(intrinsic_ms, [&] {
+          detail::TuftedCover c = detail::tufted_cover(V, F, topology);
+          traced = detail::trace_phase(detail::flip_cover_phase(c, intrinsic), false);
+          return c;
+        });
+        timed(elements_ms, [&] {
+          take_traced_elements(cover.V, traced, data);
+          detail::fold_cover_elements(data.elements, cover.vertex, n);
+          detail::finish_elements(V, data.elements, true);
+        });
+        data.intrinsic.tufted_cover = true;
+        data.intrinsic.cover_vertices = cover.vertex.size();
+      },
+      detail::Beside::SecondTeamThread);
+  data.timings.intrinsic_ms = intrinsic_ms;
+  data.timings.assembly_ms = elements_ms;
+  data.timings.factor_ms = std::max(0.0, ms_since(start) - intrinsic_ms - elements_ms);
+}
+
 // iARAP: the intrinsic Delaunay triangulation, its traced edges and the elements on them (Eq. 9, 11).
 // Its L = 2 B^T D_w B is twice the cotan Laplacian of the input (cotan_system_matrix), so its assembly,
 // analysis and numeric factorization need nothing of the intrinsic triangulation: they run on the caller's
@@ -165,6 +202,11 @@ void build_intrinsic_elements(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F
   const auto start = Clock::now();
   detail::SignpostInput input =
       timed(intrinsic_ms, [&] { return detail::signpost_input(V, F, intrinsic.refine_boundary); });
+  // Input that is not an oriented manifold takes the tufted cover (docs/nonmanifold.md).
+  if (intrinsic.tufted_cover || !timed(intrinsic_ms, [&] {
+        return detail::is_oriented_manifold(F, *input.topology, static_cast<int>(V.rows()));
+      }))
+    return build_tufted_elements(V, F, *input.topology, intrinsic, layout, data, system);
   std::shared_ptr<const EdgeTopology> topology = input.topology;
   std::shared_ptr<const Eigen::MatrixXd> C = input.C;
   detail::run_beside(
@@ -241,6 +283,7 @@ ArapData arap_precompute(const Eigen::MatrixXd& V_in, const Eigen::MatrixXi& F, 
     detail::apply_cell_stiffness(data.elements, detail::cell_stiffness_of(data.elements, options.stiffness));
   if (!system.factorized) factorize_element_system(F, layout, data, system);
   data.elements.planar = data.planar;
+  data.min_weight = data.elements.size() > 0 ? data.elements.w.minCoeff() : 0.0;
   data.timings.analyze_ms = system.analyze_ms;
   data.R.assign(static_cast<size_t>(data.elements.num_cells), Eigen::Matrix3d::Identity());
   detail::commit_layout(data, fixed, layout, system.solver, system.L_fc);

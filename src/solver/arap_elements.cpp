@@ -127,15 +127,21 @@ ArapElements arap_edge_elements(const Eigen::MatrixXd& V, const EdgeTopology& to
   el.num_vertices = el.num_cells = n;
   const Eigen::Index m = topo.E.rows();
   resize_elements(el, m, 2);
+  // An edge of 3 or more faces (a fin) sums the cotangents of all of them: Eq. 1 read as a sum over the
+  // faces of the edge, which needs neither manifoldness nor orientation. EdgeTopology keeps two faces per
+  // edge, so those edges are summed from the faces' side.
+  std::vector<double> fin_weight;
+  if (m > 0 && topo.face_count.maxCoeff() > 2) {
+    fin_weight.assign(static_cast<size_t>(m), 0.0);
+    for (Eigen::Index f = 0; f < topo.FE.rows(); ++f)
+      for (int k = 0; k < 3; ++k) fin_weight[static_cast<size_t>(topo.FE(f, k))] += 0.5 * C(f, k);
+  }
   for (Eigen::Index e = 0; e < m; ++e) {
     const int i = topo.E(e, 0), j = topo.E(e, 1);
-    if (topo.face_count(e) > 2)
-      throw TopologyError("ARAP: edge " + std::to_string(e) + " (" + std::to_string(i) + ", " +
-                          std::to_string(j) + ") has " + std::to_string(topo.face_count(e)) +
-                          " faces; the mesh must be manifold");
     double w = 0.0; // Eq. 1: w_ij = (cot a + cot b) / 2, kept negative where the mesh is not Delaunay
     for (int s = 0; s < 2; ++s)
       if (topo.EF(e, s) >= 0) w += 0.5 * C(topo.EF(e, s), topo.EK(e, s));
+    if (topo.face_count(e) > 2) w = fin_weight[static_cast<size_t>(e)];
     set_edge_vector(el, e, i, j);
     el.w(e) = w;
     el.face[static_cast<size_t>(e)] = topo.EF(e, 0);
@@ -273,31 +279,33 @@ ArapElements traced_iarap_elements(const Eigen::MatrixXd& V, const IntrinsicTria
     empty[static_cast<size_t>(s)] =
         segment.value[0] == 0.0 && segment.value[1] == 0.0 && segment.value[2] == 0.0;
   });
-  const auto empties = std::count(empty.begin(), empty.end(), 1);
-  if (empties > 0) {
-    int m = 0;
-    for (int s = 0; s < ns; ++s) {
-      if (empty[static_cast<size_t>(s)]) continue;
-      el.b_index.row(m) = el.b_index.row(s);
-      el.b_value.row(m) = el.b_value.row(s);
-      el.s_hat.row(m) = el.s_hat.row(s);
-      el.w(m) = el.w(s);
-      el.face[static_cast<size_t>(m)] = el.face[static_cast<size_t>(s)];
-      el.cell[static_cast<size_t>(2 * m)] = el.cell[static_cast<size_t>(2 * s)];
-      el.cell[static_cast<size_t>(2 * m + 1)] = el.cell[static_cast<size_t>(2 * s + 1)];
-      ++m;
-    }
-    el.b_index.conservativeResize(m, 3);
-    el.b_value.conservativeResize(m, 3);
-    el.s_hat.conservativeResize(m, 3);
-    el.w.conservativeResize(m);
-    el.face.resize(static_cast<size_t>(m));
-    el.cell_start.resize(static_cast<size_t>(m) + 1);
-    el.cell.resize(static_cast<size_t>(2 * m));
-  }
-  const int m = static_cast<int>(el.size());
-  el.cell_start[static_cast<size_t>(m)] = 2 * m;
+  if (std::count(empty.begin(), empty.end(), 1) > 0) drop_two_cell_elements(el, empty);
+  el.cell_start[static_cast<size_t>(el.size())] = static_cast<int>(2 * el.size());
   return el;
+}
+
+void drop_two_cell_elements(ArapElements& el, const std::vector<char>& drop) {
+  const Eigen::Index count = el.size();
+  int m = 0;
+  for (Eigen::Index s = 0; s < count; ++s) {
+    if (drop[static_cast<size_t>(s)]) continue;
+    el.b_index.row(m) = el.b_index.row(s);
+    el.b_value.row(m) = el.b_value.row(s);
+    el.s_hat.row(m) = el.s_hat.row(s);
+    el.w(m) = el.w(s);
+    el.face[static_cast<size_t>(m)] = el.face[static_cast<size_t>(s)];
+    el.cell[static_cast<size_t>(2 * m)] = el.cell[static_cast<size_t>(2 * s)];
+    el.cell[static_cast<size_t>(2 * m + 1)] = el.cell[static_cast<size_t>(2 * s + 1)];
+    ++m;
+  }
+  el.b_index.conservativeResize(m, 3);
+  el.b_value.conservativeResize(m, 3);
+  el.s_hat.conservativeResize(m, 3);
+  el.w.conservativeResize(m);
+  el.face.resize(static_cast<size_t>(m));
+  el.cell_start.resize(static_cast<size_t>(m) + 1);
+  el.cell.resize(static_cast<size_t>(2 * m));
+  el.cell_start[static_cast<size_t>(m)] = 2 * m;
 }
 
 } // namespace detail

@@ -4,7 +4,7 @@ list(APPEND IARAP_SOURCES
   solver/polar_rotation.cpp solver/closest_rotation_2d.cpp solver/sparse_cholesky.cpp solver/supernodal_solve.cpp solver/visit_order.cpp
   solver/arap_elements.cpp solver/streamed_layout.cpp solver/fit_rotations.cpp solver/arap_rhs.cpp
   solver/system_pattern.cpp solver/constraint_layout.cpp solver/constrained_solve.cpp solver/cell_stiffness.cpp
-  solver/soft_terms.cpp solver/quadratic_terms.cpp solver/hard_points.cpp
+  solver/soft_terms.cpp solver/quadratic_terms.cpp solver/hard_points.cpp solver/cover_elements.cpp
   solver/rotation_smoothing.cpp solver/local_global_problem.cpp
   solver/stopping.cpp solver/line_search.cpp
   solver/plain_iteration.cpp solver/anderson_acceleration.cpp solver/anderson_iteration.cpp

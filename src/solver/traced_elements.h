@@ -5,6 +5,8 @@
 
 #include "../intrinsic/trace_edges.h"
 
+#include <vector>
+
 namespace iarap::detail {
 
 // The part of iarap_elements(V, intrinsic) that the system matrix needs (b, w, face, cells) and the rest
@@ -14,6 +16,10 @@ namespace iarap::detail {
 // SolverError names a segment whose end points share no input face.
 ArapElements traced_iarap_elements(const Eigen::MatrixXd& V, const IntrinsicTriangulation& tri,
                                    const CompactTraces& traces);
+
+// Removes the elements marked in drop (#E) from elements of two cells each with rest vectors (as
+// traced_iarap_elements builds them), keeping the others in order; before finish_elements.
+void drop_two_cell_elements(ArapElements& el, const std::vector<char>& drop);
 
 // Fills the rest vectors s_hat (unless the builder did: has_rest_vectors), the transposed incidence
 // (cell -> elements) and the streamed layout (visit order, cell entries, right-hand-side terms) from b, w and

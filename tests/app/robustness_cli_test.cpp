@@ -4,6 +4,7 @@
 #include "iarap/io/read_mesh.h"
 #include "iarap/io/write_mesh.h"
 #include "intrinsic/mesh_generators.h"
+#include "mesh/small_meshes.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>
@@ -233,4 +234,38 @@ TEST(CliRobustness, OriginalArapWarnsAboutNegativeWeights) {
   EXPECT_NE(run.out.find("--method iarap"), std::string::npos) << run.out;
   run = iarap_cli(deform_args(f, "--method iarap --out '" + (f.dir / "o.obj").string() + "'"), true);
   EXPECT_EQ(run.out.find("negative cotangent weights"), std::string::npos) << run.out;
+}
+
+// Issue 47, item 1: two cubes touching at a corner (a vertex where two closed fans meet) deform without
+// --repair with every method, the output with the input's 15 vertices; the report gives min_weight and,
+// for iARAP, that it ran on the tufted cover (32 cover vertices: each cube's front and back).
+TEST(CliRobustness, NonManifoldVertexDeformsWithoutRepair) {
+  const Fixture f = fixture("cubes");
+  const iarap::test::SmallMesh cubes = iarap::test::two_cubes_at_a_corner();
+  iarap::write_mesh(f.mesh.string(), cubes.V, cubes.F);
+  write_file(f.scenario, R"({"fixed": {"bottom": 0.2, "axis": "z"},
+    "handles": [{"vertices": {"top": 0.2, "axis": "z"}, "translate_relative": [0.1, 0, 0]}]})");
+  for (const std::string method : {"iarap", "arap", "spokes-rims"}) {
+    const fs::path out = f.dir / ("o_" + method + ".obj");
+    const CliRun run =
+        iarap_cli(deform_args(f, "--method " + method + " --json --out '" + out.string() + "'"));
+    ASSERT_EQ(run.code, 0) << run.out;
+    const nlohmann::json j = parse_json(run);
+    EXPECT_EQ(j["vertices"].get<int>(), 15) << method;
+    EXPECT_TRUE(j.contains("min_weight")) << method;
+    EXPECT_EQ(iarap::read_mesh(out.string()).V.rows(), 15) << method;
+    if (method == "iarap") {
+      EXPECT_TRUE(j["intrinsic"]["tufted_cover"].get<bool>());
+      EXPECT_EQ(j["intrinsic"]["cover_vertices"].get<int>(), 32);
+      EXPECT_GE(j["min_weight"].get<double>(), -1e-12);
+    }
+  }
+  // Without --quiet the tool says why it runs on a mesh check_mesh calls not usable.
+  const std::string args = "deform '" + f.mesh.string() + "' --scenario '" + f.scenario.string() +
+                           "' --iterations 5 --out '" + (f.dir / "o.obj").string() + "'";
+  const CliRun run = iarap_cli(args, true);
+  EXPECT_EQ(run.code, 0) << run.out;
+  EXPECT_NE(run.out.find("non-manifold (a closed fan of faces touches another fan there)"), std::string::npos)
+      << run.out;
+  EXPECT_NE(run.out.find("deformed as it is"), std::string::npos) << run.out;
 }

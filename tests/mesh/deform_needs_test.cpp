@@ -9,7 +9,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace {
@@ -39,7 +41,7 @@ bool needs_repair(const std::vector<DeformNeed>& needs, const std::string& metho
 
 void expect_one_verdict(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const std::string& name) {
   const MeshReport report = check_mesh(V, F);
-  if (!report.usable()) return; // info says "not usable": nothing to agree on
+  if (!report.deformable()) return; // info says "not usable": nothing to agree on
   const std::vector<DeformNeed> needs = deform_needs(report);
   RepairOptions options;
   options.remove_zero_area = true;
@@ -59,6 +61,30 @@ test::SmallMesh needle(double height) {
   m.F.resize(5, 3);
   m.F << 0, 4, 1, 0, 1, 5, 1, 2, 5, 2, 3, 5, 3, 0, 5;
   return m;
+}
+
+// Input that is only not an oriented manifold (issue 47, item 1) needs no repair for any method: iARAP runs
+// on its tufted cover, original ARAP and spokes-and-rims on its own edges and faces.
+TEST(DeformNeeds, NotAnOrientedManifoldNeedsNoRepair) {
+  const std::vector<std::pair<std::string, test::SmallMesh>> meshes{
+      {"fin", test::fin(4)},
+      {"cubes at a corner", test::two_cubes_at_a_corner()},
+      {"mixed orientation", test::with_mixed_orientation(test::subdivided_octahedron(), 3)},
+      {"klein bottle", test::klein_bottle(12, 8)},
+      {"moebius strip", test::moebius_strip()}};
+  for (const auto& [name, m] : meshes) {
+    const MeshReport report = check_mesh(m.V, m.F);
+    EXPECT_FALSE(report.usable()) << name;
+    EXPECT_EQ(report.oriented_manifold_errors, static_cast<int>(report.errors.size())) << name;
+    EXPECT_TRUE(report.deformable()) << name;
+    for (const std::string method : {"arap", "spokes-rims", "iarap"})
+      EXPECT_FALSE(needs_repair(deform_needs(report), method)) << name << ", " << method;
+    expect_one_verdict(m.V, m.F, name);
+  }
+  // With an error no method handles (a NaN), the mesh is not deformable.
+  test::SmallMesh broken = test::fin(3);
+  broken.V(4, 0) = NAN;
+  EXPECT_FALSE(check_mesh(broken.V, broken.F).deformable());
 }
 
 // Needles from harmless to degenerate: 1e-10 was the case `info` called usable and original ARAP refused

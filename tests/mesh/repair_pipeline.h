@@ -24,12 +24,14 @@ inline RepairOptions deform_repair_options() {
 }
 
 // The repaired mesh of the file at `path`; throws the reader's InputError, or TopologyError naming the file
-// and check_mesh's first error when the repaired mesh is not usable.
+// and check_mesh's first error when ARAP cannot deform the repaired mesh (one that is only not an oriented
+// manifold, a non-orientable piece, deforms on the tufted cover).
 inline RepairResult read_and_repair(const std::string& path) {
   const MeshData mesh = read_mesh(path);
   RepairResult repaired = repair_mesh(mesh.V, mesh.F, deform_repair_options());
   const MeshReport check = check_mesh(repaired.V, repaired.F);
-  if (!check.usable()) throw TopologyError(path + ": mesh not usable after repair: " + check.errors.front());
+  if (!check.deformable())
+    throw TopologyError(path + ": mesh not usable after repair: " + check.errors.front());
   return repaired;
 }
 

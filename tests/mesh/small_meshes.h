@@ -4,6 +4,7 @@
 
 #include <Eigen/Core>
 #include <cmath>
+#include <utility>
 
 namespace iarap::test {
 
@@ -93,6 +94,84 @@ inline SmallMesh moebius_strip(int n = 12) {
     m.F.row(2 * i) << a, c, b;
     m.F.row(2 * i + 1) << b, c, d;
   }
+  return m;
+}
+
+// The unit cube [0, 1]^3 as 12 outward-oriented triangles; vertex x + 2 y + 4 z is at (x, y, z).
+inline SmallMesh unit_cube() {
+  SmallMesh m;
+  m.V.resize(8, 3);
+  for (int v = 0; v < 8; ++v) m.V.row(v) << (v & 1), ((v >> 1) & 1), ((v >> 2) & 1);
+  m.F.resize(12, 3);
+  m.F << 0, 2, 1, 1, 2, 3, 4, 5, 6, 5, 7, 6, 0, 1, 5, 0, 5, 4, 2, 6, 7, 2, 7, 3, 0, 4, 6, 0, 6, 2, 1, 3, 7, 1,
+      7, 5;
+  return m;
+}
+
+// Two closed cubes touching at one corner, vertex 0 at the origin: the second is the first mirrored through
+// it (faces reversed, so both are outward-oriented). Every edge is manifold; vertex 0 joins two closed fans.
+inline SmallMesh two_cubes_at_a_corner() {
+  const SmallMesh cube = unit_cube();
+  Eigen::MatrixXd V2 = -cube.V.bottomRows(7);
+  Eigen::MatrixXi F2(12, 3);
+  for (int f = 0; f < 12; ++f)
+    for (int k = 0; k < 3; ++k) {
+      const int v = cube.F(f, k == 0 ? 0 : 3 - k); // reversed
+      F2(f, k) = v == 0 ? 0 : v + 7;
+    }
+  return appended(cube, V2, F2);
+}
+
+// `faces` triangles standing on the edge (0, 1) from (0, 0, 0) to (1, 0, 0), fanned around it at unequal
+// angles, every second one the other way round: an edge of `faces` faces and mixed orientation.
+inline SmallMesh fin(int faces) {
+  SmallMesh m;
+  m.V.resize(faces + 2, 3);
+  m.V.row(0) << 0, 0, 0;
+  m.V.row(1) << 1, 0, 0;
+  m.F.resize(faces, 3);
+  for (int i = 0; i < faces; ++i) {
+    const double angle = 2 * 3.14159265358979323846 * i / faces + 0.1 * i;
+    m.V.row(i + 2) << 0.5 + 0.1 * i, std::cos(angle), std::sin(angle);
+    if (i % 2 == 0)
+      m.F.row(i) << 0, 1, i + 2;
+    else
+      m.F.row(i) << 1, 0, i + 2;
+  }
+  return m;
+}
+
+// A Klein bottle: the figure-8 immersion (self-intersecting in R^3) sampled on an n x m grid, the grid's
+// last column glued to its first with v -> -v. Closed, no boundary, non-orientable; vertex i m + j at
+// u = 2 pi i / n, v = 2 pi (j + 1/2) / m (the half step keeps the two sheets' crossing off the vertices).
+inline SmallMesh klein_bottle(int n = 24, int m = 12) {
+  const double pi = 3.14159265358979323846, r = 2.0;
+  SmallMesh k;
+  k.V.resize(n * m, 3);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < m; ++j) {
+      const double u = 2 * pi * i / n, v = 2 * pi * (j + 0.5) / m;
+      const double a = r + std::cos(u / 2) * std::sin(v) - std::sin(u / 2) * std::sin(2 * v);
+      k.V.row(i * m + j) << a * std::cos(u), a * std::sin(u),
+          std::sin(u / 2) * std::sin(v) + std::cos(u / 2) * std::sin(2 * v);
+    }
+  const auto vertex = [&](int i, int j) {
+    if (i == n) return (m - 1 - ((j % m) + m) % m) % m; // u + 2 pi at v is u at -v
+    return i * m + ((j % m) + m) % m;
+  };
+  k.F.resize(2 * n * m, 3);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < m; ++j) {
+      const int a = vertex(i, j), b = vertex(i + 1, j), c = vertex(i + 1, j + 1), d = vertex(i, j + 1);
+      k.F.row(2 * (i * m + j)) << a, b, c;
+      k.F.row(2 * (i * m + j) + 1) << a, c, d;
+    }
+  return k;
+}
+
+// The mesh with every `every`-th face reversed (from face 0): orientable, inconsistently oriented.
+inline SmallMesh with_mixed_orientation(SmallMesh m, int every) {
+  for (Eigen::Index f = 0; f < m.F.rows(); f += every) std::swap(m.F(f, 1), m.F(f, 2));
   return m;
 }
 

@@ -33,6 +33,11 @@ struct IntrinsicOptions {
   // builds the segments from those. Off, traces stays empty and the preprocess's peak memory drops by
   // ~20 bytes per edge (the solver and the Laplacians built from segments turn it off).
   bool keep_traces = true;
+  // iARAP (arap_precompute) on the tufted cover (Sharp & Crane 2020, docs/nonmanifold.md) even where the
+  // input is an oriented manifold. Input that is not one (an edge with 3+ faces, a closed fan touching
+  // another at a vertex, mixed orientation, non-orientable) always takes the cover. intrinsic_delaunay()
+  // itself works on oriented manifolds only and ignores this.
+  bool tufted_cover = false;
 };
 
 // The intrinsic triangulation after flipping to Delaunay. In general a Delta-complex: two edges may

@@ -33,13 +33,20 @@ struct MeshReport {
   int edges = 0;                             // distinct edges of the faces that enter the topological checks
   double bbox_diagonal = 0.0;                // of the finite vertices
   std::vector<std::string> errors, warnings; // each names the first offending element and the count
+  // How many of the errors say only that the mesh is not an oriented manifold: non-manifold edges, closed
+  // fans touching another fan at a vertex, mixed orientation, non-orientable. Tools that need a manifold
+  // refuse those; ARAP deforms such a mesh as it is (iARAP on its tufted cover, docs/nonmanifold.md).
+  int oriented_manifold_errors = 0;
   bool usable() const { return errors.empty(); }
+  // Usable for ARAP deformation without repair: every error is one of oriented_manifold_errors.
+  bool deformable() const { return static_cast<int>(errors.size()) == oriented_manifold_errors; }
 };
 
 // Checks V (#V x 3) and F (#F x 3). Never throws on bad data and never reads out of bounds: faces with
 // out-of-range indices or repeated vertices are reported and left out of the topological checks.
-// Errors (ARAP cannot handle): non-finite coordinates, out-of-range indices, faces with repeated vertices,
-// non-manifold edges or vertices, inconsistent orientation, no faces, wrong column counts.
+// Errors: non-finite coordinates, out-of-range indices, faces with repeated vertices, no faces, wrong column
+// counts (nothing can handle these); non-manifold edges or vertices, inconsistent orientation (ARAP deforms
+// these on the tufted cover; counted in oriented_manifold_errors).
 // Warnings (repair_mesh fixes): unreferenced vertices, zero-area faces, coincident vertices, one component
 // per face. O(#F log #F + #V log #V).
 MeshReport check_mesh(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F);

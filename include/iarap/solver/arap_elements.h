@@ -57,8 +57,9 @@ struct ArapElements {
 void check_arap_mesh(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F);
 
 // Original ARAP (Eq. 1): one element per undirected mesh edge (i, j), b = e_j - e_i, cells {i, j},
-// w_ij = (cot a + cot b) / 2 (one term on boundary edges), negative on non-Delaunay edges.
-// Throws TopologyError naming the edge when it has more than two faces, or the face when a face is
+// w_ij = (cot a + cot b) / 2 (one term on boundary edges, the sum over all faces of an edge with more than
+// two), negative on non-Delaunay edges. The cell of vertex i is every edge at i, whatever the fans of faces
+// there: no manifoldness or orientation needed. Throws TopologyError naming the face when a face is
 // degenerate (non-finite cotangent); InputError for bad shapes or face indices.
 ArapElements arap_edge_elements(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F);
 // The same from what the caller computed once already (arap_precompute): topology = edge_topology(F, #V)

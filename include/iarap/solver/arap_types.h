@@ -85,6 +85,10 @@ struct ArapIntrinsicSummary {
   int obtuse_boundary_before = 0; // boundary edges with an obtuse opposite angle (negative weight)
   int obtuse_boundary_after = 0;  // ... left after refine_boundary
   Eigen::Index inserted_points = 0;
+  // Built on the tufted cover (input not an oriented manifold, or IntrinsicOptions::tufted_cover), with
+  // this many cover vertices (docs/nonmanifold.md).
+  bool tufted_cover = false;
+  Eigen::Index cover_vertices = 0;
 };
 
 // Everything arap_solve needs, owned by value (copyable: a copy refactorizes; movable: cheap).
@@ -96,6 +100,7 @@ struct ArapData {
   Eigen::MatrixXd V;             // #V x 3 rest positions (z = 0 for planar data given as #V x 2)
   Eigen::MatrixXi F;             // #F x 3 faces
   ArapElements elements;         // the variant's elements (arap_elements.h)
+  double min_weight = 0.0;       // the smallest element weight w_e (negative: a non-Delaunay cotan weight)
   Eigen::SparseMatrix<double> L; // #V x #V system matrix, sum_e |cells(e)| w_e b_e b_e^T
   Eigen::VectorXi component;     // #V connected component of each vertex
   int component_count = 0;
