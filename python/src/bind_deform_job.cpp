@@ -30,7 +30,8 @@ KeywordSignature deform_file_signature() {
                                        {"gravity", "npt.ArrayLike | None", py::none(), true},
                                        {"density", "float", py::float_(1.0), true},
                                        {"forces", "_StrPath | None", py::none(), true},
-                                       {"stiffness", "_StrPath | None", py::none(), true}};
+                                       {"stiffness", "_StrPath | None", py::none(), true},
+                                       {"rigid", "_StrPath | None", py::none(), true}};
   for (Parameter& p : solve_option_parameters(ArapSolveOptions{}, 0)) parameters.push_back(std::move(p));
   return KeywordSignature("deform_file", std::move(parameters),
                           "tuple[_FloatArray, _IndexArray, dict[str, Any]]");
@@ -83,7 +84,8 @@ py::tuple deform_file_py(const BoundArguments& arguments) {
     return arguments[name].is_none() ? std::string() : path_text(arguments[name]);
   };
   const DeformFiles files{path_text(arguments["mesh"]), path_or_empty("scenario"),
-                          path_or_empty("constraints"), path_or_empty("forces"), path_or_empty("stiffness")};
+                          path_or_empty("constraints"), path_or_empty("forces"), path_or_empty("stiffness"),
+                          path_or_empty("rigid")};
   const std::string& mesh_path = files.mesh;
   DeformScene scene;
   DeformResult result;
@@ -121,7 +123,8 @@ mesh, scenario, constraints, forces: file paths (exactly one of scenario and con
 "arap" or "spokes-rims"; refine_boundary (iARAP only); repair: repair the mesh first, the constraints carried
 over; keep_numbering (with repair): U and F in the file's numbering, each vertex at the mean of its copies
 (the report's copies_spread: their largest distance from it); pin_unconstrained_components. gravity (3,) with density: the statics of m_i g (and of the forces file),
-every body held. stiffness: a stiffness file ('index s' lines, `iarap deform --stiffness`). The solve options:
+every body held. stiffness: a stiffness file ('index s' lines, `iarap deform --stiffness`). rigid: a
+rigid-groups file (one group per line, `iarap deform --rigid`; solve with accelerator="none"). The solve options:
 )" + solve_option_docs() +
           R"(The report: ARAP.report's fields (in the file's units) with planar, vertices, faces, constrained, soft,
 pinned, repair (what the repair did), warnings, energy (E_ARAP + penalty + potential), precompute_ms, max_displacement, bbox_diagonal.
