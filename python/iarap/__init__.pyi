@@ -162,6 +162,7 @@ def deform_file(
     forces: _StrPath | None = None,
     stiffness: _StrPath | None = None,
     rigid: _StrPath | None = None,
+    volume: bool = False,
     iterations: int = 50,
     tolerance: float = 1e-06,
     accelerator: str = "newton",
