@@ -22,8 +22,8 @@ DeformScene volume_scene(const DeformScene& surface, const TetgenOptions& option
   if (surface.tets.rows() > 0) throw InputError("--volume: the mesh is tetrahedral already");
   if (surface.check.boundary_edges > 0)
     throw InputError("--volume needs a closed surface; this one has " +
-                     std::to_string(surface.check.boundary_edges) + " boundary edges in " +
-                     std::to_string(surface.check.boundary_loops) + " loops");
+                     std::to_string(surface.check.boundary_edges) + " boundary edges (boundary loops: " +
+                     std::to_string(surface.check.boundary_loops) + ")");
   const SoftConstraintSet& soft = surface.constraints.soft;
   if (soft.faces.size() + soft.hard_faces.size() > 0)
     throw InputError("--volume: points on faces (" + std::to_string(soft.faces.size() + soft.hard_faces.size()) +
