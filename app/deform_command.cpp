@@ -18,6 +18,7 @@
 #include "iarap/io/write_mesh.h"
 #include "iarap/io/write_tet_mesh.h"
 #include "iarap/jobs/deform_job.h"
+#include "iarap/jobs/volume_deform.h"
 #include "iarap/mesh/validate.h"
 #include "iarap/solver/arap.h"
 
@@ -33,11 +34,12 @@ namespace iarap::cli {
 namespace {
 
 struct DeformArguments {
-  std::string mesh, constraints, scenario, stiffness, method = "iarap", boundary = "refine", out, report;
+  std::string mesh, constraints, scenario, stiffness, rigid, method = "iarap", boundary = "refine", out, report;
   std::string ordering = "auto";
   ArapSolveOptions solve; // the flags of solve_option_flags.h; forces are set from `forces` below
   int threads = 0;
   bool json = false, repair = false, keep_numbering = false, pin_unconstrained = false, quiet = false;
+  bool volume = false; // tetrahedralize the closed surface's inside and deform the tetrahedra
   ExternalForceArguments forces; // statics under gravity / per-vertex forces (none: the plain deformation)
 };
 
@@ -50,8 +52,8 @@ DeformScene read_and_prepare(const DeformArguments& args) {
     throw CLI::ValidationError("--repair is for triangle meshes; " + args.mesh + " is a tetrahedral mesh");
   DeformPrepareOptions options;
   options.repair = args.repair;
-  return read_deform_scene({args.mesh, args.scenario, args.constraints, args.forces.forces, args.stiffness},
-                           options);
+  return read_deform_scene(
+      {args.mesh, args.scenario, args.constraints, args.forces.forces, args.stiffness, args.rigid}, options);
 }
 
 // Original ARAP's energy is bounded below only with non-negative cotangent weights: on meshes with many
@@ -180,12 +182,15 @@ DeformResult solve_explained(const DeformArguments& args, const DeformScene& sce
   }
 }
 
-// The deformed mesh, or with --keep-numbering the input's vertices and faces at their copies' mean.
-void write_result(const DeformArguments& args, const DeformScene& scene, const DeformResult& result,
+// The deformed mesh (U on scene's surface), or with --keep-numbering the input's vertices and faces at
+// their copies' mean. For a closed surface the report's volume_ratio is the enclosed volume after / before.
+void write_result(const DeformArguments& args, const DeformScene& scene, const Eigen::MatrixXd& U,
                   nlohmann::json& j) {
-  if (!args.keep_numbering) return write_mesh(args.out, result.U, scene.mesh.F);
+  if (scene.check.boundary_edges == 0)
+    j["volume_ratio"] = enclosed_volume(U, scene.mesh.F) / enclosed_volume(scene.mesh.V, scene.mesh.F);
+  if (!args.keep_numbering) return write_mesh(args.out, U, scene.mesh.F);
   double spread = 0.0;
-  write_mesh(args.out, in_input_numbering(scene, result.U, &spread), scene.input.F);
+  write_mesh(args.out, in_input_numbering(scene, U, &spread), scene.input.F);
   j["keep_numbering"] = true;
   j["copies_spread"] = spread;
   if (!args.quiet && spread > 0)
@@ -193,20 +198,45 @@ void write_result(const DeformArguments& args, const DeformScene& scene, const D
               << " from their mean (" << spread / scene.check.bbox_diagonal << " of the diagonal)\n";
 }
 
+// --volume: the surface (the first rows of the tet mesh's result) written with its own faces; report keys
+// volume_ratio (the surface's enclosed volume after / before), tetrahedra, interior_points, the tetrahedra's
+// own volume ratio and the tetrahedralization's time.
+void write_volume_result(const DeformArguments& args, const DeformScene& surface, const DeformScene& scene,
+                         const DeformResult& result, double tetrahedralize_ms, nlohmann::json& j) {
+  const Eigen::Index n = surface.mesh.V.rows();
+  write_result(args, surface, result.U.topRows(n), j);
+  j["volume"] = true;
+  j["tetrahedra"] = scene.tets.rows();
+  j["interior_points"] = scene.mesh.V.rows() - n;
+  j["tet_volume_ratio"] =
+      tet_signed_volumes(result.U, scene.tets).sum() / tet_signed_volumes(scene.mesh.V, scene.tets).sum();
+  j["tetrahedralize_ms"] = tetrahedralize_ms;
+  if (!args.quiet)
+    std::cerr << "deform: --volume: " << scene.tets.rows() << " tetrahedra (" << scene.mesh.V.rows() - n
+              << " interior points, TetGen " << tetrahedralize_ms << " ms), enclosed volume after / before "
+              << j["volume_ratio"].get<double>() << "\n";
+}
+
 void run_deform(const DeformArguments& args) {
   check_arguments(args);
   const auto total_start = Clock::now();
   nlohmann::json j;
   j["input"] = args.mesh;
-  const DeformScene scene = read_and_prepare(args);
-  if (args.repair) j["repair"] = scene.repairs;
+  const DeformScene surface = read_and_prepare(args);
+  require_usable(args, surface.check);
+  // --volume: the surface's inside tetrahedralized (TetGen, run as a program), the surface its first rows.
+  double tetrahedralize_ms = 0.0;
+  const DeformScene volume = args.volume ? timed(tetrahedralize_ms, [&] { return volume_scene(surface); })
+                                         : DeformScene();
+  const DeformScene& scene = args.volume ? volume : surface;
+  if (args.repair) j["repair"] = surface.repairs;
   if (!args.stiffness.empty()) j["stiffness"] = args.stiffness;
-  const MeshData& mesh = scene.mesh;
+  if (!args.rigid.empty()) j["rigid_groups"] = scene.rigid_groups.size();
+  const MeshData& mesh = surface.mesh; // the keys and messages count the surface (--volume: not the tets)
   const ConstraintSet& constraints = scene.constraints;
-  require_usable(args, scene.check);
   for (const auto& warning : constraints.warnings) std::cerr << "deform: warning: " << warning << "\n";
   if (!args.quiet) {
-    for (const auto& warning : scene.check.warnings)
+    for (const auto& warning : surface.check.warnings)
       std::cerr << "deform: mesh warning: " << name_repair(warning, deform_repair_flag) << "\n";
     // Deformable: each error only says "not an oriented manifold".
     const std::string how = args.method == "iarap" ? "iARAP on the tufted cover" : "on the input's own edges";
@@ -227,10 +257,12 @@ void run_deform(const DeformArguments& args) {
   const ArapData& arap = result.data;
   if (!args.quiet) print_progress(args, options.method, mesh, constraints, report);
   if (options.method == ArapMethod::Arap) warn_about_original_energy(report, scene.check);
-  if (scene.tets.rows() > 0)
+  if (args.volume)
+    write_volume_result(args, surface, scene, result, tetrahedralize_ms, j);
+  else if (scene.tets.rows() > 0)
     write_tet_result(args, scene, result, j);
   else
-    write_result(args, scene, result, j);
+    write_result(args, scene, result.U, j);
 
   j["method"] = arap_method_name(options.method);
   j["planar"] = result.planar;
@@ -329,7 +361,21 @@ const bool registered = register_command(
               "Stiffness file: 'index s' per line, s > 0 multiplies the energy of that vertex's cell "
               "(others 1): a stiffer region bends and stretches less")
            ->check(CLI::ExistingFile);
-       sub->callback([args] { run_deform(*args); });
+       sub->add_flag("--volume", args->volume,
+                     "Deform the closed surface as a solid: its inside is tetrahedralized by TetGen (the "
+                     "'tetgen' program, Debian package tetgen), the tetrahedra deformed by tet ARAP under the "
+                     "surface's constraints; the output is the surface with its own vertices and faces");
+       sub->add_option("--rigid", args->rigid,
+                       "Rigid parts: one group per line, 'i j k ...' (at least 2 vertices each): each group "
+                       "moves as one rigid body. Solved by the plain iteration (--accelerator none, the "
+                       "default with --rigid; the others are refused)")
+           ->check(CLI::ExistingFile);
+       sub->callback([args, sub] {
+         // The rigid groups run the plain iteration: it is their default accelerator.
+         if (!args->rigid.empty() && sub->get_option("--accel")->count() == 0)
+           args->solve.accelerator = ArapAccelerator::None;
+         run_deform(*args);
+       });
      }});
 
 } // namespace

@@ -18,6 +18,8 @@ set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
 # libiarap.so.0 ships in this package; dpkg-shlibdeps finds it there instead of asking for another one.
 set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS_PRIVATE_DIRS ${PROJECT_BINARY_DIR}/src)
 set(CPACK_DEBIAN_PACKAGE_RECOMMENDS "python3-numpy, python3-scipy")
+# deform --volume runs the tetgen program (AGPL: not linked, so not a dependency)
+set(CPACK_DEBIAN_PACKAGE_SUGGESTS "tetgen")
 # Linked with Debian's CHOLMOD (supernodal module: GPL), the binaries are distributed under the GPL; the
 # package says so beside this project's own MIT license (README, "Licenses").
 # CPack puts CPACK_PACKAGE_DESCRIPTION_SUMMARY on the Description line and this text below it.

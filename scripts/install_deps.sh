@@ -10,6 +10,7 @@ packages=(
   python3-venv python3-setuptools python3-wheel python3-build python3-mypy dpkg-dev
   python3-vtk9 xvfb xauth
   chromium
+  tetgen # run as a program by deform --volume (AGPL: never linked)
 )
 missing=()
 for p in "${packages[@]}"; do

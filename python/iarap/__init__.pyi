@@ -1,6 +1,7 @@
 # Type stubs of the iarap package (the extension iarap._core, re-exported). Checked against the built
 # module by python/tests/test_stubs.py (mypy.stubtest, plus parameter names, kinds and defaults).
 import os
+from collections.abc import Sequence
 from typing import Any, Literal, overload
 
 import numpy as np
@@ -55,6 +56,7 @@ class ARAP:
         hard_faces: npt.ArrayLike | None = None,
         hard_barycentric: npt.ArrayLike | None = None,
         stiffness: npt.ArrayLike | None = None,
+        rigid_groups: Sequence[Sequence[int]] | None = None,
     ) -> None: ...
     def solve(
         self,
@@ -163,6 +165,8 @@ def deform_file(
     density: float = 1.0,
     forces: _StrPath | None = None,
     stiffness: _StrPath | None = None,
+    rigid: _StrPath | None = None,
+    volume: bool = False,
     iterations: int = 50,
     tolerance: float = 1e-06,
     accelerator: str = "newton",

@@ -121,13 +121,31 @@ bool has_four_columns(const py::object& F) {
   return a && a.ndim() == 2 && a.shape(1) == 4;
 }
 
+// rigid_groups=: a sequence of sequences of vertex indices (None: no group).
+std::vector<std::vector<int>> to_groups(const py::object& groups) {
+  std::vector<std::vector<int>> out;
+  if (groups.is_none()) return out;
+  for (const py::handle group : groups) {
+    std::vector<int> members;
+    try {
+      for (const py::handle v : group) members.push_back(v.cast<int>());
+    } catch (const std::exception&) {
+      throw InputError("rigid_groups[" + std::to_string(out.size()) +
+                       "] must be a sequence of integer vertex indices");
+    }
+    out.push_back(std::move(members));
+  }
+  return out;
+}
+
 std::unique_ptr<ArapSolver> make_solver(const py::object& V, const py::object& F, const py::object& fixed,
                                         const std::string& method, bool pin_unconstrained_components,
                                         bool refine_boundary, const py::object& soft_vertices,
                                         const py::object& soft_weights, const py::object& soft_faces,
                                         const py::object& soft_barycentric,
                                         const py::object& soft_face_weights, const py::object& hard_faces,
-                                        const py::object& hard_barycentric, const py::object& stiffness) {
+                                        const py::object& hard_barycentric, const py::object& stiffness,
+                                        const py::object& rigid_groups) {
   // #V x 2: a planar mesh, deformed in its plane (rotations about z); solves then take and give 2 columns.
   const Eigen::MatrixXd positions = to_points(V, "V", true, -1, "", true);
   // (#T, 4): tetrahedra (arap_precompute_tets); soft points then lie on their boundary faces.
@@ -142,6 +160,7 @@ std::unique_ptr<ArapSolver> make_solver(const py::object& V, const py::object& F
   options.pin_unconstrained_components = pin_unconstrained_components;
   options.intrinsic.refine_boundary = refine_boundary;
   options.stiffness = to_weights(stiffness, "stiffness"); // checked by the library, naming the vertex
+  options.rigid_groups = to_groups(rigid_groups);           // checked by the library, naming the group
   py::gil_scoped_release release;
   return std::make_unique<ArapSolver>(positions, faces, constrained, soft, options);
 }
@@ -413,6 +432,7 @@ Energies are in squared mesh units. Methods release the GIL; one solver serves o
            py::arg("soft_faces") = py::none(), py::arg("soft_barycentric") = py::none(),
            py::arg("soft_face_weights") = py::none(), py::arg("hard_faces") = py::none(),
            py::arg("hard_barycentric") = py::none(), py::arg("stiffness") = py::none(),
+           py::arg("rigid_groups") = py::none(),
            R"(Precomputes the elements of `method`, the system matrix L and the factorization of L_ff.
 
 V: (#V, 3) rest positions, or (#V, 2) for a planar mesh, deformed in its plane with rotations about z
@@ -435,6 +455,10 @@ naming both.
 stiffness: (#V,) factors s_i > 0 on the energy of vertex i's rotation cell (issue 45): a stiffer region bends
 and stretches less (None, or 1 everywhere: the energy without it, bit for bit). Ratios above about 100 make
 the iteration converge slowly; L-BFGS and Newton cope best.
+rigid_groups: a sequence of groups, each a sequence of at least 2 vertex indices (no vertex in two groups):
+each group moves as one rigid body, exactly (issue 45). Solve with accelerator="none" (the plain iteration,
+whose energy never increases with groups; the accelerators raise ValueError). A group with one fixed vertex
+turns about it; with more, it follows their targets, which must be a rigid motion (ValueError otherwise).
 Raises ValueError (InputError, TopologyError) for bad arrays, indices, weights or meshes; SolverError (a
 RuntimeError) for an unconstrained component or a failed factorization.)");
   def_solve(arap);

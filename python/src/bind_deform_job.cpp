@@ -7,6 +7,7 @@
 
 #include "iarap/core/errors.h"
 #include "iarap/jobs/deform_job.h"
+#include "iarap/jobs/volume_deform.h"
 #include "iarap/solver/solve_report_fields.h"
 
 #include <memory>
@@ -30,7 +31,9 @@ KeywordSignature deform_file_signature() {
                                        {"gravity", "npt.ArrayLike | None", py::none(), true},
                                        {"density", "float", py::float_(1.0), true},
                                        {"forces", "_StrPath | None", py::none(), true},
-                                       {"stiffness", "_StrPath | None", py::none(), true}};
+                                       {"stiffness", "_StrPath | None", py::none(), true},
+                                       {"rigid", "_StrPath | None", py::none(), true},
+                                       {"volume", "bool", py::bool_(false), true}};
   for (Parameter& p : solve_option_parameters(ArapSolveOptions{}, 0)) parameters.push_back(std::move(p));
   return KeywordSignature("deform_file", std::move(parameters),
                           "tuple[_FloatArray, _IndexArray, dict[str, Any]]");
@@ -62,6 +65,8 @@ py::dict result_dict(const DeformScene& scene, const DeformResult& result) {
   d["precompute_ms"] = result.precompute_ms;
   d["max_displacement"] = result.max_displacement;
   d["bbox_diagonal"] = scene.check.bbox_diagonal;
+  if (scene.check.boundary_edges == 0) // a closed surface: the volume it encloses after / before
+    d["volume_ratio"] = enclosed_volume(result.U, scene.mesh.F) / enclosed_volume(scene.mesh.V, scene.mesh.F);
   return d;
 }
 
@@ -88,7 +93,8 @@ py::tuple deform_file_py(const BoundArguments& arguments) {
     return arguments[name].is_none() ? std::string() : path_text(arguments[name]);
   };
   const DeformFiles files{path_text(arguments["mesh"]), path_or_empty("scenario"),
-                          path_or_empty("constraints"), path_or_empty("forces"), path_or_empty("stiffness")};
+                          path_or_empty("constraints"), path_or_empty("forces"), path_or_empty("stiffness"),
+                          path_or_empty("rigid")};
   const std::string& mesh_path = files.mesh;
   DeformScene scene;
   DeformResult result;
@@ -101,7 +107,14 @@ py::tuple deform_file_py(const BoundArguments& arguments) {
       for (const std::string& error : scene.check.errors) message += "\n  " + error;
       throw TopologyError(message);
     }
-    result = solve_deform(scene, options, solve, statics);
+    if (arguments.as<bool>("volume")) { // the surface's inside tetrahedralized; its result the first rows
+      const Eigen::Index n = scene.mesh.V.rows();
+      const DeformScene solid = volume_scene(scene);
+      result = solve_deform(solid, options, solve, statics);
+      result.U.conservativeResize(n, 3);
+    } else {
+      result = solve_deform(scene, options, solve, statics);
+    }
   }
   if (!arguments.as<bool>("keep_numbering"))
     return py::make_tuple(to_numpy(result.U), to_numpy(scene.mesh.F), result_dict(scene, result));
@@ -126,12 +139,16 @@ mesh, scenario, constraints, forces: file paths (exactly one of scenario and con
 "arap" or "spokes-rims"; refine_boundary (iARAP only); repair: repair the mesh first, the constraints carried
 over; keep_numbering (with repair): U and F in the file's numbering, each vertex at the mean of its copies
 (the report's copies_spread: their largest distance from it); pin_unconstrained_components. gravity (3,) with density: the statics of m_i g (and of the forces file),
-every body held. stiffness: a stiffness file ('index s' lines, `iarap deform --stiffness`). The solve options:
+every body held. stiffness: a stiffness file ('index s' lines, `iarap deform --stiffness`). rigid: a
+rigid-groups file (one group per line, `iarap deform --rigid`; solve with accelerator="none"). volume: deform
+the closed surface as a solid (`iarap deform --volume`: TetGen's tetrahedra, the surface's rows returned with
+its faces; the report's volume_ratio is the enclosed volume after / before). The solve options:
 )" + solve_option_docs() +
           R"(The report: ARAP.report's fields (in the file's units) with planar, vertices, faces, constrained, soft,
 pinned, min_weight (the smallest element weight), tufted_cover (iARAP ran on the tufted cover: the mesh is not
 an oriented manifold), repair (what the repair did), warnings (with the errors of a mesh that is only not an
-oriented manifold), energy (E_ARAP + penalty + potential), precompute_ms, max_displacement, bbox_diagonal.
+oriented manifold), energy (E_ARAP + penalty + potential), precompute_ms, max_displacement, bbox_diagonal,
+volume_ratio (a closed surface: the volume it encloses after / before).
 Raises InputError, TopologyError (a mesh not usable: the checks' messages) and SolverError as the tool's
 exit code 1 does.)"));
 }

@@ -108,3 +108,18 @@ def cli():
     if not path or not pathlib.Path(path).exists():
         pytest.skip("the iarap CLI is not built beside the module (set IARAP_CLI to its path)")
     return pathlib.Path(path)
+
+
+def y_band(V, lo, hi):
+    """The vertices strictly between fractions lo and hi of the bounding box along y."""
+    y = V[:, 1]
+    a, b = y.min(), y.max()
+    return np.flatnonzero((y > a + lo * (b - a)) & (y < a + hi * (b - a)))
+
+
+def rigid_residual(A, B):
+    """Largest distance of B's rows from the best rigid image of A's (Kabsch)."""
+    a, b = A - A.mean(axis=0), B - B.mean(axis=0)
+    U, _, Wt = np.linalg.svd(a.T @ b)
+    D = np.diag([1.0, 1.0, np.sign(np.linalg.det(U @ Wt))])
+    return float(np.abs(a @ (U @ D @ Wt) - b).max())

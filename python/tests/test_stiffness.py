@@ -8,23 +8,13 @@ import pytest
 
 import iarap
 
-from conftest import REPO, bbox_diagonal, handle_scene
+from conftest import REPO, bbox_diagonal, handle_scene, rigid_residual, y_band
 
 BUNNY = REPO / "data" / "bunny.off"
 
 
 def band(V, lo=0.45, hi=0.6):
-    y = V[:, 1]
-    a, b = y.min(), y.max()
-    return np.flatnonzero((y > a + lo * (b - a)) & (y < a + hi * (b - a)))
-
-
-def rigid_residual(A, B):
-    """Largest distance of B's rows from the best rigid image of A's (Kabsch)."""
-    a, b = A - A.mean(axis=0), B - B.mean(axis=0)
-    U, _, Wt = np.linalg.svd(a.T @ b)
-    D = np.diag([1.0, 1.0, np.sign(np.linalg.det(U @ Wt))])
-    return float(np.abs(a @ (U @ D @ Wt) - b).max())
+    return y_band(V, lo, hi)
 
 
 def test_ones_give_the_same_bytes_and_a_stiff_band_stays_rigid():

@@ -143,6 +143,7 @@ DeformResult solve_deform(const DeformScene& scene, ArapOptions options, ArapSol
   // In the plane, a cell squeezed through a reflection keeps a 2x2 rotation.
   options.planar = deforms_in_plane(V, targets, soft_targets, solve.forces);
   if (scene.stiffness.size() > 0) options.stiffness = scene.stiffness; // a ratio: no unit to scale
+  if (!scene.rigid_groups.empty()) options.rigid_groups = scene.rigid_groups;
   DeformResult result;
   result.planar = options.planar;
   const auto precompute_start = Clock::now();

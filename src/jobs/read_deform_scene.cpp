@@ -5,6 +5,7 @@
 #include "iarap/jobs/deform_job.h"
 #include "iarap/scene/read_constraints.h"
 #include "iarap/scene/read_forces.h"
+#include "iarap/scene/read_rigid_groups.h"
 #include "iarap/scene/read_scenario.h"
 #include "iarap/scene/read_stiffness.h"
 
@@ -35,9 +36,8 @@ Eigen::VectorXd stiffness_of(const DeformFiles& files, int n) {
   return files.stiffness.empty() ? Eigen::VectorXd() : read_stiffness(files.stiffness, n);
 }
 
-} // namespace
-
-DeformScene read_deform_scene(const DeformFiles& files, const DeformPrepareOptions& options) {
+// The mesh, its constraints, forces and stiffness, prepared.
+DeformScene read_scene_files(const DeformFiles& files, const DeformPrepareOptions& options) {
   if (is_tet_mesh_path(files.mesh)) {
     if (options.repair)
       throw InputError("repair is for triangle meshes; " + files.mesh + " is a tetrahedral mesh");
@@ -53,6 +53,19 @@ DeformScene read_deform_scene(const DeformFiles& files, const DeformPrepareOptio
   Eigen::MatrixXd forces = forces_of(files, n);
   Eigen::VectorXd stiffness = stiffness_of(files, n);
   return prepare_deform(std::move(mesh), constraints, options, std::move(forces), std::move(stiffness));
+}
+
+} // namespace
+
+DeformScene read_deform_scene(const DeformFiles& files, const DeformPrepareOptions& options) {
+  if (!files.rigid.empty() && options.repair)
+    throw InputError("rigid groups (" + files.rigid +
+                     ") name the input's vertices, which a repair renumbers; repair the mesh first (iarap "
+                     "repair) and give the groups of the repaired mesh");
+  DeformScene scene = read_scene_files(files, options);
+  if (!files.rigid.empty())
+    scene.rigid_groups = read_rigid_groups(files.rigid, static_cast<int>(scene.mesh.V.rows()));
+  return scene;
 }
 
 } // namespace iarap

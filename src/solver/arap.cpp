@@ -17,6 +17,8 @@
 #include "local_global_loops.h"
 #include "local_global_problem.h"
 #include "quadratic_terms.h"
+#include "rigid_group_problem.h"
+#include "rigid_groups.h"
 #include "soft_terms.h"
 #include "traced_elements.h"
 
@@ -270,6 +272,7 @@ ArapData arap_precompute(const Eigen::MatrixXd& V_in, const Eigen::MatrixXi& F, 
   // Bad constraints fail before any heavy work.
   detail::check_soft_constraints(soft, static_cast<int>(V.rows()), F, fixed);
   if (options.stiffness.size() > 0) check_arap_stiffness(options.stiffness, V.rows());
+  check_rigid_groups(options.rigid_groups, V.rows());
   const bool stiffness = !detail::is_unit_stiffness(options.stiffness);
   detail::ConstraintLayout layout = detail::constraint_layout(data, fixed, soft);
   SystemBuild system;
@@ -286,6 +289,8 @@ ArapData arap_precompute(const Eigen::MatrixXd& V_in, const Eigen::MatrixXi& F, 
   data.min_weight = data.elements.size() > 0 ? data.elements.w.minCoeff() : 0.0;
   data.timings.analyze_ms = system.analyze_ms;
   data.R.assign(static_cast<size_t>(data.elements.num_cells), Eigen::Matrix3d::Identity());
+  if (!options.rigid_groups.empty())
+    data.rigid = detail::rigid_group_system(options.rigid_groups, data, system.Q, soft, fixed, layout);
   detail::commit_layout(data, fixed, layout, system.solver, system.L_fc);
   data.soft = soft;
   data.Q = std::move(system.Q);
@@ -301,7 +306,11 @@ void arap_set_fixed(ArapData& data, const Eigen::VectorXi& fixed) {
   SparseCholesky solver;
   solver.set_ordering(data.solver.ordering());
   solver.factorize(L_ff); // throws SolverError; data is untouched until here
+  RigidGroupSystem rigid =
+      data.rigid.empty() ? RigidGroupSystem()
+                         : detail::rigid_group_system(data.rigid.groups, data, data.Q, data.soft, fixed, layout);
   detail::commit_layout(data, fixed, layout, solver, L_fc);
+  data.rigid = std::move(rigid);
   data.timings.analyze_ms = 0.0; // inside factor_ms here
   data.timings.factor_ms = ms_since(start);
 }
@@ -320,6 +329,8 @@ void arap_set_soft_weights(ArapData& data, const Eigen::VectorXd& vertex_weights
   detail::split_system(detail::with_soft(data.L, Q), layout, L_ff, &L_fc);
   // Q lies in L's pattern, so L_ff keeps the factorized pattern: factorize reuses the symbolic analysis.
   data.solver.factorize(L_ff); // throws SolverError (data.solver is then empty)
+  if (!data.rigid.empty())
+    data.rigid = detail::rigid_group_system(data.rigid.groups, data, Q, soft, data.fixed, layout);
   data.L_fc = std::move(L_fc);
   data.soft = std::move(soft);
   data.Q = std::move(Q);
@@ -329,11 +340,27 @@ void arap_set_soft_weights(ArapData& data, const Eigen::VectorXd& vertex_weights
 
 namespace {
 
+// Rigid groups run the plain iteration: the group rotations are state beside the unknowns, so the
+// accelerators' energy of a point (and Newton's Hessian) are not defined on them.
+void check_rigid_solve_options(const ArapSolveOptions& options) {
+  // The coupled rotations of rotation smoothing and the group rotations have no joint local step yet.
+  if (options.rotation_smoothing != 0.0)
+    throw InputError("ARAP: rotation smoothing is not supported with rigid groups (give one or the other)");
+  if (options.accelerator == ArapAccelerator::None || options.window == 0) return;
+  throw InputError("ARAP: rigid groups are solved by the plain local/global iteration; accelerator '" +
+                   arap_accelerator_name(options.accelerator) +
+                   "' is not supported with them (choose accelerator none)");
+}
+
 ArapReport solve_checked(ArapData& data, const Eigen::MatrixXd& targets, const Eigen::MatrixXd& soft_targets,
                          const Eigen::MatrixXd& forces, Eigen::MatrixXd& U, const ArapSolveOptions& options,
                          Clock::time_point start) {
   ArapReport report;
-  {
+  if (!data.rigid.empty()) {
+    check_rigid_solve_options(options);
+    detail::RigidGroupProblem problem(data, targets, U, soft_targets, forces);
+    report = detail::run_local_global(problem, options, data.rigid.solver.kind(), start);
+  } else {
     detail::LocalGlobalProblem problem(data, targets, U, soft_targets, forces, options.rotation_smoothing);
     report = detail::run_local_global(problem, options, data.solver.kind(), start);
   } // U holds the result in the file's order from here

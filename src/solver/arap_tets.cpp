@@ -8,6 +8,7 @@
 
 #include "cell_stiffness.h"
 #include "constraint_layout.h"
+#include "rigid_groups.h"
 #include "soft_terms.h"
 
 #include <string>
@@ -86,6 +87,8 @@ ArapData arap_precompute_tets(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T
   SparseCholesky solver;
   solver.set_ordering(options.ordering);
   solver.factorize(L_ff); // throws SolverError
+  if (!options.rigid_groups.empty())
+    data.rigid = detail::rigid_group_system(options.rigid_groups, data, data.Q, soft, fixed, layout);
   detail::commit_layout(data, fixed, layout, solver, L_fc);
   data.soft = soft;
   data.R.assign(static_cast<size_t>(data.elements.num_cells), Eigen::Matrix3d::Identity());

@@ -1,5 +1,5 @@
-// Deterministic mutation fuzzing of every reader: OBJ, OFF, PLY, STL, constraints, forces and stiffness
-// files, scenarios, and the tetrahedral meshes (MEDIT .mesh, gmsh .msh).
+// Deterministic mutation fuzzing of every reader: OBJ, OFF, PLY, STL, constraints, forces, stiffness and
+// rigid-group files, scenarios, and the tetrahedral meshes (MEDIT .mesh, gmsh .msh).
 //
 // Each test mutates the seed files of tests/fuzz/corpus/<reader>/ (bit flips, byte edits, deleted,
 // duplicated and spliced spans, hostile numbers such as 1e400, -1, 2^32, nan, a byte-order mark) with a
@@ -19,6 +19,7 @@
 #include "iarap/mesh/validate.h"
 #include "iarap/scene/read_constraints.h"
 #include "iarap/scene/read_forces.h"
+#include "iarap/scene/read_rigid_groups.h"
 #include "iarap/scene/read_scenario.h"
 #include "iarap/scene/read_stiffness.h"
 #include "iarap/scene/scenario.h"
@@ -147,6 +148,10 @@ TEST(Fuzz, ForcesReader) {
 
 TEST(Fuzz, StiffnessReader) {
   EXPECT_GT(fuzz("stiffness", ".txt", 8, [](const std::string& path) { iarap::read_stiffness(path, 4); }), 0);
+}
+
+TEST(Fuzz, RigidGroupsReader) {
+  EXPECT_GT(fuzz("rigid", ".txt", 11, [](const std::string& path) { iarap::read_rigid_groups(path, 6); }), 0);
 }
 
 TEST(Fuzz, MeditTetReader) {

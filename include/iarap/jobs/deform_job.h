@@ -53,6 +53,7 @@ struct DeformScene {
   ConstraintSet constraints;        // resolved or remapped onto mesh
   Eigen::MatrixXd forces;           // #V x 3 per-vertex forces on mesh (0 x 0: none)
   Eigen::VectorXd stiffness;        // #V per-vertex stiffness on mesh (empty: none; ArapOptions::stiffness)
+  std::vector<std::vector<int>> rigid_groups; // rigid parts on mesh (empty: none; ArapOptions::rigid_groups)
   std::vector<std::string> repairs; // RepairResult::actions (empty without repair)
   MeshReport check;                 // check_mesh(mesh): a front-end refuses it when !check.usable()
   // With repair: the input mesh and the maps between its numbering and mesh's (RepairResult's), for
@@ -88,12 +89,14 @@ struct DeformFiles {
   std::string constraints; // indices in the mesh's file order; `b` lines index its (boundary) faces
   std::string forces;      // optional: `index fx fy fz` lines
   std::string stiffness;   // optional: `index s` lines
+  std::string rigid;       // optional: one rigid group per line, `i j k ...` (not with repair)
 };
 
 // Reads the files and prepares the scene: prepare_deform for a triangle mesh, prepare_tet_deform for a
 // tetrahedral one (repair is for triangle meshes: InputError). Every front-end reads through here, so that
 // the same files give the same scene through every door. Throws InputError naming the file (and line) of a
-// missing or malformed file, and what the prepare functions throw.
+// missing or malformed file, for rigid groups with repair (their indices are the input's), and what the
+// prepare functions throw.
 DeformScene read_deform_scene(const DeformFiles& files, const DeformPrepareOptions& options = {});
 
 struct DeformResult {
@@ -106,7 +109,7 @@ struct DeformResult {
 };
 
 // Solves scene with `options` (method, boundary refinement, pin_unconstrained_components; planar is set here,
-// and stiffness to the scene's when it has one; a scene with tets runs arap_precompute_tets, which refuses
+// and stiffness and rigid groups to the scene's when it has them; a scene with tets runs arap_precompute_tets, which refuses
 // methods other than the default, and gravity is refused on it: its masses would be the surface's) and
 // `solve` (lengths in mesh units: scale_length_options is applied here). With forces.present every connected
 // component must hold a fixed vertex, a soft vertex or a point on a face (InputError otherwise: a free body

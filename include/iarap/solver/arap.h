@@ -28,7 +28,8 @@ namespace iarap {
 // rotations (planar_rotation): the result is the 3D solver's on the mesh embedded at z = 0 wherever no cell
 // is squeezed through a reflection, with z exactly 0.
 // Throws InputError (bad shapes, face indices, non-finite V, bad fixed set: see arap_set_fixed, a bad
-// ArapOptions::stiffness: see check_arap_stiffness),
+// ArapOptions::stiffness: see check_arap_stiffness, bad ArapOptions::rigid_groups: see check_rigid_groups
+// and rigid_groups.h),
 // TopologyError (non-manifold edge, degenerate face without mollification), SolverError (a component
 // without constrained vertex, failed factorization).
 ArapData arap_precompute(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const Eigen::VectorXi& fixed,
@@ -68,7 +69,9 @@ void arap_set_fixed(ArapData& data, const Eigen::VectorXi& fixed);
 // returned U (while the solve runs, U and data.R are kept in the iterations' own vertex order,
 // ArapElements::visit_order: an on_iteration callback should not read them). Throws InputError for a wrong
 // targets / U shape or a non-finite entry (naming the row), negative max_iterations or window, a NaN
-// tolerance or a negative or NaN gradient_tolerance; SolverError when the energy becomes non-finite.
+// tolerance or a negative or NaN gradient_tolerance, an accelerator other than none with rigid groups (and
+// targets that move a group's constrained vertices off a rigid motion); SolverError when the energy becomes
+// non-finite.
 // (Throws InputError when data has soft constraints: their targets are the next function's.)
 ArapReport arap_solve(ArapData& data, const Eigen::MatrixXd& targets, Eigen::MatrixXd& U,
                       const ArapSolveOptions& options = {});

@@ -4,6 +4,7 @@
 #include "iarap/intrinsic/intrinsic_delaunay.h"
 #include "iarap/solver/arap_elements.h"
 #include "iarap/solver/arap_soft_constraints.h"
+#include "iarap/solver/rigid_groups.h"
 #include "iarap/solver/sparse_cholesky.h"
 
 #include <Eigen/Core>
@@ -58,6 +59,10 @@ struct ArapOptions {
   // METIS from there), AMD (the faster analysis) or METIS (the smaller factor). It changes the factor, not
   // the solution beyond rounding.
   FillOrdering ordering = FillOrdering::Auto;
+  // Rigid parts (issue 45, rigid_groups.h): each group's vertices (0-based, at least 2, no vertex in two
+  // groups) move as one rigid body, exactly. Empty: none. Solved by the plain local/global iteration
+  // (arap_solve refuses the accelerators with groups).
+  std::vector<std::vector<int>> rigid_groups;
 };
 
 // Wall-clock parts of arap_precompute; they add up to its duration.
@@ -114,6 +119,7 @@ struct ArapData {
   ArapSoftConstraints soft; // the soft constraints (arap_soft_constraints.h; empty: none)
   Eigen::SparseMatrix<double> Q;  // #V x #V soft system part sum_k 2 W_k c_k c_k^T (0 x 0 without soft)
   std::vector<Eigen::Matrix3d> R; // one per cell (arap_rotations) for the last iterate of arap_solve
+  RigidGroupSystem rigid;          // ArapOptions::rigid_groups' system (empty: none)
   ArapPrecomputeTimings timings;
   ArapIntrinsicSummary intrinsic;
 };
