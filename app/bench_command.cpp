@@ -428,9 +428,10 @@ const bool registered = register_command(
                        "Apply K midpoint 1-to-4 subdivisions first (4^K x faces)")
            ->check(CLI::Range(0, 6))
            ->capture_default_str();
-       sub->add_option("--ordering", args->ordering,
-                       "CHOLMOD's fill-reducing ordering: auto (amd below 1M free vertices, metis from there), amd "
-                       "(faster analysis) or metis (smaller factor)")
+       sub->add_option(
+              "--ordering", args->ordering,
+              "CHOLMOD's fill-reducing ordering: auto (amd below 1M free vertices, metis from there), amd "
+              "(faster analysis) or metis (smaller factor)")
            ->check(CLI::IsMember({"auto", "amd", "metis"}))
            ->capture_default_str();
        sub->add_option(

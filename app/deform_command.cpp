@@ -34,12 +34,13 @@ namespace iarap::cli {
 namespace {
 
 struct DeformArguments {
-  std::string mesh, constraints, scenario, stiffness, rigid, method = "iarap", boundary = "refine", out, report;
+  std::string mesh, constraints, scenario, stiffness, rigid, method = "iarap", boundary = "refine", out,
+                                                             report;
   std::string ordering = "auto";
   ArapSolveOptions solve; // the flags of solve_option_flags.h; forces are set from `forces` below
   int threads = 0;
   bool json = false, repair = false, keep_numbering = false, pin_unconstrained = false, quiet = false;
-  bool volume = false; // tetrahedralize the closed surface's inside and deform the tetrahedra
+  bool volume = false;           // tetrahedralize the closed surface's inside and deform the tetrahedra
   ExternalForceArguments forces; // statics under gravity / per-vertex forces (none: the plain deformation)
 };
 
@@ -226,8 +227,8 @@ void run_deform(const DeformArguments& args) {
   require_usable(args, surface.check);
   // --volume: the surface's inside tetrahedralized (TetGen, run as a program), the surface its first rows.
   double tetrahedralize_ms = 0.0;
-  const DeformScene volume = args.volume ? timed(tetrahedralize_ms, [&] { return volume_scene(surface); })
-                                         : DeformScene();
+  const DeformScene volume =
+      args.volume ? timed(tetrahedralize_ms, [&] { return volume_scene(surface); }) : DeformScene();
   const DeformScene& scene = args.volume ? volume : surface;
   if (args.repair) j["repair"] = surface.repairs;
   if (!args.stiffness.empty()) j["stiffness"] = args.stiffness;
@@ -328,10 +329,11 @@ const bool registered = register_command(
            ->check(CLI::IsMember({"paper", "refine"}))
            ->capture_default_str();
        add_solve_option_flags(*sub, args->solve);
-       sub->add_option("--ordering", args->ordering,
-                       "CHOLMOD's fill-reducing ordering: auto (amd below 1M free vertices, metis from there), amd "
-                       "(faster analysis) or metis (a 25-40% smaller factor on meshes of millions of vertices; "
-                       "docs/performance.md)")
+       sub->add_option(
+              "--ordering", args->ordering,
+              "CHOLMOD's fill-reducing ordering: auto (amd below 1M free vertices, metis from there), amd "
+              "(faster analysis) or metis (a 25-40% smaller factor on meshes of millions of vertices; "
+              "docs/performance.md)")
            ->check(CLI::IsMember({"auto", "amd", "metis"}))
            ->capture_default_str();
        sub->add_option("--threads", args->threads, "Threads for the parallel loops; 0 = all hardware threads")
@@ -361,10 +363,11 @@ const bool registered = register_command(
               "Stiffness file: 'index s' per line, s > 0 multiplies the energy of that vertex's cell "
               "(others 1): a stiffer region bends and stretches less")
            ->check(CLI::ExistingFile);
-       sub->add_flag("--volume", args->volume,
-                     "Deform the closed surface as a solid: its inside is tetrahedralized by TetGen (the "
-                     "'tetgen' program, Debian package tetgen), the tetrahedra deformed by tet ARAP under the "
-                     "surface's constraints; the output is the surface with its own vertices and faces");
+       sub->add_flag(
+           "--volume", args->volume,
+           "Deform the closed surface as a solid: its inside is tetrahedralized by TetGen (the "
+           "'tetgen' program, Debian package tetgen), the tetrahedra deformed by tet ARAP under the "
+           "surface's constraints; the output is the surface with its own vertices and faces");
        sub->add_option("--rigid", args->rigid,
                        "Rigid parts: one group per line, 'i j k ...' (at least 2 vertices each): each group "
                        "moves as one rigid body. Solved by the plain iteration (--accelerator none, the "

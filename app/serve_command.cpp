@@ -12,13 +12,16 @@
 #include <httplib.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <csignal>
+#include <fcntl.h>
 #include <filesystem>
 #include <iostream>
 #include <memory>
 #include <pthread.h>
 #include <sys/socket.h>
 #include <thread>
+#include <unistd.h>
 
 #ifndef IARAP_WEB_DIR
 #define IARAP_WEB_DIR ""
@@ -29,6 +32,34 @@
 
 namespace iarap::cli {
 namespace {
+
+// The write end of the stop pipe (set once by stop_signal_pipe).
+int stop_pipe_write = -1;
+
+// Async-signal-safe: one byte to the pipe (a full pipe already holds a stop request).
+void request_stop() {
+  const int saved = errno;
+  const char byte = 1;
+  [[maybe_unused]] const ssize_t written = ::write(stop_pipe_write, &byte, 1);
+  errno = saved;
+}
+
+extern "C" void on_stop_signal(int) {
+  request_stop();
+}
+
+// The pipe's read end, with SIGINT and SIGTERM handled by on_stop_signal from now on.
+int stop_signal_pipe() {
+  int fds[2];
+  if (::pipe2(fds, O_CLOEXEC) != 0) throw Error("serve: cannot create the stop pipe");
+  stop_pipe_write = fds[1];
+  struct sigaction action {};
+  action.sa_handler = on_stop_signal;
+  sigemptyset(&action.sa_mask);
+  action.sa_flags = SA_RESTART;
+  for (const int signal : {SIGINT, SIGTERM}) ::sigaction(signal, &action, nullptr);
+  return fds[0];
+}
 
 struct ServeArguments {
   std::vector<std::string> meshes;
@@ -75,14 +106,11 @@ void run_serve(const ServeArguments& args, bool host_given) {
   config.verbose = args.verbose;
   set_thread_count(args.threads);
 
-  // SIGINT / SIGTERM are taken by one thread with sigwait (async-signal-safe), which stops the server.
-  // They are blocked before anything starts a thread (the first mesh's precomputation starts OpenMP and
-  // CHOLMOD workers), so that every thread inherits the mask and none dies of the default action.
-  sigset_t signals;
-  sigemptyset(&signals);
-  sigaddset(&signals, SIGINT);
-  sigaddset(&signals, SIGTERM);
-  pthread_sigmask(SIG_BLOCK, &signals, nullptr);
+  // SIGINT / SIGTERM stop the server through a handler that writes one byte to a pipe, read by one thread.
+  // A handler serves whichever thread the kernel picks; blocking the signals and taking them with sigwait
+  // did not, because OpenBLAS starts its thread pool when the library loads, before main, with the
+  // default mask: a SIGTERM delivered to one of its threads ended the process.
+  const int stop_pipe = stop_signal_pipe();
 
   serve::SharedSession session;
   if (!config.meshes.empty()) {
@@ -127,9 +155,10 @@ void run_serve(const ServeArguments& args, bool host_given) {
   }
   serve::register_routes(server, config, session, temp);
 
-  std::thread signal_thread([&server, &session, signals] {
-    int received = 0;
-    sigwait(&signals, &received);
+  std::thread signal_thread([&server, &session, stop_pipe] {
+    char byte = 0;
+    while (::read(stop_pipe, &byte, 1) < 0 && errno == EINTR) {
+    }
     session.frames().close(); // frame waits answer at once, so that the workers end
     server.stop();
   });
@@ -137,7 +166,7 @@ void run_serve(const ServeArguments& args, bool host_given) {
   std::cout << "iarap serve: open http://" << shown_host << ":" << port << "/ in a browser (Ctrl-C stops)"
             << std::endl;
   const bool clean = server.listen_after_bind();
-  pthread_kill(signal_thread.native_handle(), SIGTERM); // wakes the signal thread if listening failed
+  request_stop(); // wakes the signal thread if listening failed
   signal_thread.join();
   if (!clean) throw Error("the server stopped listening unexpectedly");
   std::cerr << "serve: stopped\n";

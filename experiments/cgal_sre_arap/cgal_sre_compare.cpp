@@ -77,7 +77,7 @@ Scene torus_scene() {
   Scene s{"torus 48 x 16 (valence 6)", {}, {}, {}, {}};
   torus(48, 16, s.V, s.F);
   for (int j = 0; j < 16; ++j) {
-    s.fixed.push_back(j);           // ring u = 0
+    s.fixed.push_back(j);            // ring u = 0
     s.handle.push_back(24 * 16 + j); // ring u = pi
   }
   return s;
@@ -116,7 +116,8 @@ Eigen::MatrixXd handle_targets(const Scene& s) {
 Eigen::MatrixXd cgal_solve(const Scene& s, double alpha) {
   Mesh mesh;
   std::vector<Mesh::Vertex_index> vertex;
-  for (Eigen::Index v = 0; v < s.V.rows(); ++v) vertex.push_back(mesh.add_vertex(Point(s.V(v, 0), s.V(v, 1), s.V(v, 2))));
+  for (Eigen::Index v = 0; v < s.V.rows(); ++v)
+    vertex.push_back(mesh.add_vertex(Point(s.V(v, 0), s.V(v, 1), s.V(v, 2))));
   for (Eigen::Index f = 0; f < s.F.rows(); ++f)
     if (mesh.add_face(vertex[s.F(f, 0)], vertex[s.F(f, 1)], vertex[s.F(f, 2)]) == Mesh::null_face())
       std::fprintf(stderr, "%s: CGAL refused face %ld\n", s.name.c_str(), static_cast<long>(f));
@@ -128,7 +129,8 @@ Eigen::MatrixXd cgal_solve(const Scene& s, double alpha) {
   const Eigen::MatrixXd T = handle_targets(s);
   for (size_t k = 0; k < s.handle.size(); ++k)
     deformation.set_target_position(vertex[static_cast<size_t>(s.handle[k])],
-                                    Point(T(static_cast<Eigen::Index>(k), 0), T(static_cast<Eigen::Index>(k), 1),
+                                    Point(T(static_cast<Eigen::Index>(k), 0),
+                                          T(static_cast<Eigen::Index>(k), 1),
                                           T(static_cast<Eigen::Index>(k), 2)));
   const auto positions = [&] {
     Eigen::MatrixXd U(s.V.rows(), 3);
@@ -157,7 +159,8 @@ Eigen::MatrixXd cgal_solve(const Scene& s, double alpha) {
 Eigen::MatrixXd iarap_solve(const Scene& s, double alpha, const Eigen::MatrixXd& start) {
   std::vector<int> all = s.fixed;
   all.insert(all.end(), s.handle.begin(), s.handle.end());
-  const Eigen::VectorXi fixed = Eigen::Map<const Eigen::VectorXi>(all.data(), static_cast<Eigen::Index>(all.size()));
+  const Eigen::VectorXi fixed =
+      Eigen::Map<const Eigen::VectorXi>(all.data(), static_cast<Eigen::Index>(all.size()));
   Eigen::MatrixXd targets(fixed.size(), 3);
   for (size_t k = 0; k < s.fixed.size(); ++k) targets.row(static_cast<Eigen::Index>(k)) = s.V.row(s.fixed[k]);
   targets.bottomRows(static_cast<Eigen::Index>(s.handle.size())) = handle_targets(s);

@@ -138,14 +138,12 @@ std::vector<std::vector<int>> to_groups(const py::object& groups) {
   return out;
 }
 
-std::unique_ptr<ArapSolver> make_solver(const py::object& V, const py::object& F, const py::object& fixed,
-                                        const std::string& method, bool pin_unconstrained_components,
-                                        bool refine_boundary, const py::object& soft_vertices,
-                                        const py::object& soft_weights, const py::object& soft_faces,
-                                        const py::object& soft_barycentric,
-                                        const py::object& soft_face_weights, const py::object& hard_faces,
-                                        const py::object& hard_barycentric, const py::object& stiffness,
-                                        const py::object& rigid_groups) {
+std::unique_ptr<ArapSolver>
+make_solver(const py::object& V, const py::object& F, const py::object& fixed, const std::string& method,
+            bool pin_unconstrained_components, bool refine_boundary, const py::object& soft_vertices,
+            const py::object& soft_weights, const py::object& soft_faces, const py::object& soft_barycentric,
+            const py::object& soft_face_weights, const py::object& hard_faces,
+            const py::object& hard_barycentric, const py::object& stiffness, const py::object& rigid_groups) {
   // #V x 2: a planar mesh, deformed in its plane (rotations about z); solves then take and give 2 columns.
   const Eigen::MatrixXd positions = to_points(V, "V", true, -1, "", true);
   // (#T, 4): tetrahedra (arap_precompute_tets); soft points then lie on their boundary faces.
@@ -160,7 +158,7 @@ std::unique_ptr<ArapSolver> make_solver(const py::object& V, const py::object& F
   options.pin_unconstrained_components = pin_unconstrained_components;
   options.intrinsic.refine_boundary = refine_boundary;
   options.stiffness = to_weights(stiffness, "stiffness"); // checked by the library, naming the vertex
-  options.rigid_groups = to_groups(rigid_groups);           // checked by the library, naming the group
+  options.rigid_groups = to_groups(rigid_groups);         // checked by the library, naming the group
   py::gil_scoped_release release;
   return std::make_unique<ArapSolver>(positions, faces, constrained, soft, options);
 }

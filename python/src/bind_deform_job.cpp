@@ -93,8 +93,8 @@ py::tuple deform_file_py(const BoundArguments& arguments) {
     return arguments[name].is_none() ? std::string() : path_text(arguments[name]);
   };
   const DeformFiles files{path_text(arguments["mesh"]), path_or_empty("scenario"),
-                          path_or_empty("constraints"), path_or_empty("forces"), path_or_empty("stiffness"),
-                          path_or_empty("rigid")};
+                          path_or_empty("constraints"), path_or_empty("forces"),
+                          path_or_empty("stiffness"),   path_or_empty("rigid")};
   const std::string& mesh_path = files.mesh;
   DeformScene scene;
   DeformResult result;

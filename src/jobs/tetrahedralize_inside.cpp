@@ -1,4 +1,5 @@
-// tetrahedralize_inside (volume_deform.h): TetGen run as an external program on a private copy of the surface.
+// tetrahedralize_inside (volume_deform.h): TetGen run as an external program on a private copy of the
+// surface.
 #include "iarap/core/errors.h"
 #include "iarap/io/read_tet_mesh.h"
 #include "iarap/io/write_mesh.h"
@@ -80,7 +81,8 @@ int run_tetgen(const TetgenOptions& options, const std::string& input, const std
 
 } // namespace
 
-TetMesh tetrahedralize_inside(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const TetgenOptions& options) {
+TetMesh tetrahedralize_inside(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
+                              const TetgenOptions& options) {
   const ScratchFolder folder;
   const std::string input = folder.path() + "/surface.off", log = folder.path() + "/tetgen.log";
   write_off(input, V, F);
@@ -91,9 +93,9 @@ TetMesh tetrahedralize_inside(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F
       what << "exit status " << WEXITSTATUS(status);
     else
       what << "signal " << WTERMSIG(status);
-    throw InputError("--volume: tetgen -" + options.switches + " failed on the surface (" + what.str() +
-                     "; a self-intersecting or open surface cannot be tetrahedralized); it printed:" +
-                     last_lines(log, 6));
+    throw InputError(
+        "--volume: tetgen -" + options.switches + " failed on the surface (" + what.str() +
+        "; a self-intersecting or open surface cannot be tetrahedralized); it printed:" + last_lines(log, 6));
   }
   TetMesh tets = read_tet_mesh(folder.path() + "/surface.1.ele");
   // -pY keeps every surface vertex, first and in order, at its 17-digit coordinates: check, then take V's.

@@ -21,12 +21,13 @@ double enclosed_volume(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
 DeformScene volume_scene(const DeformScene& surface, const TetgenOptions& options) {
   if (surface.tets.rows() > 0) throw InputError("--volume: the mesh is tetrahedral already");
   if (surface.check.boundary_edges > 0)
-    throw InputError("--volume needs a closed surface; this one has " +
-                     std::to_string(surface.check.boundary_edges) + " boundary edges (boundary loops: " +
-                     std::to_string(surface.check.boundary_loops) + ")");
+    throw InputError(
+        "--volume needs a closed surface; this one has " + std::to_string(surface.check.boundary_edges) +
+        " boundary edges (boundary loops: " + std::to_string(surface.check.boundary_loops) + ")");
   const SoftConstraintSet& soft = surface.constraints.soft;
   if (soft.faces.size() + soft.hard_faces.size() > 0)
-    throw InputError("--volume: points on faces (" + std::to_string(soft.faces.size() + soft.hard_faces.size()) +
+    throw InputError("--volume: points on faces (" +
+                     std::to_string(soft.faces.size() + soft.hard_faces.size()) +
                      " 'b' lines) are not supported; constrain vertices (fixed or soft) instead");
   TetMesh tets = tetrahedralize_inside(surface.mesh.V, surface.mesh.F, options);
   const Eigen::Index n = surface.mesh.V.rows(), all = tets.V.rows();

@@ -306,9 +306,9 @@ void arap_set_fixed(ArapData& data, const Eigen::VectorXi& fixed) {
   SparseCholesky solver;
   solver.set_ordering(data.solver.ordering());
   solver.factorize(L_ff); // throws SolverError; data is untouched until here
-  RigidGroupSystem rigid =
-      data.rigid.empty() ? RigidGroupSystem()
-                         : detail::rigid_group_system(data.rigid.groups, data, data.Q, data.soft, fixed, layout);
+  RigidGroupSystem rigid = data.rigid.empty() ? RigidGroupSystem()
+                                              : detail::rigid_group_system(data.rigid.groups, data, data.Q,
+                                                                           data.soft, fixed, layout);
   detail::commit_layout(data, fixed, layout, solver, L_fc);
   data.rigid = std::move(rigid);
   data.timings.analyze_ms = 0.0; // inside factor_ms here

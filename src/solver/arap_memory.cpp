@@ -36,7 +36,8 @@ ArapMemory arap_memory(const ArapData& data) {
     m.streamed = vector_bytes(sl.visit_order) + vector_bytes(sl.cell_entry_start) +
                  vector_bytes(sl.cell_entry) + vector_bytes(sl.rhs_term_start) + vector_bytes(sl.rhs_term);
   }
-  m.system = sparse_bytes(data.L) + sparse_bytes(data.L_fc) + sparse_bytes(data.Q) + sparse_bytes(data.rigid.P);
+  m.system =
+      sparse_bytes(data.L) + sparse_bytes(data.L_fc) + sparse_bytes(data.Q) + sparse_bytes(data.rigid.P);
   // With rigid groups the reduced system's factor counts beside L_ff's.
   m.factor = data.solver.factor_bytes() + data.rigid.solver.factor_bytes();
   m.kept_matrix = data.solver.kept_matrix_bytes() + data.rigid.solver.kept_matrix_bytes();

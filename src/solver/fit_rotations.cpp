@@ -145,8 +145,8 @@ double cell_energies_in_visit_order(const ArapElements& el, const ArapElements::
 #pragma omp parallel for schedule(dynamic, 256)
   for (int c = 0; c < el.num_cells; ++c) {
     double energy = 0.0;
-    for (int k = sl.cell_entry_start[static_cast<size_t>(c)]; k < sl.cell_entry_start[static_cast<size_t>(c) + 1];
-         ++k) {
+    for (int k = sl.cell_entry_start[static_cast<size_t>(c)];
+         k < sl.cell_entry_start[static_cast<size_t>(c) + 1]; ++k) {
       double s[3];
       element_vector(sl.cell_entry[static_cast<size_t>(k)], u, s);
       energy += element_energy(sl.cell_entry[static_cast<size_t>(k)], s, R[static_cast<size_t>(c)]);

@@ -69,7 +69,8 @@ LocalGlobalProblem::LocalGlobalProblem(ArapData& data, const Eigen::MatrixXd& ta
     if (data.planar)
       throw InputError("ARAP: rotation_smoothing is not supported on planar data (rotations about z only); "
                        "solve the mesh in 3D or use rotation_smoothing 0");
-    smoothing_ = std::make_unique<RotationSmoothing>(el, position_, rotation_smoothing, rest_area(data.V, data.F));
+    smoothing_ =
+        std::make_unique<RotationSmoothing>(el, position_, rotation_smoothing, rest_area(data.V, data.F));
   }
   B_.resize(nf, 3);
   X_.resize(nf, 3);
@@ -315,8 +316,9 @@ Eigen::MatrixXd LocalGlobalProblem::hessian_product(const Eigen::MatrixXd& v) {
   for (int k = 0; k < n; ++k) {
     const auto c = static_cast<size_t>(k);
     const Eigen::Matrix3d& R = data_.R[c];
-    const Eigen::Vector3d w =
-        smoothing_ ? tangent_omega_[c] : Eigen::Vector3d(M_inverse_[c] * vee_of_skew_part(R.transpose() * dS_[c]));
+    const Eigen::Vector3d w = smoothing_
+                                  ? tangent_omega_[c]
+                                  : Eigen::Vector3d(M_inverse_[c] * vee_of_skew_part(R.transpose() * dS_[c]));
     Eigen::Matrix3d W;
     W << 0, -w.z(), w.y(), w.z(), 0, -w.x(), -w.y(), w.x(), 0;
     dR_[c] = R * W;

@@ -103,10 +103,10 @@ private:
   std::vector<int> position_; // #V: the visit position of each vertex (its row of U_rows_)
   std::vector<std::unique_ptr<QuadraticTerm>> terms_; // evaluated on U_rows_
   Eigen::MatrixXd linear_f_; // #free x 3: sum_t s_t at the free rows (visit order), when there are terms
-  std::unique_ptr<RotationSmoothing> smoothing_; // ALPHA > 0 only
+  std::unique_ptr<RotationSmoothing> smoothing_;             // ALPHA > 0 only
   std::vector<Eigen::Vector3d> tangent_rhs_, tangent_omega_; // the coupled dR's system (hessian_product)
-  HardPointProjection hard_; // empty without hard points
-  Eigen::MatrixXd hard_d_;   // #hard x 3: their targets less the constrained corners' share
+  HardPointProjection hard_;                                 // empty without hard points
+  Eigen::MatrixXd hard_d_; // #hard x 3: their targets less the constrained corners' share
 };
 
 } // namespace iarap::detail

@@ -58,19 +58,19 @@ RigidGroupProblem::RigidGroupProblem(ArapData& data, const Eigen::MatrixXd& targ
     const Eigen::MatrixXd moved = rows_of(U, centre);
     t_g_[g] = moved.colwise().mean().transpose();
     // Fitted to the guess (Free, Pivot: the members' rows about t) or to the held members' targets.
-    R_g_[g] = best_rotation(rows_of(q_, centre.size() > 1 ? centre : members),
-                            (rows_of(U, centre.size() > 1 ? centre : members).rowwise() - t_g_[g].transpose()),
-                            data.planar);
+    R_g_[g] = best_rotation(
+        rows_of(q_, centre.size() > 1 ? centre : members),
+        (rows_of(U, centre.size() > 1 ? centre : members).rowwise() - t_g_[g].transpose()), data.planar);
     if (rigid.kind[g] == RigidGroupKind::Held) {
       double off = 0.0;
       for (const int i : held)
         off = std::max(off, (R_g_[g] * q_.row(i).transpose() + t_g_[g] - U.row(i).transpose()).norm());
       if (off > 1e-9 * extent)
-        throw InputError("ARAP: the targets of rigid group " + std::to_string(g) + "'s " +
-                         std::to_string(held.size()) +
-                         " constrained vertices are not a rigid motion of their rest positions: the best "
-                         "rigid fit is " + std::to_string(off) + " off (more than 1e-9 of the diagonal " +
-                         std::to_string(extent) + ")");
+        throw InputError(
+            "ARAP: the targets of rigid group " + std::to_string(g) + "'s " + std::to_string(held.size()) +
+            " constrained vertices are not a rigid motion of their rest positions: the best "
+            "rigid fit is " +
+            std::to_string(off) + " off (more than 1e-9 of the diagonal " + std::to_string(extent) + ")");
     }
     Eigen::Matrix3d K = Eigen::Matrix3d::Zero(); // sum_{i,j in g} A_ij q_j q_i^T
     for (const int i : members)

@@ -63,14 +63,14 @@ private:
   Eigen::MatrixXd& U_;
   Eigen::SparseMatrix<double> A_; // L + Q
   std::vector<std::unique_ptr<QuadraticTerm>> terms_;
-  Eigen::MatrixXd s_;                               // #V x 3: sum_t s_t
-  Eigen::MatrixXd q_;                               // #V x 3: p_i - o_g of group members (0 elsewhere)
-  std::vector<Eigen::Matrix3d> R_g_, K_g_;          // per group
-  std::vector<Eigen::Vector3d> t_g_;                // per group (Free: y's row, kept in step)
-  Eigen::MatrixXd y_, B_, g_, X_, b_;               // b_ = rhs(R) + s of the last assemble_rhs
-  bool have_b_ = false;                             // assemble_rhs ran since the cell rotations changed
-  ArapElements::ValueRows U_rows_;    // fit_rotations' workspace
-  ArapElements::ValueRows term_rows_; // U for the quadratic terms
+  Eigen::MatrixXd s_;                      // #V x 3: sum_t s_t
+  Eigen::MatrixXd q_;                      // #V x 3: p_i - o_g of group members (0 elsewhere)
+  std::vector<Eigen::Matrix3d> R_g_, K_g_; // per group
+  std::vector<Eigen::Vector3d> t_g_;       // per group (Free: y's row, kept in step)
+  Eigen::MatrixXd y_, B_, g_, X_, b_;      // b_ = rhs(R) + s of the last assemble_rhs
+  bool have_b_ = false;                    // assemble_rhs ran since the cell rotations changed
+  ArapElements::ValueRows U_rows_;         // fit_rotations' workspace
+  ArapElements::ValueRows term_rows_;      // U for the quadratic terms
   Eigen::VectorXd cell_energy_;
   mutable int solves_ = 0;
 };

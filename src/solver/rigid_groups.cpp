@@ -23,7 +23,8 @@ void check_rigid_groups(const std::vector<std::vector<int>>& groups, Eigen::Inde
         throw InputError(name + " names vertex " + std::to_string(v) + ", out of range for a mesh of " +
                          std::to_string(n) + " vertices");
       int& first = group_of[static_cast<size_t>(v)];
-      if (first == static_cast<int>(g)) throw InputError(name + " names vertex " + std::to_string(v) + " twice");
+      if (first == static_cast<int>(g))
+        throw InputError(name + " names vertex " + std::to_string(v) + " twice");
       if (first >= 0)
         throw InputError(name + " names vertex " + std::to_string(v) + ", already in rigid group " +
                          std::to_string(first));
@@ -90,7 +91,9 @@ RigidGroupSystem rigid_group_system(const std::vector<std::vector<int>>& groups,
       if (constrained[static_cast<size_t>(v)]) system.held[g].push_back(v);
     }
     const size_t held = system.held[g].size();
-    system.kind[g] = held == 0 ? RigidGroupKind::Free : held == 1 ? RigidGroupKind::Pivot : RigidGroupKind::Held;
+    system.kind[g] = held == 0   ? RigidGroupKind::Free
+                     : held == 1 ? RigidGroupKind::Pivot
+                                 : RigidGroupKind::Held;
     if (held >= 2) check_held_members_determine_rotation(data.V, system.held[g], data.planar, g);
   }
   // y = [free vertices in no group; Free groups' translations].

@@ -104,10 +104,12 @@ RotationSmoothing::RotationSmoothing(const ArapElements& el, const std::vector<i
   }
   colour_start_.assign(static_cast<size_t>(colours) + 1, 0);
   for (const int c : colour) ++colour_start_[static_cast<size_t>(c) + 1];
-  for (int c = 0; c < colours; ++c) colour_start_[static_cast<size_t>(c) + 1] += colour_start_[static_cast<size_t>(c)];
+  for (int c = 0; c < colours; ++c)
+    colour_start_[static_cast<size_t>(c) + 1] += colour_start_[static_cast<size_t>(c)];
   colour_cell_.resize(static_cast<size_t>(cells_));
   std::vector<int> next(colour_start_.begin(), colour_start_.end() - 1);
-  for (int i = 0; i < cells_; ++i) colour_cell_[static_cast<size_t>(next[static_cast<size_t>(colour[static_cast<size_t>(i)])]++)] = i;
+  for (int i = 0; i < cells_; ++i)
+    colour_cell_[static_cast<size_t>(next[static_cast<size_t>(colour[static_cast<size_t>(i)])]++)] = i;
 }
 
 double RotationSmoothing::energy(const std::vector<Eigen::Matrix3d>& R) const {
@@ -115,7 +117,9 @@ double RotationSmoothing::energy(const std::vector<Eigen::Matrix3d>& R) const {
   for (int i = 0; i < cells_; ++i)
     for (int p = start_[static_cast<size_t>(i)]; p < start_[static_cast<size_t>(i) + 1]; ++p) {
       const int j = neighbour_[static_cast<size_t>(p)];
-      if (j > i) sum += k_[static_cast<size_t>(p)] * (R[static_cast<size_t>(i)] - R[static_cast<size_t>(j)]).squaredNorm();
+      if (j > i)
+        sum += k_[static_cast<size_t>(p)] *
+               (R[static_cast<size_t>(i)] - R[static_cast<size_t>(j)]).squaredNorm();
     }
   return sum;
 }
@@ -142,7 +146,8 @@ double RotationSmoothing::objective_change(const std::vector<Eigen::Matrix3d>& S
       const auto j = static_cast<size_t>(neighbour_[static_cast<size_t>(p)]);
       if (j <= c) continue;
       const Eigen::Matrix3d d = R[c] - R[j], d_new = R_new[c] - R_new[j];
-      change += k_[static_cast<size_t>(p)] * ((R_new[c] - R[c]) - (R_new[j] - R[j])).cwiseProduct(d_new + d).sum();
+      change +=
+          k_[static_cast<size_t>(p)] * ((R_new[c] - R[c]) - (R_new[j] - R[j])).cwiseProduct(d_new + d).sum();
     }
   }
   return change;
@@ -263,8 +268,9 @@ int RotationSmoothing::tangent_solve(const std::vector<Eigen::Vector3d>& a,
 
 // Preconditioned CG from x = 0 on H x = b, to |r| <= tolerance |b|. Stops early on a direction of
 // non-positive curvature (H indefinite away from a minimizer), keeping the iterate so far.
-int RotationSmoothing::conjugate_gradients(const std::vector<Eigen::Vector3d>& b, std::vector<Eigen::Vector3d>& x,
-                                           double tolerance, int max_iterations) const {
+int RotationSmoothing::conjugate_gradients(const std::vector<Eigen::Vector3d>& b,
+                                           std::vector<Eigen::Vector3d>& x, double tolerance,
+                                           int max_iterations) const {
   const size_t n = b.size();
   x.assign(n, Eigen::Vector3d::Zero());
   std::vector<Eigen::Vector3d> r = b, z(n), p(n), Hp;

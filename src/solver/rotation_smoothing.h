@@ -13,7 +13,8 @@
 // Newton steps R_i <- R_i exp([omega_i]), halved until f decreases, and falls back to a Gauss-Seidel sweep
 // over a colouring of the neighbour graph (cells of one colour are independent: each update is the exact
 // block minimizer) when no step does, so f never increases; it stops when the stationarity residual
-// g_i = -vee(P_i - P_i^T), P_i = R_i^T T_i, is at rounding. (A cold start begins with one sweep.) The tangent Hessian of f (per cell omega, 3 #cells unknowns) is
+// g_i = -vee(P_i - P_i^T), P_i = R_i^T T_i, is at rounding. (A cold start begins with one sweep.) The tangent
+// Hessian of f (per cell omega, 3 #cells unknowns) is
 //   H_ii = tr(P_i) I - sym(P_i),   H_ij = 2 k_ij (Q_ij^T - tr(Q_ij) I),   Q_ij = R_i^T R_j,
 // which also gives the rotations' derivative along a change of positions, H omega = vee(R^T dS - dS^T R),
 // for the Hessian of the reduced energy (LocalGlobalProblem::hessian_product). Internal to the solver;

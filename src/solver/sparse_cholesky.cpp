@@ -102,7 +102,7 @@ struct SparseCholesky::Impl {
   FactorizationKind kind = FactorizationKind::None;
   FillOrdering ordering = FillOrdering::Auto;
   FillOrdering used = FillOrdering::Amd; // what the last analysis ran
-  Eigen::SparseMatrix<double> analyzed; // the pattern llt was analyzed on (analyze()), values unused
+  Eigen::SparseMatrix<double> analyzed;  // the pattern llt was analyzed on (analyze()), values unused
   std::unique_ptr<CholmodLlt> llt;
   std::unique_ptr<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>> ldlt;
   SolveWorkspace workspace;

@@ -13,8 +13,8 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <cstdlib>
 #include <array>
+#include <cstdlib>
 #include <set>
 #include <string>
 
@@ -54,7 +54,8 @@ TEST(VolumeDeform, EnclosedVolumeOfACube) {
   Eigen::MatrixXd V(8, 3);
   V << 0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 0, 0, 1, 1, 0, 1, 1, 1, 1, 0, 1, 1;
   Eigen::MatrixXi F(12, 3); // outward
-  F << 0, 2, 1, 0, 3, 2, 4, 5, 6, 4, 6, 7, 0, 1, 5, 0, 5, 4, 1, 2, 6, 1, 6, 5, 2, 3, 7, 2, 7, 6, 3, 0, 4, 3, 4, 7;
+  F << 0, 2, 1, 0, 3, 2, 4, 5, 6, 4, 6, 7, 0, 1, 5, 0, 5, 4, 1, 2, 6, 1, 6, 5, 2, 3, 7, 2, 7, 6, 3, 0, 4, 3,
+      4, 7;
   EXPECT_DOUBLE_EQ(enclosed_volume(V, F), 1.0);
   EXPECT_DOUBLE_EQ(enclosed_volume(2.0 * V, F), 8.0);
   EXPECT_DOUBLE_EQ(enclosed_volume(V, F.rowwise().reverse()), -1.0);

@@ -25,7 +25,8 @@ const ArapMethod kMethods[] = {ArapMethod::Arap, ArapMethod::SpokesRims, ArapMet
 
 // max over the members of |x_i - (R p_i + t)| for the least-squares rigid fit (R, t) of the members' rest
 // positions p onto x (Kabsch by SVD, computed here independently of the library).
-double rigid_misfit(const Eigen::MatrixXd& P_all, const Eigen::MatrixXd& X_all, const std::vector<int>& members) {
+double rigid_misfit(const Eigen::MatrixXd& P_all, const Eigen::MatrixXd& X_all,
+                    const std::vector<int>& members) {
   const Eigen::MatrixXd P = test::rows_of(P_all, test::to_vector(members));
   const Eigen::MatrixXd X = test::rows_of(X_all, test::to_vector(members));
   const Eigen::RowVector3d p0 = P.colwise().mean(), x0 = X.colwise().mean();
@@ -226,7 +227,8 @@ TEST_F(RigidGroups, BadGroupsAreRefusedNamingTheGroup) {
     }
     return std::string("no error");
   };
-  EXPECT_NE(message({{1, 2}, {3, 99}}).find("rigid group 1 names vertex 99, out of range"), std::string::npos);
+  EXPECT_NE(message({{1, 2}, {3, 99}}).find("rigid group 1 names vertex 99, out of range"),
+            std::string::npos);
   EXPECT_NE(message({{1, 2}, {3}}).find("rigid group 1 has 1 vertices"), std::string::npos);
   EXPECT_NE(message({{1, 2}, {3, 2}}).find("vertex 2, already in rigid group 0"), std::string::npos);
   EXPECT_NE(message({{1, 2, 1}}).find("names vertex 1 twice"), std::string::npos);
@@ -254,6 +256,23 @@ TEST_F(RigidGroups, AcceleratorsAreRefused) {
   window0.window = 0;
   Eigen::MatrixXd U = s.m.V;
   EXPECT_NO_THROW(arap_solve(data, s.targets, U, window0));
+}
+
+// Rotation smoothing couples the cells' rotations, the groups tie theirs: no joint local step, refused.
+TEST_F(RigidGroups, RotationSmoothingIsRefused) {
+  Scene s = banded(test::bumpy_patch(6), 0, Eigen::Vector3d::UnitZ(), 0.1, 0.0);
+  ArapData data =
+      arap_precompute(s.m.V, s.m.F, s.fixed, with_groups(ArapMethod::Iarap, {slab(s.m.V, 0, 0.4, 0.6)}));
+  ArapSolveOptions solve;
+  solve.accelerator = ArapAccelerator::None;
+  solve.rotation_smoothing = 0.02;
+  Eigen::MatrixXd U = s.m.V;
+  try {
+    arap_solve(data, s.targets, U, solve);
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("rotation smoothing"), std::string::npos) << e.what();
+  }
 }
 
 // Soft points, forces, a new fixed set (arap_set_fixed rebuilds the groups' system), a planar mesh and a

@@ -68,7 +68,8 @@ Scene patch_scene() {
   s.fixed = test::to_vector(all);
   s.targets = test::rows_of(s.mesh.V, s.fixed);
   for (size_t k = left.size(); k < all.size(); ++k) {
-    const double y = s.targets(static_cast<Eigen::Index>(k), 1) - 0.5, z = s.targets(static_cast<Eigen::Index>(k), 2);
+    const double y = s.targets(static_cast<Eigen::Index>(k), 1) - 0.5,
+                 z = s.targets(static_cast<Eigen::Index>(k), 2);
     s.targets.row(static_cast<Eigen::Index>(k)) << s.targets(static_cast<Eigen::Index>(k), 0),
         0.5 + std::cos(0.6) * y - std::sin(0.6) * z, 0.3 + std::sin(0.6) * y + std::cos(0.6) * z;
   }
@@ -116,7 +117,8 @@ double data_energy(const ArapData& data, const Eigen::MatrixXd& U, const std::ve
     for (int k = 0; k < 3; ++k) s += el.b_value(e, k) * U.row(el.b_index(e, k)).transpose();
     for (int p = el.cell_start[static_cast<size_t>(e)]; p < el.cell_start[static_cast<size_t>(e) + 1]; ++p)
       sum += 0.5 * el.w(e) *
-             (s - R[static_cast<size_t>(el.cell[static_cast<size_t>(p)])] * el.s_hat.row(e).transpose()).squaredNorm();
+             (s - R[static_cast<size_t>(el.cell[static_cast<size_t>(p)])] * el.s_hat.row(e).transpose())
+                 .squaredNorm();
   }
   return sum;
 }
@@ -168,7 +170,8 @@ TEST_F(RotationSmoothingTest, PlainIterationsNeverRaiseTheEnergy) {
       if (method != ArapMethod::Arap) continue; // the edge graph is original ARAP's cells exactly
       const double smooth = smoothing_energy_from_edges(s.mesh, arap_rotations(data), alpha);
       EXPECT_GT(smooth, 1e-4 * r.energies.back()) << name; // the term is not idle
-      EXPECT_NEAR(r.energies.back() - smooth, data_energy(data, U, arap_rotations(data)), 1e-10 * r.energies.back())
+      EXPECT_NEAR(r.energies.back() - smooth, data_energy(data, U, arap_rotations(data)),
+                  1e-10 * r.energies.back())
           << name;
     }
 }
@@ -314,7 +317,8 @@ TEST_F(RotationSmoothingTest, NewtonAndLbfgsReachThePlainMinimum) {
     for (const double alpha : {0.02, 0.2}) {
       const std::string name = arap_method_name(method) + " alpha " + std::to_string(alpha);
       ArapData data = arap_precompute(s.mesh.V, s.mesh.F, s.fixed, method_options(method));
-      const auto run = [&](ArapAccelerator accelerator, double tolerance, int iterations, Eigen::MatrixXd& U) {
+      const auto run = [&](ArapAccelerator accelerator, double tolerance, int iterations,
+                           Eigen::MatrixXd& U) {
         U = s.mesh.V;
         ArapSolveOptions o;
         o.accelerator = accelerator;
@@ -371,13 +375,15 @@ TEST_F(RotationSmoothingTest, ScaleInvariant) {
 TEST_F(RotationSmoothingTest, RefusesWhatItCannotSolve) {
   const Scene s = patch_scene();
   ArapData data = arap_precompute(s.mesh.V, s.mesh.F, s.fixed, method_options(ArapMethod::Arap));
-  for (const double bad : {-0.1, std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
+  for (const double bad :
+       {-0.1, std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
     Eigen::MatrixXd U = s.mesh.V;
     try {
       arap_solve(data, s.targets, U, plain(3, bad));
       ADD_FAILURE() << "accepted alpha " << bad;
     } catch (const InputError& e) {
-      EXPECT_NE(std::string(e.what()).find("rotation_smoothing must be a finite number >= 0"), std::string::npos)
+      EXPECT_NE(std::string(e.what()).find("rotation_smoothing must be a finite number >= 0"),
+                std::string::npos)
           << e.what();
     }
   }
@@ -394,7 +400,8 @@ TEST_F(RotationSmoothingTest, RefusesWhatItCannotSolve) {
     arap_solve(planar, s.targets.leftCols(2), U2, plain(3, 0.1));
     ADD_FAILURE() << "accepted planar data";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("rotation_smoothing is not supported on planar data"), std::string::npos)
+    EXPECT_NE(std::string(e.what()).find("rotation_smoothing is not supported on planar data"),
+              std::string::npos)
         << e.what();
   }
 
@@ -498,7 +505,8 @@ TEST_F(RotationSmoothingTest, IsolatedVerticesAndComponentsAreHandled) {
     ArapData single = arap_precompute(s.mesh.V, s.mesh.F, s.fixed, method_options(method));
     Eigen::MatrixXd U_single = s.mesh.V;
     arap_solve(single, s.targets, U_single, plain(10, 0.4));
-    EXPECT_LT((U.topRows(n) - U_single).rowwise().norm().maxCoeff(), 1e-9 * diagonal) << arap_method_name(method);
+    EXPECT_LT((U.topRows(n) - U_single).rowwise().norm().maxCoeff(), 1e-9 * diagonal)
+        << arap_method_name(method);
   }
 }
 

@@ -159,8 +159,9 @@ TEST(SparseCholesky, RefactorizingNewValuesEqualsAFreshFactorization) {
 }
 
 // CHOLMOD's own OpenMP teams are serialized below 4 allowed threads (sparse_cholesky.cpp): the caller's
-// OpenMP settings come back unchanged, and the factor is the same, bit for bit, with or without its teams
-// (CHOLMOD's serial solve shows it; the project's solve splits differently with the thread count).
+// OpenMP settings come back unchanged, and the factor is the same with or without its teams (bit for bit with
+// a single-threaded BLAS; CHOLMOD's serial solve shows it; the project's solve splits differently with the
+// thread count).
 TEST(SparseCholesky, CholmodTeamsLeaveTheCallersSettingsAlone) {
   const int n = 60; // a 2D grid Laplacian: supernodes large enough for CHOLMOD's parallel loops
   const Eigen::SparseMatrix<double> A = iarap::test::grid_laplacian(n, 0.01);
@@ -180,7 +181,9 @@ TEST(SparseCholesky, CholmodTeamsLeaveTheCallersSettingsAlone) {
     chol.solve_with_cholmod(B, X[k]);
     EXPECT_LT(residual(A, X[k], B), 1e-12);
   }
-  EXPECT_EQ(X[0], X[1]);
+  // The same ordering and supernodes; OpenBLAS (when it is the BLAS) splits its kernels by the thread count
+  // SparseCholesky allows it (1 against 4 here), which changes the rounding only. cond(A) <= 8 / 0.01.
+  EXPECT_LT((X[0] - X[1]).norm() / X[0].norm(), 1e-13);
   omp_set_max_active_levels(levels);
   iarap::set_thread_count(threads);
 }

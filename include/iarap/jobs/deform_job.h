@@ -49,13 +49,13 @@ struct DeformPrepareOptions {
 
 // The mesh and constraints a solve runs on, and what the checks found.
 struct DeformScene {
-  MeshData mesh;                    // repaired when asked
-  ConstraintSet constraints;        // resolved or remapped onto mesh
-  Eigen::MatrixXd forces;           // #V x 3 per-vertex forces on mesh (0 x 0: none)
-  Eigen::VectorXd stiffness;        // #V per-vertex stiffness on mesh (empty: none; ArapOptions::stiffness)
+  MeshData mesh;             // repaired when asked
+  ConstraintSet constraints; // resolved or remapped onto mesh
+  Eigen::MatrixXd forces;    // #V x 3 per-vertex forces on mesh (0 x 0: none)
+  Eigen::VectorXd stiffness; // #V per-vertex stiffness on mesh (empty: none; ArapOptions::stiffness)
   std::vector<std::vector<int>> rigid_groups; // rigid parts on mesh (empty: none; ArapOptions::rigid_groups)
-  std::vector<std::string> repairs; // RepairResult::actions (empty without repair)
-  MeshReport check;                 // check_mesh(mesh): a front-end refuses it when !check.usable()
+  std::vector<std::string> repairs;           // RepairResult::actions (empty without repair)
+  MeshReport check;                           // check_mesh(mesh): a front-end refuses it when !check.usable()
   // With repair: the input mesh and the maps between its numbering and mesh's (RepairResult's), for
   // in_input_numbering. Empty without repair.
   MeshData input;
@@ -109,13 +109,13 @@ struct DeformResult {
 };
 
 // Solves scene with `options` (method, boundary refinement, pin_unconstrained_components; planar is set here,
-// and stiffness and rigid groups to the scene's when it has them; a scene with tets runs arap_precompute_tets, which refuses
-// methods other than the default, and gravity is refused on it: its masses would be the surface's) and
-// `solve` (lengths in mesh units: scale_length_options is applied here). With forces.present every connected
-// component must hold a fixed vertex, a soft vertex or a point on a face (InputError otherwise: a free body
-// under a force has no equilibrium). Throws what arap_precompute and arap_solve throw; a HardPointConflict
-// comes back as InputError naming both lines (hard_point_conflict_message), and an energy that overflows as
-// SolverError naming the farthest target.
+// and stiffness and rigid groups to the scene's when it has them; a scene with tets runs
+// arap_precompute_tets, which refuses methods other than the default, and gravity is refused on it: its
+// masses would be the surface's) and `solve` (lengths in mesh units: scale_length_options is applied here).
+// With forces.present every connected component must hold a fixed vertex, a soft vertex or a point on a face
+// (InputError otherwise: a free body under a force has no equilibrium). Throws what arap_precompute and
+// arap_solve throw; a HardPointConflict comes back as InputError naming both lines
+// (hard_point_conflict_message), and an energy that overflows as SolverError naming the farthest target.
 DeformResult solve_deform(const DeformScene& scene, ArapOptions options, ArapSolveOptions solve,
                           const StaticForces& forces = {});
 

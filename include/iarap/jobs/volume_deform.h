@@ -28,7 +28,8 @@ struct TetgenOptions {
 // the program cannot be run (naming it and the Debian package), when it fails (its exit status or signal
 // and the last lines it printed: e.g. a self-intersecting surface), or when its output does not keep the
 // surface (a vertex moved or renumbered, a boundary face count unlike #F).
-TetMesh tetrahedralize_inside(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const TetgenOptions& options = {});
+TetMesh tetrahedralize_inside(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
+                              const TetgenOptions& options = {});
 
 // The volume a closed, consistently oriented triangle surface encloses: sum over faces of
 // det(a, b, c) / 6 (positive when the faces point outward).

@@ -119,7 +119,7 @@ struct ArapData {
   ArapSoftConstraints soft; // the soft constraints (arap_soft_constraints.h; empty: none)
   Eigen::SparseMatrix<double> Q;  // #V x #V soft system part sum_k 2 W_k c_k c_k^T (0 x 0 without soft)
   std::vector<Eigen::Matrix3d> R; // one per cell (arap_rotations) for the last iterate of arap_solve
-  RigidGroupSystem rigid;          // ArapOptions::rigid_groups' system (empty: none)
+  RigidGroupSystem rigid;         // ArapOptions::rigid_groups' system (empty: none)
   ArapPrecomputeTimings timings;
   ArapIntrinsicSummary intrinsic;
 };

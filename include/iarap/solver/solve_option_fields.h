@@ -100,7 +100,8 @@ inline constexpr SolveOptionField rotation_smoothing{
     0,
     unbounded,
     "",
-    "Rotation smoothing ALPHA (CGAL's SRE_ARAP alpha, symmetric form; docs/smoothing.md): neighbouring cells' "
+    "Rotation smoothing ALPHA (CGAL's SRE_ARAP alpha, symmetric form; docs/smoothing.md): neighbouring "
+    "cells' "
     "rotations are pulled together (0: off)"};
 } // namespace solve_option
 
