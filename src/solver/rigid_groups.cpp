@@ -51,9 +51,10 @@ void check_held_members_determine_rotation(const Eigen::MatrixXd& V, const std::
                                            bool planar, size_t group) {
   const Eigen::MatrixXd X = centered_rows(V, held);
   const double extent = (V.colwise().maxCoeff() - V.colwise().minCoeff()).norm();
-  const Eigen::Vector3d sigma = Eigen::JacobiSVD<Eigen::MatrixXd>(X).singularValues().head<3>();
-  const int needed = planar ? 0 : 1; // the singular value that must not vanish
-  if (sigma(needed) > 1e-9 * extent) return;
+  // min(#held, 3) singular values: two held members in space have two, the second zero (a line).
+  const Eigen::VectorXd sigma = Eigen::JacobiSVD<Eigen::MatrixXd>(X).singularValues();
+  const Eigen::Index needed = planar ? 0 : 1; // the singular value that must not vanish
+  if (needed < sigma.size() && sigma(needed) > 1e-9 * extent) return;
   throw InputError("ARAP: rigid group " + std::to_string(group) + " has " + std::to_string(held.size()) +
                    " constrained vertices (e.g. " + std::to_string(held[0]) + ") " +
                    (planar ? "at one point" : "on one line") +
