@@ -580,9 +580,11 @@ describe('background refinement', () => {
     const last = frames.at(-1).header;
     assert.ok(frames.every((f) => f.header.generation === answer.header.generation && f.header.refined && f.header.method === 'spokes-rims'));
     // Newton never increases the energy (a step that would is replaced by the plain one), and each frame
-    // continues from the one before.
+    // continues from the one before. At the minimum the plain step's decrease is below the rounding of the
+    // energy's sum over the bunny's cells (seen: +2 ulps, 5e-16 relative, in 1 of 6 runs): 1e-12 allows that
+    // and nothing a real increase could hide in.
     const energies = [answer.header.energies.at(-1), ...frames.map((f) => f.header.energy)];
-    energies.slice(1).forEach((e, k) => assert.ok(e <= energies[k], `frame ${k}: ${e} > ${energies[k]}`));
+    energies.slice(1).forEach((e, k) => assert.ok(e <= energies[k] * (1 + 1e-12), `frame ${k}: ${e} > ${energies[k]}`));
     assert.equal(last.converged, true, JSON.stringify(last));
     assert.ok(last.relative_decrease <= last.tolerance && last.tolerance === 1e-6);
     // A frame is one whole iterate: the positions the session keeps, bit for bit.
