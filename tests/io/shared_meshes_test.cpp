@@ -66,8 +66,9 @@ TEST(SharedMeshes, SharedSurfaceMeshesUsableAfterRepair) {
     const iarap::RepairResult r = iarap::repair_mesh(m.V, m.F, repair);
     const iarap::MeshReport after = iarap::check_mesh(r.V, r.F);
     EXPECT_TRUE(after.usable()) << e.name << ": " << (after.errors.empty() ? "" : after.errors[0]);
-    if (before.usable())
+    if (before.usable()) {
       EXPECT_EQ(r.V.rows(), m.V.rows() - before.coincident_vertices - before.unreferenced_vertices) << e.name;
+    }
     if (r.V.rows() > 70000) continue;
     EXPECT_EQ(after.zero_area_faces, 0) << e.name;
     EXPECT_EQ(after.non_manifold_edges, 0) << e.name;

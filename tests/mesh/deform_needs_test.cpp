@@ -48,8 +48,9 @@ void expect_one_verdict(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, cons
   const RepairResult repaired = repair_mesh(V, F, options);
   for (const std::string method : {"arap", "spokes-rims", "iarap"}) {
     EXPECT_EQ(accepted(V, F, method), !needs_repair(needs, method)) << name << ", " << method;
-    if (needs_repair(needs, method))
+    if (needs_repair(needs, method)) {
       EXPECT_TRUE(accepted(repaired.V, repaired.F, method)) << name << " after --repair, " << method;
+    }
   }
 }
 

@@ -43,7 +43,9 @@ inline void expect_repaired_topology(const RepairResult& r, const std::string& w
   EXPECT_EQ(check.non_manifold_edges, 0) << what;
   for (const std::string& error : check.errors)
     EXPECT_EQ(error.find("non-manifold (a closed fan"), std::string::npos) << what << ": " << error;
-  if (check.non_orientable_components == 0) EXPECT_EQ(check.inconsistently_oriented_edges, 0) << what;
+  if (check.non_orientable_components == 0) {
+    EXPECT_EQ(check.inconsistently_oriented_edges, 0) << what;
+  }
   EXPECT_EQ(r.counts.non_orientable_pieces, check.non_orientable_components) << what;
 }
 

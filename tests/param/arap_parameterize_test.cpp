@@ -113,7 +113,9 @@ TEST(ArapParameterize, EveryAcceleratorReachesThePlainIterationsMinimum) {
         EXPECT_LE(e, previous * (1 + 1e-12)) << what;
         previous = e;
       }
-      if (!allow_flips) EXPECT_EQ(b.distortion.flipped, 0) << what;
+      if (!allow_flips) {
+        EXPECT_EQ(b.distortion.flipped, 0) << what;
+      }
     }
   }
 }

@@ -82,9 +82,9 @@ INSTANTIATE_TEST_SUITE_P(EnergiesAndBarrier, UvProblemTest,
                          ::testing::Values(Case{ParamEnergy::Triangle, false},
                                            Case{ParamEnergy::Triangle, true}, Case{ParamEnergy::Arap, false},
                                            Case{ParamEnergy::Iarap, true}),
-                         [](const auto& info) {
-                           return param_energy_name(info.param.energy) +
-                                  (info.param.barrier ? "_barrier" : "");
+                         [](const auto& test_info) {
+                           return param_energy_name(test_info.param.energy) +
+                                  (test_info.param.barrier ? "_barrier" : "");
                          });
 
 // With flips allowed the plain step is the global step: M_ff x = r_f - M_fc U_c at fixed rotations, so
