@@ -224,7 +224,8 @@ int split_chart(const ChartMesh& mesh, int id, const std::vector<int>& faces, in
   constexpr int splitting = -3;
   for (int f : faces) label[static_cast<std::size_t>(f)] = splitting;
   const int a = farthest_face(mesh, faces, faces.front());
-  const int b = farthest_face(mesh, faces, a);
+  int b = farthest_face(mesh, faces, a);
+  if (b == a) b = faces.front() == a ? faces.back() : faces.front(); // all centroids at one point
   ChartGrowth growth(mesh, label, splitting, GrowthCost::Distance, -2);
   growth.add_face(id, a);
   if (b != a) growth.add_face(next_id++, b);
