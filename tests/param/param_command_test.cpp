@@ -135,6 +135,14 @@ TEST(ParamCommand, AtlasOfAClosedMesh) {
   EXPECT_GT(vt, torus.V.rows());
   EXPECT_LT(vt, 3 * torus.F.rows());
   EXPECT_TRUE(fs::exists(dir / "uv.png"));
+  // .txt: one 'u v' line per corner.
+  ASSERT_EQ(
+      iarap_cli("param " + quoted(dir / "torus.off") + " --out " + quoted(dir / "uv.txt") + " --quiet").code,
+      0);
+  std::ifstream text(dir / "uv.txt");
+  Eigen::Index lines = 0;
+  for (std::string line; std::getline(text, line);) ++lines;
+  EXPECT_EQ(lines, 3 * torus.F.rows());
   // Pins are one chart's.
   std::ofstream(dir / "pins.txt") << "0 0 0\n";
   const CliRun pinned = iarap_cli("param " + quoted(dir / "torus.off") + " --out " + quoted(dir / "uv2.obj") +
