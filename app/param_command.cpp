@@ -14,6 +14,7 @@
 #include "iarap/io/read_mesh.h"
 #include "iarap/mesh/validate.h"
 #include "iarap/param/arap_parameterize.h"
+#include "iarap/param/atlas_report_fields.h"
 #include "iarap/param/render_uv_picture.h"
 #include "iarap/param/uv_atlas.h"
 #include "iarap/param/write_uv_map.h"
@@ -36,6 +37,7 @@ struct ParamArguments {
   std::string charts = "auto";
   AtlasOptions atlas; // the atlas's own options (atlas.param is filled from the rest)
   int threads = 0;
+  bool tolerance_given = false; // --tolerance on the command line (an atlas has its own default)
   bool allow_flips = false, json = false, quiet = false;
 };
 
@@ -162,34 +164,17 @@ nlohmann::json atlas_json(const ParamArguments& args, const MeshData& mesh, cons
   j["max_normal_angle"] = options.max_normal_angle;
   j["target_distortion"] = options.target_distortion;
   j["min_chart_faces"] = options.min_chart_faces;
+  j["tolerance"] = options.param.solve.tolerance;
   j["charts"] = report.charts.size();
   nlohmann::json charts = nlohmann::json::array();
-  for (const AtlasChart& chart : report.charts)
-    charts.push_back({{"faces", chart.faces},
-                      {"vertices", chart.vertices},
-                      {"area", chart.area},
-                      {"energy", chart.energy},
-                      {"distortion", chart.distortion},
-                      {"flipped", chart.flipped},
-                      {"iterations", chart.iterations}});
+  for (const AtlasChart& chart : report.charts) {
+    nlohmann::json c;
+    visit_atlas_chart(chart, [&c](const char* name, const auto& value) { c[name] = value; });
+    charts.push_back(c);
+  }
   j["chart_list"] = charts;
-  j["seam_length"] = report.seam_length;
-  j["flipped"] = report.flipped;
-  j["degenerate_faces"] = report.degenerate_faces;
-  j["boundary_overlaps"] = report.boundary_overlaps;
-  j["overlap_ratio"] = report.overlap_ratio;
-  j["energy"] = report.energy;
-  j["area"] = report.area;
-  j["distortion"] = report.distortion;
-  j["packing_efficiency"] = report.packing_efficiency;
-  j["merged_small_charts"] = report.merged_small_charts;
-  j["splits_for_distortion"] = report.splits_for_distortion;
-  j["splits_for_overlap"] = report.splits_for_overlap;
+  visit_atlas_report(report, [&j](const char* name, const auto& value) { j[name] = value; });
   j["threads"] = thread_count();
-  j["segment_ms"] = report.segment_ms;
-  j["flatten_ms"] = report.flatten_ms;
-  j["pack_ms"] = report.pack_ms;
-  j["parameterize_ms"] = report.total_ms;
   return j;
 }
 
@@ -216,6 +201,7 @@ void run_atlas(const ParamArguments& args, const MeshData& mesh, const ParamOpti
                Clock::time_point total_start) {
   AtlasOptions options = args.atlas;
   options.param = param;
+  if (!args.tolerance_given) options.param.solve.tolerance = default_atlas_param_options().solve.tolerance;
   const UvAtlas atlas = naming_the_mesh(args.mesh, [&] { return uv_atlas(mesh.V, mesh.F, options); });
   const AtlasReport& report = atlas.report;
   write_uv_atlas(args.out, mesh.V, mesh.F, atlas.corner_uv);
@@ -347,7 +333,10 @@ const bool registered = register_command(
        sub->add_flag("--json", args->json, "Print the run's report as one JSON object on stdout");
        sub->add_option("--report", args->report, "Also write the JSON report to this file (atomically)");
        sub->add_flag("--quiet", args->quiet, "No progress lines on stderr");
-       sub->callback([args] { run_param(*args); });
+       sub->callback([args, sub] {
+         args->tolerance_given = sub->count("--tolerance") > 0;
+         run_param(*args);
+       });
      }});
 
 } // namespace

@@ -163,7 +163,7 @@ def uv_atlas(
     target_distortion: float = 0.05,
     min_chart_faces: int = 16,
     iterations: int = 100,
-    tolerance: float = 1e-06,
+    tolerance: float = 0.0001,
     accelerator: str = "newton",
     window: int = 8,
     gradient_tolerance: float = 0.0,

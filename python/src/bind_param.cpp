@@ -6,8 +6,8 @@
 
 #include "iarap/core/errors.h"
 #include "iarap/param/arap_parameterize.h"
+#include "iarap/param/atlas_report_fields.h"
 #include "iarap/param/param_report_fields.h"
-#include "iarap/param/uv_atlas.h"
 
 #include <memory>
 #include <string>
@@ -95,8 +95,7 @@ KeywordSignature uv_atlas_signature() {
       {"max_angle", "float", py::float_(defaults.max_normal_angle), true},
       {"target_distortion", "float", py::float_(defaults.target_distortion), true},
       {"min_chart_faces", "int", py::int_(defaults.min_chart_faces), true}};
-  for (Parameter& p : solve_option_parameters(default_param_solve_options(), 0))
-    parameters.push_back(std::move(p));
+  for (Parameter& p : solve_option_parameters(defaults.param.solve, 0)) parameters.push_back(std::move(p));
   return KeywordSignature("uv_atlas", std::move(parameters),
                           "tuple[_FloatArray, _IndexArray, dict[str, Any]]");
 }
@@ -106,32 +105,11 @@ py::dict atlas_report_dict(const AtlasReport& report) {
   py::list charts;
   for (const AtlasChart& chart : report.charts) {
     py::dict c;
-    c["faces"] = chart.faces;
-    c["vertices"] = chart.vertices;
-    c["area"] = chart.area;
-    c["energy"] = chart.energy;
-    c["distortion"] = chart.distortion;
-    c["flipped"] = chart.flipped;
-    c["iterations"] = chart.iterations;
+    visit_atlas_chart(chart, [&c](const char* name, const auto& value) { c[name] = value; });
     charts.append(c);
   }
   d["charts"] = charts;
-  d["seam_length"] = report.seam_length;
-  d["flipped"] = report.flipped;
-  d["degenerate_faces"] = report.degenerate_faces;
-  d["boundary_overlaps"] = report.boundary_overlaps;
-  d["overlap_ratio"] = report.overlap_ratio;
-  d["energy"] = report.energy;
-  d["area"] = report.area;
-  d["distortion"] = report.distortion;
-  d["packing_efficiency"] = report.packing_efficiency;
-  d["merged_small_charts"] = report.merged_small_charts;
-  d["splits_for_distortion"] = report.splits_for_distortion;
-  d["splits_for_overlap"] = report.splits_for_overlap;
-  d["segment_ms"] = report.segment_ms;
-  d["flatten_ms"] = report.flatten_ms;
-  d["pack_ms"] = report.pack_ms;
-  d["total_ms"] = report.total_ms;
+  visit_atlas_report(report, [&d](const char* name, const auto& value) { d[name] = value; });
   return d;
 }
 
@@ -166,14 +144,15 @@ void bind_param(py::module_& m) {
 V: (#V, 3) positions. F: (#F, 3) faces of an oriented manifold (closed or not, any genus, any number of
 pieces). The faces are grown into charts that are topological disks within a normal cone of max_angle
 degrees, each flattened flip-free as parameterize does (energy, allow_flips and the engine's options, 100
-iterations here), split where its UV boundary crosses itself or its energy / area exceeds
+iterations and tolerance 1e-4 here), split where its UV boundary crosses itself or its energy / area exceeds
 target_distortion (no part below min_chart_faces), and packed into [0,1]^2 at least padding texels apart
 for a texture of texture_size texels (docs/param.md, "Atlas"). corner_uv[f, k] is the UV of corner k of face
 f; chart[f] its chart (-1 for a face without an area, whose corners share one UV point).
 The report: charts (per chart faces, vertices, area, energy, distortion = energy / area, flipped,
 iterations), seam_length, flipped, degenerate_faces, boundary_overlaps, overlap_ratio (rasterized),
 energy, area, distortion (energy / area), packing_efficiency (UV area / unit square),
-merged_small_charts, splits_for_distortion, splits_for_overlap, segment_ms, flatten_ms, pack_ms, total_ms.
+merged_small_charts, splits_for_distortion, splits_for_overlap, segment_ms, flatten_ms, pack_ms,
+parameterize_ms.
 Raises InputError for bad arrays or options, TopologyError for a mesh that is not an oriented manifold.)");
 
   def_with_signature(

@@ -256,9 +256,8 @@ bool raster_fit(const std::vector<Eigen::MatrixXd>& chart_uv, const std::vector<
   for (std::size_t i : order) {
     RasterChart best;
     Eigen::Vector2i best_place(-1, -1);
-    for (int turn = 0; turn < 2; ++turn) {
-      const Eigen::Matrix2d rotation =
-          turn == 0 ? rects[i].rotation : Eigen::Matrix2d(quarter * rects[i].rotation);
+    Eigen::Matrix2d rotation = rects[i].rotation;
+    for (int turn = 0; turn < 4; ++turn, rotation = quarter * rotation) {
       RasterChart chart = raster_chart(chart_uv[i], chart_faces[i], rotation, scale * cells, dilation);
       const Eigen::Vector2i place = lowest_place(bitmap, chart.dilated);
       if (place.x() < 0) continue;
@@ -332,8 +331,8 @@ ChartPacking pack_charts(const std::vector<Eigen::MatrixXd>& chart_uv,
     placement.translation = best_corner[i] + Eigen::Vector2d::Constant(gap / 2) - lo * rects[i].min;
     packing.placements.push_back(placement);
   }
-  // The raster, from the shelves' scale up in steps of 3% while every chart finds a place (down from it
-  // when the cells' rounding does not fit that scale). Better than the shelves only when above their scale.
+  // The raster, from the shelves' scale up in steps of 3% while every chart finds a place: kept only
+  // above the shelves' scale (else the shelves' placements stay).
   const int cells = std::min(texture_size, 512);
   const int dilation = static_cast<int>(std::ceil(gap * cells - 1e-9));
   std::vector<std::size_t> by_area(order);
@@ -341,11 +340,24 @@ ChartPacking pack_charts(const std::vector<Eigen::MatrixXd>& chart_uv,
     return rects[a].width * rects[a].height > rects[b].width * rects[b].height;
   });
   std::vector<ChartPlacement> trial(rects.size());
-  for (double scale = packing.scale * 1.03; scale < std::min(1 / std::sqrt(area) * 1.5, 1e300);
-       scale *= 1.03) {
-    if (!raster_fit(chart_uv, chart_faces, rects, by_area, scale, cells, dilation, trial)) break;
+  double failed = 0; // the smallest scale seen not to fit (0: none yet)
+  for (double scale = packing.scale * 1.03; scale < 1.5 / std::sqrt(area); scale *= 1.03) {
+    if (!raster_fit(chart_uv, chart_faces, rects, by_area, scale, cells, dilation, trial)) {
+      failed = scale;
+      break;
+    }
     packing.scale = scale;
     packing.placements = trial;
+  }
+  // Three bisection steps between the last scale that fit and the first that did not (within 0.4%).
+  for (int step = 0; step < 3 && failed > 0; ++step) {
+    const double scale = (packing.scale + failed) / 2;
+    if (raster_fit(chart_uv, chart_faces, rects, by_area, scale, cells, dilation, trial)) {
+      packing.scale = scale;
+      packing.placements = trial;
+    } else {
+      failed = scale;
+    }
   }
   return packing;
 }

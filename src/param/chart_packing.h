@@ -22,11 +22,11 @@ struct ChartPacking {
 // flat. Two packings, the better (larger scale) kept:
 // - shelves: the rectangles first-fit decreasing by height (Coffman, Garey, Johnson and Tarjan 1980) at
 //   the largest scale that fits (bisection), gap texels apart and gap / 2 from the border;
-// - a raster (as xatlas packs): the charts, largest first, each turned by 0 or 90 degrees, put at the
-//   lowest free place of a bitmap of min(texture_size, 512)^2 cells, a chart's cells those its triangles'
-//   bounding boxes touch (so it covers all of the chart), dilated by the gap rounded up to whole cells for
-//   the test against the charts placed before; the scale raised from the shelves' in steps of 3% while
-//   every chart finds a place.
+// - a raster (as xatlas packs): the charts, largest first, each turned by 0, 90, 180 or 270 degrees (the
+//   turn whose top ends lowest), put at the lowest free place of a bitmap of min(texture_size, 512)^2
+//   cells, a chart's cells those its triangles' bounding boxes touch (so it covers all of the chart),
+//   dilated by the gap rounded up to whole cells for the test against the charts placed before; the scale
+//   raised from the shelves' in steps of 3% while every chart finds a place, then three bisection steps.
 // Charts are then at least gap texels apart and inside the unit square. Throws InputError when even at a
 // vanishing scale the gaps do not fit (too many charts for the texture and padding).
 ChartPacking pack_charts(const std::vector<Eigen::MatrixXd>& chart_uv,

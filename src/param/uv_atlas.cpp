@@ -155,6 +155,12 @@ double seam_length(const Eigen::MatrixXd& V, const ChartMesh& mesh, const std::v
 
 } // namespace
 
+ParamOptions default_atlas_param_options() {
+  ParamOptions options;
+  options.solve.tolerance = 1e-4;
+  return options;
+}
+
 UvAtlas uv_atlas(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const AtlasOptions& options) {
   const auto total_start = Clock::now();
   check_atlas_options(options);
