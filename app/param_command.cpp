@@ -12,8 +12,11 @@
 #include "iarap/core/threads.h"
 #include "iarap/io/check_output_path.h"
 #include "iarap/io/read_mesh.h"
+#include "iarap/mesh/validate.h"
 #include "iarap/param/arap_parameterize.h"
+#include "iarap/param/atlas_report_fields.h"
 #include "iarap/param/render_uv_picture.h"
+#include "iarap/param/uv_atlas.h"
 #include "iarap/param/write_uv_map.h"
 #include "iarap/scene/read_constraints.h"
 
@@ -31,7 +34,10 @@ namespace {
 struct ParamArguments {
   std::string mesh, out, report, picture, pins, energy = "triangle", init, boundary = "free";
   ArapSolveOptions solve = default_param_solve_options();
+  std::string charts = "auto";
+  AtlasOptions atlas; // the atlas's own options (atlas.param is filled from the rest)
   int threads = 0;
+  bool tolerance_given = false; // --tolerance on the command line (an atlas has its own default)
   bool allow_flips = false, json = false, quiet = false;
 };
 
@@ -113,34 +119,128 @@ nlohmann::json report_json(const ParamArguments& args, const MeshData& mesh, con
   return j;
 }
 
+// The library's errors with the mesh's path in front, as every command names the file.
+template <class Run> auto naming_the_mesh(const std::string& mesh, Run run) {
+  try {
+    return run();
+  } catch (const TopologyError& e) {
+    throw TopologyError(mesh + ": " + e.what());
+  } catch (const InputError& e) {
+    throw InputError(mesh + ": " + e.what());
+  } catch (const SolverError& e) {
+    throw SolverError(mesh + ": " + e.what());
+  }
+}
+
+// With --picture: renders and writes it, and records the path and the time in the report.
+template <class Render> void add_picture(const ParamArguments& args, nlohmann::json& j, Render render) {
+  if (args.picture.empty()) return;
+  const auto picture_start = Clock::now();
+  write_png(args.picture, render());
+  j["picture"] = args.picture;
+  j["picture_ms"] = ms_since(picture_start);
+}
+
+// `--charts auto` flattens a topological disk as one chart (as before the atlas existed) and cuts anything
+// else into charts; a mesh check_mesh cannot use goes to the atlas, which refuses it with check_mesh's words.
+bool one_chart(const ParamArguments& args, const MeshData& mesh) {
+  if (args.charts == "one") return true;
+  const MeshReport check = check_mesh(mesh.V, mesh.F);
+  return check.usable() && check.components == 1 && check.boundary_loops == 1 && check.genus == 0;
+}
+
+nlohmann::json atlas_json(const ParamArguments& args, const MeshData& mesh, const AtlasOptions& options,
+                          const AtlasReport& report) {
+  nlohmann::json j;
+  j["input"] = args.mesh;
+  j["output"] = args.out;
+  j["vertices"] = mesh.V.rows();
+  j["faces"] = mesh.F.rows();
+  j["charts_mode"] = args.charts;
+  j["energy_kind"] = param_energy_name(options.param.energy);
+  j["allow_flips"] = options.param.allow_flips;
+  j["texture_size"] = options.texture_size;
+  j["padding"] = options.padding;
+  j["max_normal_angle"] = options.max_normal_angle;
+  j["target_distortion"] = options.target_distortion;
+  j["min_chart_faces"] = options.min_chart_faces;
+  j["tolerance"] = options.param.solve.tolerance;
+  j["charts"] = report.charts.size();
+  nlohmann::json charts = nlohmann::json::array();
+  for (const AtlasChart& chart : report.charts) {
+    nlohmann::json c;
+    visit_atlas_chart(chart, [&c](const char* name, const auto& value) { c[name] = value; });
+    charts.push_back(c);
+  }
+  j["chart_list"] = charts;
+  visit_atlas_report(report, [&j](const char* name, const auto& value) { j[name] = value; });
+  j["threads"] = thread_count();
+  return j;
+}
+
+// The atlas's picture: each face on its own three vertices (the charts come apart at the seams).
+RgbImage atlas_picture(const MeshData& mesh, const UvAtlas& atlas) {
+  std::vector<int> faces;
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f)
+    if (atlas.chart(f) >= 0) faces.push_back(static_cast<int>(f));
+  const auto n = static_cast<Eigen::Index>(faces.size());
+  Eigen::MatrixXd V(3 * n, 3), UV(3 * n, 2);
+  Eigen::MatrixXi F(n, 3);
+  for (Eigen::Index i = 0; i < n; ++i)
+    for (int k = 0; k < 3; ++k) {
+      V.row(3 * i + k) = mesh.V.row(mesh.F(faces[static_cast<std::size_t>(i)], k));
+      UV.row(3 * i + k) = atlas.corner_uv.row(3 * faces[static_cast<std::size_t>(i)] + k);
+      F(i, k) = static_cast<int>(3 * i + k);
+    }
+  UvPictureOptions options;
+  options.checker_squares = 64;
+  return render_uv_picture(V, F, UV, options);
+}
+
+void run_atlas(const ParamArguments& args, const MeshData& mesh, const ParamOptions& param,
+               Clock::time_point total_start) {
+  AtlasOptions options = args.atlas;
+  options.param = param;
+  if (!args.tolerance_given) options.param.solve.tolerance = default_atlas_param_options().solve.tolerance;
+  const UvAtlas atlas = naming_the_mesh(args.mesh, [&] { return uv_atlas(mesh.V, mesh.F, options); });
+  const AtlasReport& report = atlas.report;
+  write_uv_atlas(args.out, mesh.V, mesh.F, atlas.corner_uv);
+  nlohmann::json j = atlas_json(args, mesh, options, report);
+  add_picture(args, j, [&] { return atlas_picture(mesh, atlas); });
+  j["total_ms"] = ms_since(total_start);
+  if (!args.quiet)
+    std::cerr << "param: " << report.charts.size() << " charts, distortion " << report.distortion
+              << " (energy / area), " << report.flipped << " flipped triangles, packing efficiency "
+              << report.packing_efficiency << ", overlap " << report.overlap_ratio << "\nparam: wrote "
+              << args.out << (args.picture.empty() ? "" : " and " + args.picture) << "\n";
+  const std::string text = json_text(j);
+  if (!args.report.empty()) write_text_file(args.report, text);
+  if (args.json) std::cout << text;
+}
+
 void run_param(const ParamArguments& args) {
   check_paths(args);
   ParamOptions options = options_of(args);
   const auto total_start = Clock::now();
   const MeshData mesh = read_mesh(args.mesh);
+  if (!one_chart(args, mesh)) {
+    if (!args.pins.empty())
+      throw CLI::ValidationError("--pins needs one chart: " + args.mesh +
+                                 " is not a topological disk (use --charts one for a disk)");
+    set_thread_count(args.threads == 0 ? 1 : args.threads);
+    run_atlas(args, mesh, options, total_start);
+    return;
+  }
   if (!args.pins.empty()) options.pins = read_pins(args.pins, mesh);
   // Automatic: one thread. The per-triangle loops are serial and the solves have two columns; camelhead
   // (11.4K vertices) on the 2-core machine, 5 paired runs: 0.43-0.65 s on one thread, 0.84-0.95 s on two.
   set_thread_count(args.threads == 0 ? 1 : args.threads);
-  ParamResult result;
-  try {
-    result = arap_parameterize(mesh.V, mesh.F, options);
-  } catch (const TopologyError& e) {
-    throw TopologyError(args.mesh + ": " + e.what());
-  } catch (const InputError& e) {
-    throw InputError(args.mesh + ": " + e.what());
-  } catch (const SolverError& e) {
-    throw SolverError(args.mesh + ": " + e.what());
-  }
+  const ParamResult result =
+      naming_the_mesh(args.mesh, [&] { return arap_parameterize(mesh.V, mesh.F, options); });
   const ParamReport& report = result.report;
   write_uv_map(args.out, mesh.V, mesh.F, result.UV);
   nlohmann::json j = report_json(args, mesh, options, report);
-  if (!args.picture.empty()) {
-    const auto picture_start = Clock::now();
-    write_png(args.picture, render_uv_picture(mesh.V, mesh.F, result.UV));
-    j["picture"] = args.picture;
-    j["picture_ms"] = ms_since(picture_start);
-  }
+  add_picture(args, j, [&] { return render_uv_picture(mesh.V, mesh.F, result.UV); });
   j["total_ms"] = ms_since(total_start);
   if (!args.quiet) {
     if (report.init_fallback)
@@ -165,7 +265,8 @@ const bool registered = register_command(
        auto* sub =
            app.add_subcommand("param", "Flatten a disk-like mesh into the plane: an ARAP parameterization "
                                        "(UV map), flip-free by default");
-       sub->add_option("MESH", args->mesh, "Input mesh (.obj .off .ply .stl), a topological disk")
+       sub->add_option("MESH", args->mesh,
+                       "Input mesh (.obj .off .ply .stl); a disk is one chart, another surface an atlas")
            ->required()
            ->check(CLI::ExistingFile);
        sub->add_option(
@@ -194,6 +295,30 @@ const bool registered = register_command(
                        "boundary: they replace the default pin (two or more: LSCM start with them held); "
                        "circle: inner vertices, circle centred at 0 with radius sqrt(area / pi)")
            ->check(CLI::ExistingFile);
+       sub->add_option("--charts", args->charts,
+                       "auto: a topological disk is one chart, any other mesh is cut into disk charts and "
+                       "packed into [0,1]^2; one: a single chart (the mesh must be a disk)")
+           ->check(CLI::IsMember({"auto", "one"}))
+           ->capture_default_str();
+       sub->add_option("--texture-size", args->atlas.texture_size,
+                       "Atlas: texels along a side of the texture")
+           ->check(CLI::Range(16, 16384))
+           ->capture_default_str();
+       sub->add_option("--padding", args->atlas.padding, "Atlas: texels between charts")
+           ->check(CLI::Range(0.0, 8192.0))
+           ->capture_default_str();
+       sub->add_option("--max-angle", args->atlas.max_normal_angle,
+                       "Atlas: degrees a face's normal may turn from its chart's mean normal")
+           ->check(CLI::Range(1.0, 180.0))
+           ->capture_default_str();
+       sub->add_option("--target-distortion", args->atlas.target_distortion,
+                       "Atlas: split a chart whose ARAP energy / area exceeds this")
+           ->check(CLI::PositiveNumber)
+           ->capture_default_str();
+       sub->add_option("--min-chart-faces", args->atlas.min_chart_faces,
+                       "Atlas: smaller charts are merged into neighbours, and no split makes them")
+           ->check(CLI::Range(1, 1 << 30))
+           ->capture_default_str();
        sub->add_flag("--allow-flips", args->allow_flips,
                      "Minimize the energy alone (no barrier, no injectivity bound on the steps): triangles "
                      "may fold, as in libigl and CGAL");
@@ -208,7 +333,10 @@ const bool registered = register_command(
        sub->add_flag("--json", args->json, "Print the run's report as one JSON object on stdout");
        sub->add_option("--report", args->report, "Also write the JSON report to this file (atomically)");
        sub->add_flag("--quiet", args->quiet, "No progress lines on stderr");
-       sub->callback([args] { run_param(*args); });
+       sub->callback([args, sub] {
+         args->tolerance_given = sub->count("--tolerance") > 0;
+         run_param(*args);
+       });
      }});
 
 } // namespace

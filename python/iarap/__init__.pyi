@@ -151,6 +151,26 @@ def parameterize(
     newton_trust_radius: float = 0.0,
     rotation_smoothing: float = 0.0,
 ) -> tuple[_FloatArray, dict[str, Any]]: ...
+def uv_atlas(
+    V: npt.ArrayLike,
+    F: npt.ArrayLike,
+    *,
+    energy: str = "triangle",
+    allow_flips: bool = False,
+    texture_size: int = 1024,
+    padding: float = 2.0,
+    max_angle: float = 60.0,
+    target_distortion: float = 0.05,
+    min_chart_faces: int = 16,
+    iterations: int = 100,
+    tolerance: float = 0.0001,
+    accelerator: str = "newton",
+    window: int = 8,
+    gradient_tolerance: float = 0.0,
+    time_budget_ms: float = 0.0,
+    newton_trust_radius: float = 0.0,
+    rotation_smoothing: float = 0.0,
+) -> tuple[_FloatArray, _IndexArray, dict[str, Any]]: ...
 def deform_file(
     mesh: _StrPath,
     *,

@@ -6,6 +6,7 @@
 
 #include "iarap/core/errors.h"
 #include "iarap/param/arap_parameterize.h"
+#include "iarap/param/atlas_report_fields.h"
 #include "iarap/param/param_report_fields.h"
 
 #include <memory>
@@ -81,9 +82,79 @@ py::tuple parameterize_py(const BoundArguments& arguments) {
   return py::make_tuple(to_numpy(result.UV), report_dict(result.report));
 }
 
+// uv_atlas's parameters: the mesh, the charts' flattening, the atlas's own options, then the engine's.
+KeywordSignature uv_atlas_signature() {
+  const AtlasOptions defaults;
+  std::vector<Parameter> parameters = {
+      {"V", "npt.ArrayLike", py::object(), false},
+      {"F", "npt.ArrayLike", py::object(), false},
+      {"energy", "str", py::str("triangle"), true},
+      {"allow_flips", "bool", py::bool_(false), true},
+      {"texture_size", "int", py::int_(defaults.texture_size), true},
+      {"padding", "float", py::float_(defaults.padding), true},
+      {"max_angle", "float", py::float_(defaults.max_normal_angle), true},
+      {"target_distortion", "float", py::float_(defaults.target_distortion), true},
+      {"min_chart_faces", "int", py::int_(defaults.min_chart_faces), true}};
+  for (Parameter& p : solve_option_parameters(defaults.param.solve, 0)) parameters.push_back(std::move(p));
+  return KeywordSignature("uv_atlas", std::move(parameters),
+                          "tuple[_FloatArray, _IndexArray, dict[str, Any]]");
+}
+
+py::dict atlas_report_dict(const AtlasReport& report) {
+  py::dict d;
+  py::list charts;
+  for (const AtlasChart& chart : report.charts) {
+    py::dict c;
+    visit_atlas_chart(chart, [&c](const char* name, const auto& value) { c[name] = value; });
+    charts.append(c);
+  }
+  d["charts"] = charts;
+  visit_atlas_report(report, [&d](const char* name, const auto& value) { d[name] = value; });
+  return d;
+}
+
+py::tuple uv_atlas_py(const BoundArguments& arguments) {
+  const Eigen::MatrixXd positions = to_points(arguments["V"], "V");
+  const Eigen::MatrixXi faces = to_faces(arguments["F"], "F", positions.rows());
+  AtlasOptions options;
+  options.param.energy = parse_param_energy(arguments.as<std::string>("energy"));
+  options.param.allow_flips = arguments.as<bool>("allow_flips");
+  options.texture_size = arguments.as<int>("texture_size");
+  options.padding = arguments.as<double>("padding");
+  options.max_normal_angle = arguments.as<double>("max_angle");
+  options.target_distortion = arguments.as<double>("target_distortion");
+  options.min_chart_faces = arguments.as<int>("min_chart_faces");
+  set_solve_options(options.param.solve, arguments);
+  UvAtlas atlas;
+  {
+    py::gil_scoped_release release;
+    atlas = uv_atlas(positions, faces, options);
+  }
+  py::array corner_uv = to_numpy(atlas.corner_uv);
+  return py::make_tuple(corner_uv.attr("reshape")(faces.rows(), 3, 2), to_numpy(atlas.chart),
+                        atlas_report_dict(atlas.report));
+}
+
 } // namespace
 
 void bind_param(py::module_& m) {
+  def_with_signature(m, uv_atlas_signature(), &uv_atlas_py,
+                     R"(A UV atlas of any triangle mesh: (corner_uv (#F, 3, 2), chart (#F,), report dict).
+
+V: (#V, 3) positions. F: (#F, 3) faces of an oriented manifold (closed or not, any genus, any number of
+pieces). The faces are grown into charts that are topological disks within a normal cone of max_angle
+degrees, each flattened flip-free as parameterize does (energy, allow_flips and the engine's options, 100
+iterations and tolerance 1e-4 here), split where its UV boundary crosses itself or its energy / area exceeds
+target_distortion (no part below min_chart_faces), and packed into [0,1]^2 at least padding texels apart
+for a texture of texture_size texels (docs/param.md, "Atlas"). corner_uv[f, k] is the UV of corner k of face
+f; chart[f] its chart (-1 for a face without an area, whose corners share one UV point).
+The report: charts (per chart faces, vertices, area, energy, distortion = energy / area, flipped,
+iterations), seam_length, flipped, degenerate_faces, boundary_overlaps, overlap_ratio (rasterized),
+energy, area, distortion (energy / area), packing_efficiency (UV area / unit square),
+merged_small_charts, splits_for_distortion, splits_for_overlap, segment_ms, flatten_ms, pack_ms,
+parameterize_ms.
+Raises InputError for bad arrays or options, TopologyError for a mesh that is not an oriented manifold.)");
+
   def_with_signature(
       m, parameterize_signature(), &parameterize_py,
       std::string(R"(ARAP parameterization (Liu et al. 2008) of a disk-like mesh: (UV (#V, 2), report dict).

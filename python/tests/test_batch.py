@@ -132,10 +132,13 @@ def calls(tmp_path, output):
 
 
 def doomed_jobs(tmp_path):
-    """A missing mesh (the tool's exit 2) and a closed mesh given to param (exit 1), beside a job that works."""
+    """A missing mesh (the tool's exit 2) and a mesh param cannot cut into disks (three triangles on one edge:
+    exit 1), beside a job that works."""
+    (tmp_path / "fin.off").write_text("OFF\n5 3 0\n0 0 0\n1 0 0\n0 1 0\n0 -1 0\n0 0 1\n"
+                                      "3 0 1 2\n3 1 0 3\n3 0 1 4\n")
     return [{"mesh": str(tmp_path / "missing.off"), "scenario": str(DATA / "bunny_scenario.json"),
              "output": str(tmp_path / "out" / "missing.obj")},
-            {"command": "param", "mesh": str(DATA / "bunny.off"), "output": str(tmp_path / "out" / "closed.obj")},
+            {"command": "param", "mesh": str(tmp_path / "fin.off"), "output": str(tmp_path / "out" / "closed.obj")},
             deform_jobs(tmp_path, 1)[0]]
 
 
@@ -145,7 +148,7 @@ def test_jobs_the_tool_refuses_fail_once_and_crashes_are_retried(cli, tmp_path, 
                               progress=None, retries=1)
     assert [r["status"] for r in results] == ["failed", "failed", "done", "failed"], results
     assert results[0]["error"].startswith("missing.obj: ") and "missing.off" in results[0]["error"]
-    assert results[1]["error"].startswith("closed.obj: ") and "0 boundary loops" in results[1]["error"]
+    assert results[1]["error"].startswith("closed.obj: ") and "cannot be cut into disk charts" in results[1]["error"]
     assert results[3]["error"] == "crash.obj: killed by signal 9"
     # Refused: tried once, whatever `retries` says. Killed: tried again (1 + retries).
     assert [calls(tmp_path, e["output"]) for e in entries] == [1, 1, 1, 2]

@@ -162,3 +162,40 @@ def test_every_accelerator_of_the_engine():
     assert budget["stop_reason"] == "time_budget" and budget["iterations"] == 1
     with pytest.raises(iarap.InputError, match="accelerator must be one of newton, lbfgs, anderson, none; got adam"):
         iarap.parameterize(V, F, accelerator="adam")
+
+
+def test_uv_atlas_of_a_closed_sphere(sphere):
+    """A closed sphere (genus 0) becomes disk charts: per-corner UVs in the unit square, no flipped
+    triangle, every face in a chart, and the report's figures as `iarap param` gives them."""
+    V, F = sphere
+    corner_uv, chart, report = iarap.uv_atlas(V, F, texture_size=256)
+    assert corner_uv.shape == (len(F), 3, 2) and chart.shape == (len(F),)
+    assert corner_uv.min() >= 0 and corner_uv.max() <= 1
+    assert chart.min() == 0 and chart.max() == len(report["charts"]) - 1 >= 1  # a sphere is no disk
+    e1, e2 = corner_uv[:, 1] - corner_uv[:, 0], corner_uv[:, 2] - corner_uv[:, 0]
+    uv_area = 0.5 * (e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0])
+    assert (uv_area > 0).all() and report["flipped"] == 0
+    # packing_efficiency is the atlas's UV area (of the unit square): the same sum, to rounding.
+    assert report["packing_efficiency"] == pytest.approx(uv_area.sum(), rel=1e-12)
+    assert report["overlap_ratio"] <= 1e-4
+    # The charts cover the surface once: their areas sum to the mesh's.
+    assert report["area"] == pytest.approx(report_area(V, F), rel=1e-12)
+    assert report["distortion"] == pytest.approx(report["energy"] / report["area"], rel=1e-12)
+    assert report["distortion"] <= 0.10  # the issue's bound
+    # Corners of one vertex in one chart share their UV (a chart is one piece of the map).
+    for c in range(len(report["charts"])):
+        faces = np.flatnonzero(chart == c)
+        seen = {}
+        for f in faces:
+            for k in range(3):
+                seen.setdefault(F[f, k], corner_uv[f, k])
+                assert np.array_equal(seen[F[f, k]], corner_uv[f, k])
+
+
+def test_uv_atlas_refuses_bad_input():
+    V = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, -1, 0], [0, 0, 1]], dtype=float)
+    F = np.array([[0, 1, 2], [1, 0, 3], [0, 1, 4]])  # three triangles on one edge
+    with pytest.raises(iarap.TopologyError, match="cannot be cut into disk charts"):
+        iarap.uv_atlas(V, F)
+    with pytest.raises(iarap.InputError, match="texture_size"):
+        iarap.uv_atlas(V, F[:1], texture_size=4)

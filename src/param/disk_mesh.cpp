@@ -18,8 +18,9 @@ std::string plural(int n, const std::string& one, const std::string& many) {
   return std::to_string(n) + " " + (n == 1 ? one : many);
 }
 
-// The array errors, each naming its element: shapes, NaN or Inf, indices out of range.
-void check_arrays(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
+} // namespace
+
+void check_param_arrays(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
   if (V.cols() != 3)
     throw InputError("V must be #V x 3 (x y z per vertex); got " + std::to_string(V.rows()) + " x " +
                      std::to_string(V.cols()));
@@ -38,6 +39,8 @@ void check_arrays(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
         throw InputError("face " + std::to_string(f) + " uses vertex " + std::to_string(F(f, k)) +
                          "; the mesh has " + std::to_string(V.rows()) + " vertices");
 }
+
+namespace {
 
 // Every vertex in a face and every face with an area: a parameterization has a Jacobian per face and a
 // row per vertex in its systems.
@@ -93,7 +96,7 @@ void check_disk_topology(const MeshReport& check) {
 } // namespace
 
 DiskMesh prepare_disk(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
-  check_arrays(V, F);
+  check_param_arrays(V, F);
   const MeshReport check = check_mesh(V, F);
   check_disk_topology(check);
   DiskMesh disk;

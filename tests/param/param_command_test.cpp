@@ -10,6 +10,9 @@
 
 #include <gtest/gtest.h>
 
+#include <fstream>
+#include <sstream>
+
 namespace {
 
 using namespace iarap::test::cli;
@@ -88,13 +91,65 @@ TEST(ParamCommand, MeshThatIsNotADiskSaysWhatItHas) {
   const auto dir = iarap::test::temp_dir("param_cli_closed");
   const auto octahedron = iarap::test::octahedron();
   iarap::write_mesh((dir / "closed.off").string(), octahedron.V, octahedron.F);
-  const CliRun run =
-      iarap_cli("param " + quoted(dir / "closed.off") + " --out " + quoted(dir / "uv.obj"), true);
+  const CliRun run = iarap_cli(
+      "param " + quoted(dir / "closed.off") + " --out " + quoted(dir / "uv.obj") + " --charts one", true);
   EXPECT_EQ(run.code, 1) << run.out;
   EXPECT_NE(run.out.find("closed.off: the mesh is not a topological disk"), std::string::npos) << run.out;
   EXPECT_NE(run.out.find("0 boundary loops"), std::string::npos) << run.out;
   EXPECT_NE(run.out.find("cut it into disks first"), std::string::npos) << run.out;
   EXPECT_FALSE(fs::exists(dir / "uv.obj"));
+  fs::remove_all(dir);
+}
+
+// Without --charts one, a closed mesh becomes an atlas: the OBJ keeps the vertices and the faces in order,
+// with a vt per (vertex, chart) and every uv in [0, 1]^2; the report lists the charts.
+TEST(ParamCommand, AtlasOfAClosedMesh) {
+  const auto dir = iarap::test::temp_dir("param_cli_atlas");
+  const iarap::test::TestMesh torus = iarap::test::torus(24, 12);
+  iarap::write_mesh((dir / "torus.off").string(), torus.V, torus.F);
+  const CliRun run = iarap_cli("param " + quoted(dir / "torus.off") + " --out " + quoted(dir / "uv.obj") +
+                               " --json --quiet --texture-size 512 --picture " + quoted(dir / "uv.png"));
+  ASSERT_EQ(run.code, 0) << run.out;
+  const nlohmann::json j = parse_json(run);
+  EXPECT_EQ(j["charts_mode"], "auto");
+  EXPECT_GE(j["charts"].get<int>(), 2);
+  EXPECT_EQ(j["chart_list"].size(), j["charts"].get<std::size_t>());
+  EXPECT_EQ(j["flipped"], 0);
+  EXPECT_LE(j["overlap_ratio"].get<double>(), 1e-4);
+  EXPECT_EQ(j["texture_size"], 512);
+  EXPECT_GT(j["seam_length"].get<double>(), 0.0);
+  const iarap::MeshData back = iarap::read_obj((dir / "uv.obj").string());
+  EXPECT_EQ(back.V, torus.V);
+  EXPECT_EQ(back.F, torus.F);
+  std::ifstream in(dir / "uv.obj");
+  int vt = 0;
+  for (std::string line; std::getline(in, line);)
+    if (line.rfind("vt ", 0) == 0) {
+      ++vt;
+      std::istringstream fields(line.substr(3));
+      double u = -1, v = -1;
+      fields >> u >> v;
+      EXPECT_TRUE(u >= 0 && u <= 1 && v >= 0 && v <= 1) << line;
+    }
+  // Seam vertices have one vt per chart: more than the vertices, fewer than the corners.
+  EXPECT_GT(vt, torus.V.rows());
+  EXPECT_LT(vt, 3 * torus.F.rows());
+  EXPECT_TRUE(fs::exists(dir / "uv.png"));
+  // .txt: one 'u v' line per corner.
+  ASSERT_EQ(
+      iarap_cli("param " + quoted(dir / "torus.off") + " --out " + quoted(dir / "uv.txt") + " --quiet").code,
+      0);
+  std::ifstream text(dir / "uv.txt");
+  Eigen::Index lines = 0;
+  for (std::string line; std::getline(text, line);) ++lines;
+  EXPECT_EQ(lines, 3 * torus.F.rows());
+  // Pins are one chart's.
+  std::ofstream(dir / "pins.txt") << "0 0 0\n";
+  const CliRun pinned = iarap_cli("param " + quoted(dir / "torus.off") + " --out " + quoted(dir / "uv2.obj") +
+                                      " --pins " + quoted(dir / "pins.txt"),
+                                  true);
+  EXPECT_EQ(pinned.code, 2) << pinned.out;
+  EXPECT_NE(pinned.out.find("--pins needs one chart"), std::string::npos) << pinned.out;
   fs::remove_all(dir);
 }
 

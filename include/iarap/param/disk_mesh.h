@@ -16,6 +16,10 @@ struct DiskMesh {
   double area = 0;           // total surface area
 };
 
+// The array errors (InputError), each naming its element: V not #V x 3, F not #F x 3, no faces, a NaN or Inf
+// coordinate, a face index out of range.
+void check_param_arrays(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F);
+
 // Checks (V, F) and prepares it. A single chart flattens only a disk: one connected component, one
 // boundary loop, genus 0 (Euler characteristic V - E + F = 1). Throws
 // - InputError: V not #V x 3 or F not #F x 3, no faces, a face index out of range, a NaN or Inf

@@ -14,3 +14,14 @@ void write_uv_map(const std::string& path, const Eigen::MatrixXd& V, const Eigen
                   const Eigen::MatrixXd& UV);
 
 } // namespace iarap
+
+namespace iarap {
+
+// An atlas's UV map, per corner (corner_uv (3 #F) x 2, row 3 f + k for corner k of face f): .obj writes
+// the input's `v` lines in order, one `vt` per distinct (vertex, uv) pair in order of first use (a vertex
+// on a seam has one per chart) and the faces in order, `f a/ta b/tb c/tc`; .txt writes one `u v` line per
+// corner. Atomic; throws InputError as write_uv_map does.
+void write_uv_atlas(const std::string& path, const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
+                    const Eigen::MatrixXd& corner_uv);
+
+} // namespace iarap

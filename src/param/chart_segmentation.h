@@ -1,0 +1,42 @@
+// Charts that are topological disks, grown over a triangle mesh's faces (uv_atlas.h states the method).
+#pragma once
+#include <Eigen/Core>
+#include <vector>
+
+namespace iarap::param_detail {
+
+// What growing charts reads of the mesh: per face its neighbours, unit normal, area and centroid.
+struct ChartMesh {
+  Eigen::MatrixXi F;         // #F x 3
+  Eigen::MatrixXi neighbour; // #F x 3: the face across the edge opposite corner k, -1 for none
+  Eigen::MatrixXd normal;    // #F x 3 unit normals (zero for a degenerate face)
+  Eigen::VectorXd area;      // #F
+  Eigen::MatrixXd centroid;  // #F x 3
+  Eigen::MatrixXd angle;     // #F x 3: the face's angle at corner k, radians
+};
+
+// F must be an oriented manifold (every edge in at most two faces, traversed oppositely).
+ChartMesh chart_mesh(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F);
+
+// How a growing chart ranks the faces next to it.
+enum class GrowthCost {
+  Normal,   // 1 - n_f . the chart's mean normal (flat charts first)
+  Distance, // distance from the chart's seed face (compact charts, for splitting)
+};
+
+// Labels every face whose label is open (-2 on entry) with a chart id >= 0, charts being topological
+// disks: grown one at a time from the first open face next to the previous chart (else the first open
+// face), each within max_normal_angle degrees of its mean normal. Charts of fewer than min_faces faces are
+// dissolved and their faces grown into neighbouring charts without the angle bound; what is still left
+// forms charts of its own. Faces labelled -1 (degenerate) stay -1. Returns the number of charts; ids are
+// 0..n-1. merged counts the dissolved charts.
+int segment_charts(const ChartMesh& mesh, double max_normal_angle, int min_faces, std::vector<int>& label,
+                   int& merged);
+
+// Splits chart `id` (its faces `faces`) into two disks grown from its two faces farthest apart, ranked by
+// distance; faces neither can take (the disk rule) become charts of their own. The first part keeps `id`,
+// the others get next_id, next_id + 1, ...; returns the new next_id.
+int split_chart(const ChartMesh& mesh, int id, const std::vector<int>& faces, int next_id,
+                std::vector<int>& label);
+
+} // namespace iarap::param_detail
