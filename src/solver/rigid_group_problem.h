@@ -12,10 +12,11 @@
 //             (v_y, v_w) -> P v_y + (J v_w) x r_i, H_U v = A v - rhs(dR[v]) the Hessian of min_R E in U (as
 //             LocalGlobalProblem's) and N_g = sum_i sym(G_i r_i^T) - (r_i . G_i) I the second-order change
 //             of a turned member's position (r + d x r + d x (d x r) / 2);
-//   plain step from x: the group rotations refitted one group after another (with the cell rotations of
-//             the last local step and everything else fixed, E = const - tr(R_g^T M_g), M_g =
-//             -sum_{i in g} G_i q_i^T + R_g K_g, K_g = sum_{i,j in g} A_ij q_j q_i^T: R_g = polar(M_g)),
-//             then y = K^{-1} P^T (b - A U_R): each block step is exact, so it never raises the energy.
+//   plain step, from the point of the last assemble_rhs: the group rotations refitted one group after
+//             another (with the cell rotations of the last local step and everything else fixed,
+//             E = const - tr(R_g^T M_g), M_g = -sum_{i in g} G_i q_i^T + R_g K_g, K_g = sum_{i,j in g}
+//             A_ij q_j q_i^T: R_g = polar(M_g)), then y = K^{-1} P^T (b - A U_R): each block step is
+//             exact, so it never raises the energy.
 //   preconditioner: the quadratic form of A in x at the current turns, [K C; C^T D] = T^T A T (the global
 //             step's matrix with the turns as unknowns too: L_ff's role without groups), applied through
 //             its Schur complement S = D - C^T K^{-1} C (3 per turning group square, dense): Z = K^{-1} C
