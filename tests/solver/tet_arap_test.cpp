@@ -83,14 +83,13 @@ TwistScene twist_scene(double degrees, test::TetBar bar = test::tet_bar(10, 2, 2
 }
 
 // libigl's igl::arap_precomputation + igl::arap_solve with ARAP_ENERGY_TYPE_ELEMENTS on tetrahedra,
-// re-derived densely from reading its source (arap.cpp, arap_rhs.cpp, arap_linear_block_elements,
-// covariance_scatter_matrix.cpp, fit_rotations.cpp, cotmatrix.cpp / cotangent.cpp for tets; docs/cli.md
-// names the revision): each tetrahedron t has one rotation R_t and weights c_ij = l_kl cot(theta_kl) / 6 on
-// its six edges (l_kl, theta_kl the length and dihedral angle of the opposite edge), which here are computed
-// as c_ij = -vol_t grad(phi_i) . grad(phi_j) (the same number: the off-diagonal of the linear element's
-// stiffness, negated). One iteration, from U with the fixed rows at their targets: the covariances S_t =
-// sum_{ij in t} c_ij (u_i - u_j)(v_i - v_j)^T, R_t = their closest rotations (SVD, the last singular vector
-// flipped when det < 0, in double precision), then the free rows of -L U = K R, i.e. row i of
+// re-derived densely from reading its source (arap.cpp, arap_linear_block_elements, cotangent.cpp for tets;
+// docs/cli.md names the revisions): each tetrahedron t has one rotation R_t and weights c_ij = l_kl
+// cot(theta_kl) / 6 on its six edges (l_kl, theta_kl the length and dihedral angle of the opposite edge),
+// which here are computed as c_ij = -vol_t grad(phi_i) . grad(phi_j) (the same number: the off-diagonal of
+// the linear element's stiffness, negated). One iteration, from U with the fixed rows at their targets: the
+// covariances S_t = sum_{ij in t} c_ij (u_i - u_j)(v_i - v_j)^T, R_t = their closest rotations (SVD, the last
+// singular vector flipped when det < 0, in double precision), then the free rows of -L U = K R, i.e. row i of
 // sum_j L_ij (u_i - u_j) = sum_t sum_{j in t} c_ij R_t (v_i - v_j), with L_ij = sum_t c_ij.
 Eigen::MatrixXd libigl_elements_arap(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T,
                                      const Eigen::VectorXi& fixed, const Eigen::MatrixXd& targets,
