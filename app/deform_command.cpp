@@ -370,15 +370,9 @@ const bool registered = register_command(
            "surface's constraints; the output is the surface with its own vertices and faces");
        sub->add_option("--rigid", args->rigid,
                        "Rigid parts: one group per line, 'i j k ...' (at least 2 vertices each): each group "
-                       "moves as one rigid body. Solved by the plain iteration (--accelerator none, the "
-                       "default with --rigid; the others are refused)")
+                       "moves as one rigid body (6 degrees of freedom each; every accelerator)")
            ->check(CLI::ExistingFile);
-       sub->callback([args, sub] {
-         // The rigid groups run the plain iteration: it is their default accelerator.
-         if (!args->rigid.empty() && sub->get_option("--accel")->count() == 0)
-           args->solve.accelerator = ArapAccelerator::None;
-         run_deform(*args);
-       });
+       sub->callback([args] { run_deform(*args); });
      }});
 
 } // namespace

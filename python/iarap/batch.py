@@ -48,7 +48,10 @@ from . import SOLVE_OPTIONS
 __all__ = ["Job", "JobCrashed", "ManifestError", "main", "read_manifest", "run_batch", "run_job"]
 
 _SOLVE_FLAGS = {option["name"]: option["flag"] for option in SOLVE_OPTIONS}
-_FIELDS = {"mesh", "output", "command", "scenario", "constraints", "method", "args", "name"} | set(_SOLVE_FLAGS)
+# Deform's per-vertex files (paths from the manifest, like 'mesh') and its --volume switch.
+_DEFORM_FILES = ("rigid", "stiffness", "forces")
+_FIELDS = ({"mesh", "output", "command", "scenario", "constraints", "method", "args", "name", "volume"}
+           | set(_DEFORM_FILES) | set(_SOLVE_FLAGS))
 _COMMANDS = ("deform", "param")
 
 
@@ -101,8 +104,21 @@ def _job_from_entry(entry: dict[str, Any], where: str, base: Path) -> Job:
             raise ManifestError(f"{where}: a deform job needs exactly one of 'scenario' and 'constraints'")
         kind = "scenario" if entry.get("scenario") else "constraints"
         options += [f"--{kind}", resolve(entry[kind])]
-    elif entry.get("scenario") or entry.get("constraints"):
-        raise ManifestError(f"{where}: a param job takes no scenario or constraints")
+        for field in _DEFORM_FILES:
+            if field in entry:
+                if not isinstance(entry[field], str) or not entry[field]:
+                    raise ManifestError(f"{where}: '{field}' is the path of a file (`iarap deform --{field}`)")
+                options += [f"--{field}", resolve(entry[field])]
+        volume = entry.get("volume", False)
+        if isinstance(volume, str):  # a CSV cell
+            volume = {"true": True, "1": True, "false": False, "0": False}.get(volume.strip().lower(), volume)
+        if not isinstance(volume, bool):
+            raise ManifestError(f"{where}: 'volume' is true or false; got {volume!r}")
+        if volume:
+            options.append("--volume")
+    elif any(field in entry for field in ("scenario", "constraints", "volume", *_DEFORM_FILES)):
+        raise ManifestError(f"{where}: a param job takes no scenario, constraints, rigid, stiffness, forces or "
+                            "volume (deform's)")
     if entry.get("method"):
         options += ["--method" if command == "deform" else "--energy", str(entry["method"])]
     solve = [name for name in _SOLVE_FLAGS if name in entry]  # deform and param run on one engine

@@ -454,8 +454,8 @@ stiffness: (#V,) factors s_i > 0 on the energy of vertex i's rotation cell (issu
 and stretches less (None, or 1 everywhere: the energy without it, bit for bit). Ratios above about 100 make
 the iteration converge slowly; L-BFGS and Newton cope best.
 rigid_groups: a sequence of groups, each a sequence of at least 2 vertex indices (no vertex in two groups):
-each group moves as one rigid body, exactly (issue 45). Solve with accelerator="none" (the plain iteration,
-whose energy never increases with groups; the accelerators raise ValueError). A group with one fixed vertex
+each group moves as one rigid body, exactly (issue 45), with every accelerator (a group is one body of
+6 degrees of freedom; rotation_smoothing with groups raises ValueError). A group with one fixed vertex
 turns about it; with more, it follows their targets, which must be a rigid motion (ValueError otherwise).
 Raises ValueError (InputError, TopologyError) for bad arrays, indices, weights or meshes; SolverError (a
 RuntimeError) for an unconstrained component or a failed factorization.)");

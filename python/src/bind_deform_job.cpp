@@ -140,7 +140,7 @@ mesh, scenario, constraints, forces: file paths (exactly one of scenario and con
 over; keep_numbering (with repair): U and F in the file's numbering, each vertex at the mean of its copies
 (the report's copies_spread: their largest distance from it); pin_unconstrained_components. gravity (3,) with density: the statics of m_i g (and of the forces file),
 every body held. stiffness: a stiffness file ('index s' lines, `iarap deform --stiffness`). rigid: a
-rigid-groups file (one group per line, `iarap deform --rigid`; solve with accelerator="none"). volume: deform
+rigid-groups file (one group per line, `iarap deform --rigid`; every accelerator). volume: deform
 the closed surface as a solid (`iarap deform --volume`: TetGen's tetrahedra, the surface's rows returned with
 its faces; the report's volume_ratio is the enclosed volume after / before). The solve options:
 )" + solve_option_docs() +

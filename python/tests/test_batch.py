@@ -176,12 +176,32 @@ def test_a_refused_job_is_one_line_without_traceback(cli, tmp_path):
     ({"mesh": "a.off", "output": "b.obj", "command": "simulate"}, "not one of deform, param"),
     ({"mesh": "a.off", "output": "b.obj", "command": "param", "args": ["--out", "x"]}, "may not set --out"),
     ({"mesh": "a.off", "output": "a.off", "command": "param"}, "the output is the input mesh"),
+    ({"mesh": "a.off", "output": "b.obj", "scenario": "s.json", "rigid": 3}, "'rigid' is the path of a file"),
+    ({"mesh": "a.off", "output": "b.obj", "scenario": "s.json", "volume": "yes"}, "'volume' is true or false"),
+    ({"mesh": "a.off", "output": "b.obj", "command": "param", "rigid": "g.txt"}, "a param job takes no"),
+    ({"mesh": "a.off", "output": "b.obj", "command": "param", "volume": True}, "a param job takes no"),
 ])
 def test_manifest_errors_name_the_job(tmp_path, entry, says):
     manifest = write_manifest(tmp_path, [entry])
     with pytest.raises(batch.ManifestError, match=says) as error:
         batch.read_manifest(manifest)
     assert "jobs.json: job 0" in str(error.value)
+
+
+def test_deform_files_and_volume_become_the_tools_options(tmp_path):
+    """rigid, stiffness, forces: paths from the manifest's folder; volume: the switch (JSON and CSV)."""
+    manifest = write_manifest(tmp_path, [{"mesh": "a.off", "output": "b.obj", "scenario": "s.json",
+                                          "rigid": "g.txt", "stiffness": "/abs/s.txt", "forces": "f.txt",
+                                          "volume": True}])
+    [job] = batch.read_manifest(manifest)
+    base = str(tmp_path.resolve())
+    assert job.options == ("--scenario", f"{base}/s.json", "--rigid", f"{base}/g.txt", "--stiffness",
+                           "/abs/s.txt", "--forces", f"{base}/f.txt", "--volume")
+    (tmp_path / "jobs.csv").write_text("mesh,output,scenario,rigid,volume\na.off,b.obj,s.json,g.txt,false\n"
+                                       "a.off,c.obj,s.json,,1\n")
+    plain, solid = batch.read_manifest(tmp_path / "jobs.csv")
+    assert plain.options == ("--scenario", f"{base}/s.json", "--rigid", f"{base}/g.txt")
+    assert solid.options == ("--scenario", f"{base}/s.json", "--volume")
 
 
 def test_csv_manifest_and_duplicate_outputs(tmp_path):

@@ -340,16 +340,11 @@ void arap_set_soft_weights(ArapData& data, const Eigen::VectorXd& vertex_weights
 
 namespace {
 
-// Rigid groups run the plain iteration: the group rotations are state beside the unknowns, so the
-// accelerators' energy of a point (and Newton's Hessian) are not defined on them.
+// Rotation smoothing couples the cells' rotations and the groups' turns would join that coupled local step:
+// not built yet.
 void check_rigid_solve_options(const ArapSolveOptions& options) {
-  // The coupled rotations of rotation smoothing and the group rotations have no joint local step yet.
   if (options.rotation_smoothing != 0.0)
     throw InputError("ARAP: rotation smoothing is not supported with rigid groups (give one or the other)");
-  if (options.accelerator == ArapAccelerator::None || options.window == 0) return;
-  throw InputError("ARAP: rigid groups are solved by the plain local/global iteration; accelerator '" +
-                   arap_accelerator_name(options.accelerator) +
-                   "' is not supported with them (choose accelerator none)");
 }
 
 ArapReport solve_checked(ArapData& data, const Eigen::MatrixXd& targets, const Eigen::MatrixXd& soft_targets,

@@ -25,8 +25,14 @@ Eigen::Matrix3d retract(const Eigen::Matrix3d& R, const Eigen::Vector3d& omega) 
   return R * Eigen::AngleAxisd(angle, omega / angle).toRotationMatrix();
 }
 
-// M^{-1} with M's eigenvalues floored at 1e-6 x its largest: the preconditioner must be positive definite
-// even where f is not locally convex (far from a minimizer). 0 for M = 0 (a cell with no signal).
+double dot(const std::vector<Eigen::Vector3d>& a, const std::vector<Eigen::Vector3d>& b) {
+  double s = 0.0;
+  for (size_t i = 0; i < a.size(); ++i) s += a[i].dot(b[i]);
+  return s;
+}
+
+} // namespace
+
 Eigen::Matrix3d floored_inverse(const Eigen::Matrix3d& M) {
   constexpr double kFloor = 1e-6;
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen;
@@ -37,14 +43,6 @@ Eigen::Matrix3d floored_inverse(const Eigen::Matrix3d& M) {
   return eigen.eigenvectors() * lambda.cwiseMax(kFloor * top).cwiseInverse().asDiagonal() *
          eigen.eigenvectors().transpose();
 }
-
-double dot(const std::vector<Eigen::Vector3d>& a, const std::vector<Eigen::Vector3d>& b) {
-  double s = 0.0;
-  for (size_t i = 0; i < a.size(); ++i) s += a[i].dot(b[i]);
-  return s;
-}
-
-} // namespace
 
 double rest_area(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
   double area = 0.0;

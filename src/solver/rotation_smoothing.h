@@ -33,6 +33,11 @@ inline Eigen::Vector3d vee_of_skew_part(const Eigen::Matrix3d& P) {
   return {P(2, 1) - P(1, 2), P(0, 2) - P(2, 0), P(1, 0) - P(0, 1)};
 }
 
+// M^{-1} for a symmetric M (the tangent systems' tr(P) I - P), its eigenvalues floored at 1e-6 x the
+// largest: positive definite even where the energy is not locally convex (far from a minimizer); 0 for M = 0
+// (a cell with no signal).
+Eigen::Matrix3d floored_inverse(const Eigen::Matrix3d& M);
+
 // A of E_smooth: the total area of the rest mesh's triangles F (#F x 3) on V (#V x 3).
 double rest_area(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F);
 

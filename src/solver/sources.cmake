@@ -6,7 +6,7 @@ list(APPEND IARAP_SOURCES
   solver/system_pattern.cpp solver/constraint_layout.cpp solver/constrained_solve.cpp solver/cell_stiffness.cpp
   solver/soft_terms.cpp solver/quadratic_terms.cpp solver/hard_points.cpp solver/cover_elements.cpp
   solver/rotation_smoothing.cpp solver/local_global_problem.cpp solver/rigid_groups.cpp
-  solver/rigid_group_problem.cpp
+  solver/rigid_group_problem.cpp solver/rotation_vector.cpp
   solver/stopping.cpp solver/line_search.cpp
   solver/plain_iteration.cpp solver/anderson_acceleration.cpp solver/anderson_iteration.cpp
   solver/lbfgs_direction.cpp solver/lbfgs_iteration.cpp solver/newton_trust_region.cpp

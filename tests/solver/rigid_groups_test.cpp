@@ -2,6 +2,8 @@
 #include "iarap/core/errors.h"
 #include "iarap/solver/arap.h"
 #include "iarap/solver/arap_tets.h"
+#include "problem_probe.h"
+#include "solver/rigid_group_problem.h"
 #include "solver_fixtures.h"
 
 #include <gtest/gtest.h>
@@ -11,6 +13,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <iostream>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -151,10 +156,16 @@ TEST_F(RigidGroups, AtRestStaysAtRest) {
   Scene s = banded(test::bunny(), 1, Eigen::Vector3d::UnitX(), 0.0, 0.0);
   ArapData data =
       arap_precompute(s.m.V, s.m.F, s.fixed, with_groups(ArapMethod::Iarap, {slab(s.m.V, 1, 0.4, 0.6)}));
-  Eigen::MatrixXd U = s.m.V;
-  const ArapReport report = arap_solve(data, s.targets, U, plain(5));
-  EXPECT_LE((U - s.m.V).rowwise().norm().maxCoeff(), 1e-12 * test::bbox_diagonal(s.m.V));
-  EXPECT_LE(report.energies.back(), 1e-20);
+  for (const ArapAccelerator accelerator :
+       {ArapAccelerator::None, ArapAccelerator::Newton, ArapAccelerator::Lbfgs, ArapAccelerator::Anderson}) {
+    SCOPED_TRACE(arap_accelerator_name(accelerator));
+    ArapSolveOptions solve = plain(5);
+    solve.accelerator = accelerator;
+    Eigen::MatrixXd U = s.m.V;
+    const ArapReport report = arap_solve(data, s.targets, U, solve);
+    EXPECT_LE((U - s.m.V).rowwise().norm().maxCoeff(), 1e-12 * test::bbox_diagonal(s.m.V));
+    EXPECT_LE(report.energies.empty() ? report.initial_energy : report.energies.back(), 1e-20);
+  }
 }
 
 // One group of every vertex held by three fixed vertices whose targets are a rigid motion: the mesh takes
@@ -235,27 +246,148 @@ TEST_F(RigidGroups, BadGroupsAreRefusedNamingTheGroup) {
   EXPECT_NE(message({{1, -1}}).find("out of range"), std::string::npos);
 }
 
-// The accelerators need an energy of the unknowns alone (and Newton a Hessian): refused by name.
-TEST_F(RigidGroups, AcceleratorsAreRefused) {
-  Scene s = banded(test::bumpy_patch(6), 0, Eigen::Vector3d::UnitZ(), 0.1, 0.0);
-  ArapData data =
-      arap_precompute(s.m.V, s.m.F, s.fixed, with_groups(ArapMethod::Iarap, {slab(s.m.V, 0, 0.4, 0.6)}));
-  for (const ArapAccelerator accelerator :
-       {ArapAccelerator::Newton, ArapAccelerator::Lbfgs, ArapAccelerator::Anderson}) {
-    ArapSolveOptions solve;
-    solve.accelerator = accelerator;
+// An n x n bumpy patch bent by its x bands (0.2 diagonals up, turned 0.4 rad) with a Free group across the
+// middle and a Pivot group: a strip beside the fixed band and one vertex of that band.
+struct PivotScene {
+  Scene scene;
+  std::vector<int> middle, pivot;
+};
+
+PivotScene pivot_scene(int n) {
+  PivotScene p{banded(test::bumpy_patch(n), 0, Eigen::Vector3d::UnitZ(), 0.2, 0.4), {}, {}};
+  p.middle = slab(p.scene.m.V, 0, 0.4, 0.6);
+  p.pivot = slab(p.scene.m.V, 0, 0.12, 0.25);
+  p.pivot.push_back(p.scene.fixed(0));
+  return p;
+}
+
+// The reduced problem (rigid_group_problem.h): its gradient is the derivative of E(x) = min_R energy over x
+// = [y; w] and its Hessian product the derivative of that gradient, at a point where the rotation vectors
+// are away from 0 (so that J(w) and the coordinates' curvature matter). Central differences along a random
+// direction (its rotation rows in radians, scaled to the positions' steps by the diagonal): errors O(h^2) +
+// O(eps E / h), ~1e-9 relative at h = 1e-5 of the diagonal; 1e-6 (gradient) and 1e-5 (Hessian) reject a
+// missing or doubled term (order-1 errors), as the other problems' tests do.
+TEST_F(RigidGroups, GradientAndHessianProductAreDerivatives) {
+  const PivotScene p = pivot_scene(8);
+  const Scene& s = p.scene;
+  const double diagonal = test::bbox_diagonal(s.m.V);
+  for (const ArapMethod method : kMethods) {
+    SCOPED_TRACE(arap_method_name(method));
+    ArapData data = arap_precompute(s.m.V, s.m.F, s.fixed, with_groups(method, {p.middle, p.pivot}));
     Eigen::MatrixXd U = s.m.V;
-    try {
-      arap_solve(data, s.targets, U, solve);
-      FAIL() << "expected InputError";
-    } catch (const InputError& e) {
-      EXPECT_NE(std::string(e.what()).find(arap_accelerator_name(accelerator)), std::string::npos);
+    arap_solve(data, s.targets, U, plain(5)); // a deformed, unconverged state
+    detail::RigidGroupProblem problem(data, s.targets, U, Eigen::MatrixXd(0, 3), Eigen::MatrixXd(0, 3));
+    ASSERT_EQ(problem.free_count(), data.rigid.P.cols() + 2); // one rotation row per Free or Pivot group
+    Eigen::MatrixXd x = problem.positions();
+    x.bottomRows(2) << 0.3, -0.2, 0.4, -0.1, 0.25, 0.2; // turned off the fits by ~0.5 rad
+    const auto energy_at = [&](const Eigen::MatrixXd& y) { return test::energy_at(problem, y); };
+    const auto gradient_at = [&](const Eigen::MatrixXd& y) { return test::gradient_at(problem, y); };
+    const Eigen::MatrixXd g = gradient_at(x);
+    problem.prepare_hessian();
+    std::srand(5);
+    Eigen::MatrixXd v = Eigen::MatrixXd::Random(x.rows(), 3);
+    v.bottomRows(2) /= diagonal;
+    const Eigen::MatrixXd Hv = problem.hessian_product(v);
+    const double h = 1e-5 * diagonal;
+    const double slope = (energy_at(x + h * v) - energy_at(x - h * v)) / (2 * h);
+    const double gv = (g.array() * v.array()).sum();
+    EXPECT_NEAR(slope, gv, 1e-6 * std::abs(gv));
+    const Eigen::MatrixXd fd = (gradient_at(x + h * v) - gradient_at(x - h * v)) / (2 * h);
+    EXPECT_LT((Hv - fd).norm(), 1e-5 * Hv.norm());
+    // The rotation rows alone (the turns' own curvature, J and dJ^T tau / dw).
+    EXPECT_LT((Hv - fd).bottomRows(2).norm(), 1e-5 * Hv.bottomRows(2).norm());
+  }
+}
+
+// The scene solved from its rest shape with `accelerator` to a relative energy decrease `tolerance`.
+ArapReport solve_with(ArapData& data, const Scene& s, ArapAccelerator accelerator, double tolerance,
+                      int iterations, Eigen::MatrixXd& U) {
+  U = s.m.V;
+  ArapSolveOptions o;
+  o.accelerator = accelerator;
+  o.tolerance = tolerance;
+  o.max_iterations = iterations;
+  return arap_solve(data, s.targets, U, o);
+}
+
+// Iterations until the energy is within 1e-6 of the minimum E* (`iarap bench --converge`'s gap).
+int iterations_to_gap(const ArapReport& r, double E_star) {
+  for (size_t k = 0; k < r.energies.size(); ++k)
+    if (r.energies[k] - E_star <= 1e-6 * E_star) return static_cast<int>(k) + 1;
+  return std::numeric_limits<int>::max();
+}
+
+// Every accelerator minimizes the same E(x) as the plain iteration and reaches the same minimum: each runs
+// to a relative energy decrease of 1e-13; the results agree to 1e-6 of the diagonal (the energy is flat to
+// second order at the minimum: positions settle to ~sqrt of the stopping rule's precision) and the energies
+// to 1e-9; every accepted step lowers the energy; the groups stay rigid to 1e-9 of the diagonal (rounding,
+// ~1e-15: U is placed from R_g and t_g) and the pivot on its target.
+TEST_F(RigidGroups, EveryAcceleratorReachesThePlainMinimum) {
+  const PivotScene p = pivot_scene(10);
+  const Scene& s = p.scene;
+  const std::vector<int>&middle = p.middle, &pivot = p.pivot;
+  const double diagonal = test::bbox_diagonal(s.m.V);
+  for (const ArapMethod method : kMethods) {
+    SCOPED_TRACE(arap_method_name(method));
+    ArapData data = arap_precompute(s.m.V, s.m.F, s.fixed, with_groups(method, {middle, pivot}));
+    Eigen::MatrixXd U_plain;
+    const ArapReport plain_report = solve_with(data, s, ArapAccelerator::None, 1e-13, 20000, U_plain);
+    ASSERT_TRUE(plain_report.converged);
+    const double E = plain_report.energies.back();
+    for (const ArapAccelerator accelerator :
+         {ArapAccelerator::Newton, ArapAccelerator::Lbfgs, ArapAccelerator::Anderson}) {
+      SCOPED_TRACE(arap_accelerator_name(accelerator));
+      Eigen::MatrixXd U;
+      const ArapReport report = solve_with(data, s, accelerator, 1e-13, 2000, U);
+      ASSERT_TRUE(report.converged);
+      EXPECT_LT((U - U_plain).rowwise().norm().maxCoeff(), 1e-6 * diagonal);
+      EXPECT_NEAR(report.energies.back(), E, 1e-9 * E);
+      expect_monotone(report);
+      for (const auto& group : {middle, pivot}) EXPECT_LE(rigid_misfit(s.m.V, U, group), 1e-9 * diagonal);
+      EXPECT_LE((U.row(s.fixed(0)) - s.targets.row(0)).norm(), 1e-12 * diagonal);
+      std::cout << arap_method_name(method) << " " << arap_accelerator_name(accelerator)
+                << ": iterations to 1e-6 of the minimum " << iterations_to_gap(report, E) << " (plain "
+                << iterations_to_gap(plain_report, E) << ")\n";
     }
   }
-  ArapSolveOptions window0; // window 0 is the plain iteration
-  window0.window = 0;
+  // The default options (Newton) solve too, as a user passing groups alone gets.
+  ArapData data = arap_precompute(s.m.V, s.m.F, s.fixed, with_groups(ArapMethod::Iarap, {middle, pivot}));
   Eigen::MatrixXd U = s.m.V;
-  EXPECT_NO_THROW(arap_solve(data, s.targets, U, window0));
+  const ArapReport report = arap_solve(data, s.targets, U, ArapSolveOptions());
+  EXPECT_EQ(report.accelerator, ArapSolveOptions().accelerator);
+  EXPECT_LE(rigid_misfit(s.m.V, U, middle), 1e-9 * diagonal);
+  expect_monotone(report);
+}
+
+// The measurement the issue asks for: the bunny bent by its top band with two rigid groups (a slab in the
+// middle and one near the top), iARAP, Newton against plain iterations to within 1e-6 of the minimum (E*
+// the lower of the two runs to a relative decrease of 1e-12, or 2000 iterations). Newton needs at least 5x
+// fewer (measured: plain 1682, Newton 16; Newton stops at the 1e-12 decrease after 23, plain is 1.4e-7
+// above E* after 2000); both keep the groups rigid to 1e-9 of the diagonal.
+TEST_F(RigidGroups, NewtonIsFiveTimesFewerIterationsThanPlainOnTheBunny) {
+  Scene s = banded(test::bunny(), 1, Eigen::Vector3d::UnitX(), 0.15, 0.5);
+  const std::vector<int> middle = slab(s.m.V, 1, 0.4, 0.55), upper = slab(s.m.V, 1, 0.7, 0.8);
+  ArapData data = arap_precompute(s.m.V, s.m.F, s.fixed, with_groups(ArapMethod::Iarap, {middle, upper}));
+  Eigen::MatrixXd U_plain, U_newton;
+  const ArapReport plain_report = solve_with(data, s, ArapAccelerator::None, 1e-12, 2000, U_plain);
+  ASSERT_EQ(plain_report.energies.size(), 2000u);
+  const ArapReport newton_report = solve_with(data, s, ArapAccelerator::Newton, 1e-12, 200, U_newton);
+  ASSERT_TRUE(newton_report.converged);
+  const double E_star = std::min(plain_report.energies.back(), newton_report.energies.back());
+  // Plain is still ~1e-7 above the minimum after its 2000 iterations (the reason for Newton): not below it.
+  EXPECT_GE(plain_report.energies.back(), newton_report.energies.back() - 1e-12 * E_star);
+  const double diagonal = test::bbox_diagonal(s.m.V);
+  for (const auto& group : {middle, upper}) {
+    EXPECT_LE(rigid_misfit(s.m.V, U_plain, group), 1e-9 * diagonal);
+    EXPECT_LE(rigid_misfit(s.m.V, U_newton, group), 1e-9 * diagonal);
+  }
+  const int plain_iterations = iterations_to_gap(plain_report, E_star);
+  const int newton_iterations = iterations_to_gap(newton_report, E_star);
+  EXPECT_LE(5 * newton_iterations, plain_iterations);
+  std::cout << "bunny, two rigid groups (" << middle.size() << " and " << upper.size()
+            << " vertices): iterations to 1e-6 of the minimum: plain " << plain_iterations << ", newton "
+            << newton_iterations << "; to the 1e-12 decrease: plain " << plain_report.iterations
+            << ", newton " << newton_report.iterations << "\n";
 }
 
 // Rotation smoothing couples the cells' rotations, the groups tie theirs: no joint local step, refused.
@@ -312,12 +444,16 @@ TEST_F(RigidGroups, SoftPointsForcesNewFixedSetPlanarAndTets) {
   ArapOptions planar = with_groups(ArapMethod::Iarap, {slab(flat.V, 0, 0.4, 0.6)});
   planar.planar = true;
   ArapData flat_data = arap_precompute(flat.V, flat.F, p.fixed, planar);
-  U = flat.V;
-  report = arap_solve(flat_data, p.targets, U, plain(20));
-  SCOPED_TRACE("planar");
-  EXPECT_EQ(U.col(2).cwiseAbs().maxCoeff(), 0.0);
-  EXPECT_LE(rigid_misfit(flat.V, U, slab(flat.V, 0, 0.4, 0.6)), 1e-12 * diagonal);
-  expect_monotone(report);
+  for (const ArapAccelerator accelerator : {ArapAccelerator::None, ArapAccelerator::Newton}) {
+    SCOPED_TRACE(std::string("planar ") + arap_accelerator_name(accelerator));
+    ArapSolveOptions solve_planar = plain(20);
+    solve_planar.accelerator = accelerator;
+    U = flat.V;
+    report = arap_solve(flat_data, p.targets, U, solve_planar);
+    EXPECT_EQ(U.col(2).cwiseAbs().maxCoeff(), 0.0);
+    EXPECT_LE(rigid_misfit(flat.V, U, slab(flat.V, 0, 0.4, 0.6)), 1e-12 * diagonal);
+    expect_monotone(report);
+  }
 
   // Tets: a 3 x 3 x 3 cube of 6 tets per cell, its middle layer rigid.
   const int n = 4;
@@ -341,11 +477,15 @@ TEST_F(RigidGroups, SoftPointsForcesNewFixedSetPlanarAndTets) {
   Scene c = banded({V, Eigen::MatrixXi()}, 2, Eigen::Vector3d::UnitX(), 0.2, 0.3);
   const std::vector<int> layer = slab(V, 2, 0.3, 0.7);
   ArapData tet_data = arap_precompute_tets(V, T, c.fixed, with_groups(ArapMethod::Iarap, {layer}));
-  U = V;
-  report = arap_solve(tet_data, c.targets, U, plain(20));
-  SCOPED_TRACE("tets");
-  EXPECT_LE(rigid_misfit(V, U, layer), 1e-12 * test::bbox_diagonal(V));
-  expect_monotone(report);
+  for (const ArapAccelerator accelerator : {ArapAccelerator::None, ArapAccelerator::Newton}) {
+    SCOPED_TRACE(std::string("tets ") + arap_accelerator_name(accelerator));
+    ArapSolveOptions solve_tets = plain(20);
+    solve_tets.accelerator = accelerator;
+    U = V;
+    report = arap_solve(tet_data, c.targets, U, solve_tets);
+    EXPECT_LE(rigid_misfit(V, U, layer), 1e-12 * test::bbox_diagonal(V));
+    expect_monotone(report);
+  }
 }
 
 } // namespace

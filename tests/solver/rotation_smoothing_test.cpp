@@ -4,6 +4,7 @@
 #include "iarap/solver/arap.h"
 #include "iarap/solver/arap_tets.h"
 #include "iarap/solver/solve_option_fields.h"
+#include "problem_probe.h"
 #include "solver/local_global_problem.h"
 #include "solver/rotation_smoothing.h"
 #include "solver_fixtures.h"
@@ -281,15 +282,8 @@ TEST_F(RotationSmoothingTest, GradientAndHessianProductAreDerivatives) {
       detail::LocalGlobalProblem problem(data, s.targets, U, Eigen::MatrixXd(0, 3), Eigen::MatrixXd(0, 3),
                                          alpha);
       const Eigen::MatrixXd x = problem.positions();
-      const auto energy_at = [&](const Eigen::MatrixXd& y) {
-        problem.set_positions(y);
-        return problem.local_step();
-      };
-      const auto gradient_at = [&](const Eigen::MatrixXd& y) {
-        energy_at(y);
-        problem.assemble_rhs();
-        return Eigen::MatrixXd(problem.gradient());
-      };
+      const auto energy_at = [&](const Eigen::MatrixXd& y) { return test::energy_at(problem, y); };
+      const auto gradient_at = [&](const Eigen::MatrixXd& y) { return test::gradient_at(problem, y); };
       const Eigen::MatrixXd g = gradient_at(x);
       problem.prepare_hessian();
       std::srand(11);

@@ -60,8 +60,8 @@ struct ArapOptions {
   // the solution beyond rounding.
   FillOrdering ordering = FillOrdering::Auto;
   // Rigid parts (issue 45, rigid_groups.h): each group's vertices (0-based, at least 2, no vertex in two
-  // groups) move as one rigid body, exactly. Empty: none. Solved by the plain local/global iteration
-  // (arap_solve refuses the accelerators with groups).
+  // groups) move as one rigid body, exactly. Empty: none. Solved with every accelerator (each group is one
+  // body of 6 degrees of freedom: rigid_group_problem.h); arap_solve refuses rotation smoothing with groups.
   std::vector<std::vector<int>> rigid_groups;
 };
 

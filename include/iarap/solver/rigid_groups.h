@@ -6,9 +6,11 @@
 // a hard-constrained vertex's does), minimized over the positions that keep the groups rigid. With the
 // rotations fixed the energy is quadratic in U with Hessian L (+ Q), and a group's positions are
 // affine in (free unknowns, t_g) once R_g is fixed: U = P y + U_R(R), so the global step solves
-// K y = P^T (b(R) - L U_R(R)) with K = P^T L P, constant and factorized once. The local step fits R_g
+// K y = P^T (b(R) - L U_R(R)) with K = P^T L P, constant and factorized once. The plain step fits R_g
 // exactly (the energy is -tr(R_g^T M_g) + const in R_g: R_g q . R_g q = q . q), group after group, then
-// the cell rotations: each of the three block steps minimizes over its block, so the energy never increases.
+// solves for y; the local step fits the cell rotations: each block step minimizes over its block, so the
+// energy never increases. The accelerators see each group as one rigid body, its translation (Free) and a
+// rotation vector (rigid_group_problem.h: the energy, gradient and Hessian of those unknowns alone).
 //
 // A group's kind follows from its hard-constrained (fixed or pinned) members:
 //   none:            Free, o_g = the members' rest centroid, t_g an unknown of the global step;
