@@ -49,6 +49,7 @@ SessionFrame refine_chunk(RefineJob& job, ArapData& data, Eigen::MatrixXd& U, do
                           const std::function<bool()>& keep_going) {
   ArapSolveOptions options = job.options;
   options.time_budget_ms = budget_ms;
+  options.warm_start_rotations = true; // the chunk goes on from the last one's rotations
   if (job.gradient_target > 0) options.gradient_tolerance = job.gradient_target / job.gradient_now;
   options.newton_trust_radius = job.trust_radius;
   options.newton_reference_gradient = job.reference_gradient;

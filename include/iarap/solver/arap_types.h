@@ -192,6 +192,15 @@ struct ArapSolveOptions {
   // (the / 2: our data term is half CGAL's). The local step then solves for all rotations at once; every
   // accelerator sees the total. 0: none, the same bytes as without. Refused on planar and tetrahedral data.
   double rotation_smoothing = 0;
+  // Start the first local step's rotation fits from data.R, the rotations an earlier solve on the same data
+  // left (polar_rotation_near: two or three Newton steps per cell against a cold fit's five to eight or an
+  // SVD), instead of cold. The rotations are the same to rounding either way (the fit is unique), so a
+  // solve's result changes only by rounding with what earlier solves left; off by default, so that a
+  // result depends on its inputs only, bit for bit. For callers that solve the same data again and again
+  // from nearby positions: the viewer's drag, whose every update is a new solve (a cold fit was the larger
+  // part of an update on the beetle, issue 48). Without rotation smoothing and rigid groups (their local
+  // steps start cold).
+  bool warm_start_rotations = false;
   ArapIterationCallback on_iteration; // optional
 };
 
