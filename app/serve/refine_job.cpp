@@ -59,6 +59,8 @@ SessionFrame refine_chunk(RefineJob& job, ArapData& data, Eigen::MatrixXd& U, do
   ArapSolveOptions options = job.options;
   options.time_budget_ms = budget_ms;
   options.warm_start_rotations = true; // the chunk goes on from the last one's rotations
+  // A request that waits gets the session within about one plain iteration, not a whole Newton iteration.
+  options.should_yield = [&keep_going] { return !keep_going(); };
   if (job.gradient_target > 0) options.gradient_tolerance = job.gradient_target / job.gradient_now;
   options.newton_trust_radius = job.trust_radius;
   options.newton_reference_gradient = job.reference_gradient;

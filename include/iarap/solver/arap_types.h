@@ -202,6 +202,12 @@ struct ArapSolveOptions {
   // steps start cold).
   bool warm_start_rotations = false;
   ArapIterationCallback on_iteration; // optional
+  // Optional, for a caller that shares the solver with others (the viewer's background refinement, which
+  // a drag's update preempts): checked between Newton's CG steps, and true ends the iteration's CG there
+  // with the step found so far (a truncated CG step, as at CG's own stopping rule), so that on_iteration
+  // comes within about one plain iteration (a CG step is one back-substitution and one Hessian product)
+  // instead of a whole Newton iteration (up to `window` of them). Never true: the same iterates bit for bit.
+  std::function<bool()> should_yield;
 };
 
 // Why arap_solve stopped.
