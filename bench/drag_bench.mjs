@@ -11,7 +11,8 @@
 // OBJ) from $IARAP_SHARED_MESHES or ../shared/meshes.
 // Usage: IARAP_CLI=build/iarap node bench/drag_bench.mjs [--meshes beetle,armadillo,armadillo173k]
 //        [--method iarap] [--accel none] [--refine-accel newton] [--budget-ms 20] [--threads 2] [--steps 30]
-//        [--no-refine]      (DRAG_DEBUG=1 also prints each answer and refinement frame)
+//        [--no-refine]      (DRAG_DEBUG=1 also prints each answer [iterations, stop reason, solve_ms,
+//        local_ms, global_ms, wait_ms] and refinement frame; DRAG_PROFILE=FILE writes the server's stderr)
 import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
@@ -113,7 +114,7 @@ async function benchMesh(name) {
       answers.push(last.header);
     }
     const dragMs = clock() - start;
-    if (process.env.DRAG_DEBUG) console.log(JSON.stringify(answers.map((h) => [h.iterations, h.stop_reason, h.refining, h.solve_ms.toFixed(1), h.wait_ms.toFixed(1)])));
+    if (process.env.DRAG_DEBUG) console.log(JSON.stringify(answers.map((h) => [h.iterations, h.stop_reason, h.solve_ms.toFixed(1), h.local_ms.toFixed(1), h.global_ms.toFixed(1), h.wait_ms.toFixed(1)])));
     const lastAt = clock();
     const frames = last.header.refining ? await collectFrames(base, last.header.sequence, clock) : [];
     if (process.env.DRAG_DEBUG) console.log(JSON.stringify(frames.map((f) => [f.iterations, f.energy.toExponential(6), f.relative_decrease.toExponential(1), f.converged, (f.at - lastAt).toFixed(0)])));
@@ -137,6 +138,7 @@ async function benchMesh(name) {
       `last frame gap ${gap(lastEnergy).toExponential(2)}; after the last update: 1e-2 at ${ms(reach(1e-2))}, 1e-6 at ${ms(reach(1e-6))}, ` +
       `refinement stopped at ${ms(refineEnd)} (${frames.length} frames, ${frames.at(-1)?.iterations ?? 0} iterations, final gap ${frames.length ? gap(frames.at(-1).energy).toExponential(2) : '-'}); converged E = ${converged.toExponential(6)}`);
   } finally {
+    if (process.env.DRAG_PROFILE) fs.writeFileSync(process.env.DRAG_PROFILE, server.log());
     await stopServer(server);
   }
 }

@@ -1,5 +1,6 @@
 #include "refine_job.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace iarap::serve {
@@ -21,6 +22,14 @@ std::vector<float> to_float_rows(const Eigen::MatrixXd& X) {
     for (Eigen::Index k = 0; k < X.cols(); ++k)
       out[static_cast<std::size_t>(i * X.cols() + k)] = static_cast<float>(X(i, k));
   return out;
+}
+
+bool refinement_converged(const std::array<double, 2>& earlier, double decrease, double tolerance) {
+  if (decrease <= 0) return true;
+  if (decrease > tolerance || !(earlier[1] > 0)) return false;
+  double rate = decrease / earlier[1];
+  if (earlier[0] > 0) rate = std::max(rate, earlier[1] / earlier[0]);
+  return rate < 1 && decrease * rate / (1 - rate) <= tolerance;
 }
 
 RefineJob refine_job_after(const SolveRequest& request, const ArapReport& report, Eigen::MatrixXd targets,
@@ -49,6 +58,9 @@ SessionFrame refine_chunk(RefineJob& job, ArapData& data, Eigen::MatrixXd& U, do
                           const std::function<bool()>& keep_going) {
   ArapSolveOptions options = job.options;
   options.time_budget_ms = budget_ms;
+  options.warm_start_rotations = true; // the chunk goes on from the last one's rotations
+  // A request that waits gets the session within about one plain iteration, not a whole Newton iteration.
+  options.should_yield = [&keep_going] { return !keep_going(); };
   if (job.gradient_target > 0) options.gradient_tolerance = job.gradient_target / job.gradient_now;
   options.newton_trust_radius = job.trust_radius;
   options.newton_reference_gradient = job.reference_gradient;
@@ -57,8 +69,11 @@ SessionFrame refine_chunk(RefineJob& job, ArapData& data, Eigen::MatrixXd& U, do
   // The iteration boundary where a caller of the session takes over (or the server stops), and the
   // energy rule on accelerated iterates.
   options.on_iteration = [&](const ArapReport& report) {
-    energy_rule = job.tolerance >= 0 && (plain || report.accepted.back() != 0) &&
-                  last_relative_decrease(report) <= job.tolerance;
+    if (job.tolerance >= 0 && (plain || report.accepted.back() != 0)) {
+      const double decrease = last_relative_decrease(report);
+      energy_rule = refinement_converged(job.earlier_decreases, decrease, job.tolerance);
+      job.earlier_decreases = {job.earlier_decreases[1], decrease};
+    }
     return !energy_rule && keep_going();
   };
   SessionFrame frame;

@@ -2,10 +2,13 @@
 // of a time budget, each ending in a frame (FrameBoard). The thread that runs the chunks and yields to
 // requests is SharedSession's (shared_session.h); this file holds what a chunk computes.
 //
-// Its stopping rule is the request's, made independent of where the chunks begin: the energy rule counts
-// only accelerated iterates (a fallback plain step of Newton, L-BFGS or Anderson decreases the energy
-// little far from the minimum: 5e-7 of it at a 5e-4 gap on the beetle, which stopped the refinement
-// there), and the gradient rule compares with the gradient at the solve's initial guess.
+// Its stopping rule is the request's tolerance read as a gap to the minimum, made independent of where the
+// chunks begin: the energy rule counts only accelerated iterates (a fallback plain step of Newton, L-BFGS or
+// Anderson decreases the energy little far from the minimum: 5e-7 of it at a 5e-4 gap on the beetle, which
+// stopped the refinement there), and one decrease below the tolerance is not enough (a step the trust
+// region cut short stopped the beetle's refinement at a gap of 1.1e-6 to 2.2e-6 with a tolerance of 1e-6):
+// the gap left is estimated from the last two decreases (refinement_converged). The gradient rule compares
+// with the gradient at the solve's initial guess.
 #pragma once
 #include "frame_board.h"
 #include "solve_request.h"
@@ -13,6 +16,7 @@
 #include "iarap/solver/arap.h"
 
 #include <Eigen/Core>
+#include <array>
 #include <functional>
 
 namespace iarap::serve {
@@ -21,7 +25,7 @@ struct RefineJob {
   ArapMethod method = ArapMethod::Iarap;
   Eigen::MatrixXd targets, soft_targets; // options.forces: the solve's
   ArapSolveOptions options;              // max_iterations: the iterations left
-  double tolerance = 0;                  // the energy rule (relative decrease of an accelerated iterate)
+  double tolerance = 0;                  // the energy rule (refinement_converged)
   double gradient_target = 0;            // stop once ||g|| <= this (0: no gradient rule)
   double gradient_now = 0;               // ||g|| at the method's U
   // Newton's trust radius and reference gradient, carried from the answer to the first chunk and from
@@ -30,7 +34,18 @@ struct RefineJob {
   // energy was 400 times the minimum's instead of 1.2 times).
   double trust_radius = 0, reference_gradient = 0;
   int iterations_done = 0;
+  // The relative decreases of the two counted iterates before (0: none yet), the later one second.
+  std::array<double, 2> earlier_decreases{0, 0};
 };
+
+// The energy rule of the refinement: with d the relative decrease of the last counted iterate and
+// earlier = {d_2, d_1} those of the two before, the decreases shrink at the rate r = max(d / d_1, d_1 / d_2)
+// (the slower of the last two: Newton's steps cut short by the trust region shrink unevenly), and if they
+// go on shrinking so the gap left after the last is d r / (1 - r) (a geometric series). True when
+// d <= tolerance and that estimate is too, or when d <= 0 (no iterate gains any more: the minimum to
+// rounding). False without a previous decrease (d_1 <= 0; without d_2 the one rate d / d_1 counts) and when
+// the decreases do not shrink.
+bool refinement_converged(const std::array<double, 2>& earlier, double decrease, double tolerance);
 
 // (E_prev - E) / |E_prev| of the report's last iteration: what the energy tolerance compares.
 double last_relative_decrease(const ArapReport& report);

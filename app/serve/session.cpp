@@ -59,7 +59,9 @@ Eigen::MatrixXd soft_points_at(const SoftConstraintSet& soft, const Eigen::Matri
 
 // One arap_solve call that publishes its progress after every iteration and stops when a cancel is
 // requested (the callback returns false). One call, not chunks: the accelerators keep their history, so the
-// page's result equals `iarap deform`'s with the same options bit for bit.
+// page's result equals `iarap deform`'s with the same options to rounding (not bit for bit: the first
+// rotation fits start from the session's last ones, which on the beetle's drag made an update of one
+// iteration cost half as much; ArapSolveOptions::warm_start_rotations).
 ArapReport solve_with_progress(ArapData& data, const Eigen::MatrixXd& targets,
                                const Eigen::MatrixXd& soft_targets, const Eigen::MatrixXd& forces,
                                Eigen::MatrixXd& U, const SolveRequest& request, SolveProgress& progress) {
@@ -73,6 +75,7 @@ ArapReport solve_with_progress(ArapData& data, const Eigen::MatrixXd& targets,
     ~Done() { progress.running = false; }
   } done{progress};
   ArapSolveOptions options = request.solve;
+  options.warm_start_rotations = true;
   options.on_iteration = [&progress](const ArapReport& report) {
     progress.iteration = report.iterations;
     progress.energy = last_energy(report);

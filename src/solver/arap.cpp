@@ -356,7 +356,8 @@ ArapReport solve_checked(ArapData& data, const Eigen::MatrixXd& targets, const E
     detail::RigidGroupProblem problem(data, targets, U, soft_targets, forces);
     report = detail::run_local_global(problem, options, data.rigid.solver.kind(), start);
   } else {
-    detail::LocalGlobalProblem problem(data, targets, U, soft_targets, forces, options.rotation_smoothing);
+    detail::LocalGlobalProblem problem(data, targets, U, soft_targets, forces, options.rotation_smoothing,
+                                       options.warm_start_rotations);
     report = detail::run_local_global(problem, options, data.solver.kind(), start);
   } // U holds the result in the file's order from here
   // The terms' energies at the result, in the file's order.

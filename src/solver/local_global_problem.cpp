@@ -15,7 +15,7 @@ namespace iarap::detail {
 
 LocalGlobalProblem::LocalGlobalProblem(ArapData& data, const Eigen::MatrixXd& targets, Eigen::MatrixXd& U,
                                        const Eigen::MatrixXd& soft_targets, const Eigen::MatrixXd& forces,
-                                       double rotation_smoothing)
+                                       double rotation_smoothing, bool warm_start_rotations)
     : data_(data), U_(U) {
   // Constrained positions in L_fc's column order: targets, then pinned vertices where the guess has them.
   Eigen::MatrixXd U_c(data.fixed.size() + data.pinned.size(), 3);
@@ -75,8 +75,14 @@ LocalGlobalProblem::LocalGlobalProblem(ArapData& data, const Eigen::MatrixXd& ta
   B_.resize(nf, 3);
   X_.resize(nf, 3);
   // The first fit starts cold (fit_rotations warm-starts from rotations it is given): a solve's result then
-  // depends on its inputs only, bit for bit, not on what earlier solves left in data.R.
-  data.R.clear();
+  // depends on its inputs only, bit for bit, not on what earlier solves left in data.R. Warm, it starts
+  // from those, in visit order as the fits keep them.
+  if (warm_start_rotations && !smoothing_ && data.R.size() == R_spare_.size()) {
+    to_visit_order(streamed(el).visit_order, data.R, R_spare_);
+    data.R.swap(R_spare_);
+  } else {
+    data.R.clear();
+  }
 }
 
 // C x = d for the hard points (the last of data.soft's points): the corners that are unknowns give C's

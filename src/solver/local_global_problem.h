@@ -38,9 +38,12 @@ public:
   // rotation_smoothing: ALPHA >= 0 of ArapSolveOptions::rotation_smoothing; above 0 the rotations are
   // coupled (rotation_smoothing.h): the local step solves for all of them at once and its energy includes
   // E_smooth. Throws InputError for planar data and for tetrahedral ARAP with ALPHA > 0.
+  // warm_start_rotations: ArapSolveOptions::warm_start_rotations (data.R, one rotation per cell in the
+  // file's order, starts the first fit; ignored with ALPHA > 0).
   LocalGlobalProblem(ArapData& data, const Eigen::MatrixXd& targets, Eigen::MatrixXd& U,
                      const Eigen::MatrixXd& soft_targets = Eigen::MatrixXd(0, 3),
-                     const Eigen::MatrixXd& forces = Eigen::MatrixXd(0, 3), double rotation_smoothing = 0.0);
+                     const Eigen::MatrixXd& forces = Eigen::MatrixXd(0, 3), double rotation_smoothing = 0.0,
+                     bool warm_start_rotations = false);
   ~LocalGlobalProblem() override;
   LocalGlobalProblem(const LocalGlobalProblem&) = delete;
   LocalGlobalProblem& operator=(const LocalGlobalProblem&) = delete;

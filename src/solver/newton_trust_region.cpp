@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 
 namespace iarap::detail {
 namespace {
@@ -27,8 +28,9 @@ struct SteihaugStep {
   bool boundary = false;
 };
 
-SteihaugStep steihaug_cg(Problem& problem, const Eigen::MatrixXd& g, double g0, double& radius,
-                         int cg_limit) {
+// should_yield (ArapSolveOptions::should_yield): checked after each CG step that did not stop; true stops.
+SteihaugStep steihaug_cg(Problem& problem, const Eigen::MatrixXd& g, double g0, double& radius, int cg_limit,
+                         const std::function<bool()>& should_yield) {
   const double g_norm = g.norm();
   const double eta = std::min(0.5, std::sqrt(g_norm / g0));
   Eigen::MatrixXd r = -g;
@@ -56,7 +58,7 @@ SteihaugStep steihaug_cg(Problem& problem, const Eigen::MatrixXd& g, double g0, 
     model -= 0.5 * alpha * rz;
     dLd += 2 * alpha * dLp + alpha * alpha * pLp;
     r -= alpha * Hp;
-    if (r.norm() <= eta * g_norm || j + 1 == cg_limit) break;
+    if (r.norm() <= eta * g_norm || j + 1 == cg_limit || (should_yield && should_yield())) break;
     const Eigen::MatrixXd z = problem.solve(r);
     const double rz_next = inner(r, z);
     const double beta = rz_next / rz;
@@ -110,7 +112,7 @@ void run_newton(Problem& problem, const ArapSolveOptions& options, double energy
     bool shortened = false;
     SteihaugStep cg = timed(report.accelerator_ms, [&] {
       problem.prepare_hessian();
-      SteihaugStep d = steihaug_cg(problem, g, g0, radius, options.window);
+      SteihaugStep d = steihaug_cg(problem, g, g0, radius, options.window, options.should_yield);
       shortened = shorten_to_feasible(problem, x, g, d);
       return d;
     });

@@ -117,6 +117,18 @@ inline Eigen::VectorXi to_vector(const std::vector<int>& v) {
   return Eigen::Map<const Eigen::VectorXi>(v.data(), static_cast<Eigen::Index>(v.size()));
 }
 
+// The lowest and the highest `fraction` along axis as one constrained set, the low band first (low_count
+// vertices): a bar held at both ends.
+inline Eigen::VectorXi both_ends(const Eigen::MatrixXd& V, int axis, double fraction,
+                                 Eigen::Index& low_count) {
+  const Eigen::VectorXi low = to_vector(axis_band(V, axis, fraction, -1));
+  const Eigen::VectorXi high = to_vector(axis_band(V, axis, fraction, +1));
+  Eigen::VectorXi out(low.size() + high.size());
+  out << low, high;
+  low_count = low.size();
+  return out;
+}
+
 // Rows `idx` of V.
 inline Eigen::MatrixXd rows_of(const Eigen::MatrixXd& V, const Eigen::VectorXi& idx) {
   Eigen::MatrixXd out(idx.size(), V.cols());

@@ -192,7 +192,22 @@ struct ArapSolveOptions {
   // (the / 2: our data term is half CGAL's). The local step then solves for all rotations at once; every
   // accelerator sees the total. 0: none, the same bytes as without. Refused on planar and tetrahedral data.
   double rotation_smoothing = 0;
+  // Start the first local step's rotation fits from data.R, the rotations an earlier solve on the same data
+  // left (polar_rotation_near: two or three Newton steps per cell against a cold fit's five to eight or an
+  // SVD), instead of cold. The rotations are the same to rounding either way (the fit is unique), so a
+  // solve's result changes only by rounding with what earlier solves left; off by default, so that a
+  // result depends on its inputs only, bit for bit. For callers that solve the same data again and again
+  // from nearby positions: the viewer's drag, whose every update is a new solve (a cold fit was the larger
+  // part of an update on the beetle, issue 48). Without rotation smoothing and rigid groups (their local
+  // steps start cold).
+  bool warm_start_rotations = false;
   ArapIterationCallback on_iteration; // optional
+  // Optional, for a caller that shares the solver with others (the viewer's background refinement, which
+  // a drag's update preempts): checked between Newton's CG steps, and true ends the iteration's CG there
+  // with the step found so far (a truncated CG step, as at CG's own stopping rule), so that on_iteration
+  // comes within about one plain iteration (a CG step is one back-substitution and one Hessian product)
+  // instead of a whole Newton iteration (up to `window` of them). Never true: the same iterates bit for bit.
+  std::function<bool()> should_yield;
 };
 
 // Why arap_solve stopped.
