@@ -1,4 +1,5 @@
-// The undo history of a session's constraints: each revision keeps the fixed and handle sets, every
+// The undo history of a session's constraints: each revision keeps the fixed and handle sets, the rigid
+// groups, every
 // method's anchors and the soft constraints, so that POST /api/constraints {"revision": R} brings one back.
 // A bounded deque (oldest first), since a drag records nothing but a selection records one revision.
 #pragma once
@@ -24,6 +25,7 @@ struct SoftSession {
 struct Revision {
   int id = 0;
   Eigen::VectorXi fixed, handle;
+  std::vector<Eigen::VectorXi> rigid_groups;
   std::array<Eigen::MatrixXd, 3> anchors, soft_anchors; // per method (ArapMethod as an index)
   SoftSession soft;
   int soft_version = 0;

@@ -1,5 +1,5 @@
-// The constraints resource: the fixed and handle sets (a new revision, or an earlier one back: undo) and
-// the reset of every method to the rest shape.
+// The constraints resource: the fixed and handle sets and the rigid groups (a new revision, or an earlier one
+// back: undo) and the reset of every method to the rest shape.
 #include "api_routes.h"
 #include "http_policy.h"
 #include "http_reply.h"
@@ -18,10 +18,11 @@ void add_constraint_routes(RouteTable& routes, const ServeConfig& config, Shared
       const int revision = integer_field(body, "revision", 0, 1, std::numeric_limits<int>::max());
       session.change([&](Session& s) { s.restore_constraints(revision); });
     } else {
-      require_known_fields(body, {"fixed", "handle"});
+      require_known_fields(body, {"fixed", "handle", "rigid_groups"});
       const Eigen::VectorXi fixed = integer_array_field(body, "fixed");
       const Eigen::VectorXi handle = integer_array_field(body, "handle");
-      session.change([&](Session& s) { s.set_constraints(fixed, handle); });
+      const std::vector<Eigen::VectorXi> rigid_groups = integer_array_list_field(body, "rigid_groups");
+      session.change([&](Session& s) { s.set_constraints(fixed, handle, rigid_groups); });
     }
     send_json(res, state_json(config, session));
   });

@@ -94,13 +94,14 @@ const nlohmann::json* array_member(const nlohmann::json& object, const char* fie
 
 } // namespace
 
-Eigen::VectorXi integer_array_field(const nlohmann::json& object, const char* field) {
-  const nlohmann::json* array = array_member(object, field);
-  if (array == nullptr) return {};
-  Eigen::VectorXi values(static_cast<Eigen::Index>(array->size()));
-  for (std::size_t i = 0; i < array->size(); ++i) {
-    const nlohmann::json& value = (*array)[i];
-    const std::string where = std::string(field) + "[" + std::to_string(i) + "]";
+namespace {
+
+// array's elements as ints; where names the array in errors ("fixed", "rigid_groups[1]").
+Eigen::VectorXi integer_elements(const nlohmann::json& array, const std::string& name) {
+  Eigen::VectorXi values(static_cast<Eigen::Index>(array.size()));
+  for (std::size_t i = 0; i < array.size(); ++i) {
+    const nlohmann::json& value = array[i];
+    const std::string where = name + "[" + std::to_string(i) + "]";
     if (value.is_number_unsigned()) {
       if (value.get<std::uint64_t>() > static_cast<std::uint64_t>(std::numeric_limits<int>::max()))
         throw HttpError(400, where + " = " + short_description(value) + " is too large");
@@ -114,6 +115,27 @@ Eigen::VectorXi integer_array_field(const nlohmann::json& object, const char* fi
     values[static_cast<Eigen::Index>(i)] = static_cast<int>(value.get<std::int64_t>());
   }
   return values;
+}
+
+} // namespace
+
+Eigen::VectorXi integer_array_field(const nlohmann::json& object, const char* field) {
+  const nlohmann::json* array = array_member(object, field);
+  return array == nullptr ? Eigen::VectorXi() : integer_elements(*array, field);
+}
+
+std::vector<Eigen::VectorXi> integer_array_list_field(const nlohmann::json& object, const char* field) {
+  const nlohmann::json* array = array_member(object, field);
+  std::vector<Eigen::VectorXi> lists;
+  if (array == nullptr) return lists;
+  for (std::size_t g = 0; g < array->size(); ++g) {
+    const std::string where = std::string(field) + "[" + std::to_string(g) + "]";
+    const nlohmann::json& list = (*array)[g];
+    if (!list.is_array())
+      throw HttpError(400, where + " must be an array of vertex indices, got " + short_description(list));
+    lists.push_back(integer_elements(list, where));
+  }
+  return lists;
 }
 
 std::vector<double> number_array_field(const nlohmann::json& object, const char* field) {

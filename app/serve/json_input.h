@@ -39,6 +39,9 @@ void require_known_fields(const nlohmann::json& object, std::initializer_list<co
 // an absent field gives an empty list. Throws 400 for a non-array, a non-integer element (naming its
 // position) or an element outside the int range.
 Eigen::VectorXi integer_array_field(const nlohmann::json& object, const char* field);
+// object[field] as a list of integer lists (e.g. rigid_groups: [[0, 1], [5, 6, 7]]), checked as
+// integer_array_field's elements, errors naming the position (rigid_groups[1][2]); absent: none.
+std::vector<Eigen::VectorXi> integer_array_list_field(const nlohmann::json& object, const char* field);
 
 // object[field] as finite numbers. Throws 400 for a non-array, a non-number or non-finite element (naming
 // its position). An absent field gives an empty list.

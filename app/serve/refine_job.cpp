@@ -43,6 +43,7 @@ RefineJob refine_job_after(const SolveRequest& request, const ArapReport& report
   job.options.tolerance = -1; // the job's own rules, in refine_chunk
   job.options.accelerator = request.refine_accelerator;
   job.options.window = request.solve.window;
+  job.options.rotation_smoothing = request.solve.rotation_smoothing; // refines the energy the solve minimized
   job.tolerance = request.solve.tolerance;
   job.gradient_target = request.solve.gradient_tolerance * report.initial_gradient_norm;
   if (request.refine_accelerator == request.solve.accelerator) { // Newton's state goes on (same targets)

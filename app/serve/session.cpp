@@ -40,6 +40,21 @@ void check_index_set(const Eigen::VectorXi& set, const char* name, int vertex_co
   }
 }
 
+// Rigid groups as the page sends them: each of at least 2 vertices in range, no vertex in two groups (or
+// twice in one), errors naming the position rigid_groups[g][k]. Sharing a vertex with the fixed or handle
+// set is the solver's business (a held group), checked when the setup is built.
+void check_rigid_group_lists(const std::vector<Eigen::VectorXi>& groups, int vertex_count) {
+  std::unordered_map<int, std::string> seen;
+  for (std::size_t g = 0; g < groups.size(); ++g) {
+    const std::string name = "rigid_groups[" + std::to_string(g) + "]";
+    if (groups[g].size() < 2) {
+      throw InputError(name + " has " + std::to_string(groups[g].size()) +
+                       " vertices; a rigid group needs at least 2");
+    }
+    check_index_set(groups[g], name.c_str(), vertex_count, seen);
+  }
+}
+
 // The positions on U of the soft points in the solver's order: soft vertices, soft points on faces, hard
 // points on faces (barycentric combinations of their face's corners).
 Eigen::MatrixXd soft_points_at(const SoftConstraintSet& soft, const Eigen::MatrixXi& F,
@@ -143,6 +158,8 @@ void Session::use_mesh(MeshData mesh, std::optional<Eigen::MatrixXi> tets) {
   fixed_.resize(0);
   handle_.resize(0);
   constrained_.resize(0);
+  rigid_groups_.clear();
+  ++rigid_version_;
   overlay_.reset();
   target_.reset(); // fitted to the previous mesh's scan
   new_generation();
@@ -187,6 +204,11 @@ const SoftSession& Session::soft() const {
   return soft_;
 }
 
+const std::vector<Eigen::VectorXi>& Session::rigid_groups() const {
+  require_mesh();
+  return rigid_groups_;
+}
+
 // ArapMethod counts 0, 1, 2 in the order of all_methods.
 Session::MethodState& Session::state_of(ArapMethod method) {
   return methods_[static_cast<std::size_t>(method)];
@@ -210,15 +232,23 @@ void Session::check_sets(const Eigen::VectorXi& fixed, const Eigen::VectorXi& ha
   check_index_set(handle, "handle", vertex_count, seen);
 }
 
-void Session::use_sets(const Eigen::VectorXi& fixed, const Eigen::VectorXi& handle) {
+void Session::use_sets(const Eigen::VectorXi& fixed, const Eigen::VectorXi& handle,
+                       const std::vector<Eigen::VectorXi>& rigid_groups) {
   fixed_ = fixed;
   handle_ = handle;
+  const bool same_groups =
+      rigid_groups.size() == rigid_groups_.size() &&
+      std::equal(rigid_groups.begin(), rigid_groups.end(), rigid_groups_.begin(), same_indices);
+  if (!same_groups) {
+    rigid_groups_ = rigid_groups;
+    ++rigid_version_; // every method's setup is rebuilt with them at its next solve
+  }
   constrained_.resize(fixed.size() + handle.size());
   constrained_ << fixed, handle;
 }
 
 int Session::record_revision() {
-  Revision revision{0, fixed_, handle_, {}, {}, soft_, soft_version_};
+  Revision revision{0, fixed_, handle_, rigid_groups_, {}, {}, soft_, soft_version_};
   for (std::size_t m = 0; m < methods_.size(); ++m) {
     revision.anchors[m] = methods_[m].anchor;
     revision.soft_anchors[m] = methods_[m].soft_anchor;
@@ -226,10 +256,12 @@ int Session::record_revision() {
   return history_.record(std::move(revision));
 }
 
-int Session::set_constraints(const Eigen::VectorXi& fixed, const Eigen::VectorXi& handle) {
+int Session::set_constraints(const Eigen::VectorXi& fixed, const Eigen::VectorXi& handle,
+                             const std::vector<Eigen::VectorXi>& rigid_groups) {
   require_mesh();
   check_sets(fixed, handle, soft_.soft);
-  use_sets(fixed, handle);
+  check_rigid_group_lists(rigid_groups, static_cast<int>(mesh_->V.rows()));
+  use_sets(fixed, handle, rigid_groups);
   new_generation();
   // The dragged soft vertices are re-anchored where the shape put them, like the handle; the other soft
   // points keep their targets (soft: the shape does not reach them exactly).
@@ -249,7 +281,7 @@ void Session::restore_constraints(int revision) {
     throw SessionConflict("constraint revision " + std::to_string(revision) + " is not kept (the last " +
                           std::to_string(ConstraintHistory::limit) + " of this mesh are)");
   }
-  use_sets(restored->fixed, restored->handle);
+  use_sets(restored->fixed, restored->handle, restored->rigid_groups);
   soft_ = restored->soft;
   soft_version_ = restored->soft_version;
   new_generation();
@@ -271,7 +303,7 @@ int Session::load_constraints(const Eigen::VectorXi& fixed, const Eigen::VectorX
     if (!targets.row(i).allFinite())
       throw InputError("constraint target " + std::to_string(i) + " is not finite");
   }
-  use_sets(fixed, handle);
+  use_sets(fixed, handle, {}); // a constraints file or scenario names no rigid groups
   if (soft_.soft.size() > 0 || soft.soft.size() > 0) ++soft_version_; // rebuilt at the next solve
   soft_ = soft;
   new_generation();
@@ -317,7 +349,7 @@ void Session::prepare_data(MethodState& state, ArapMethod method, bool planar,
   const auto precompute_start = Clock::now();
   const bool soft = solver.soft.size() > 0;
   if (!state.data || state.data_soft_version != soft_version_ || state.data->planar != planar ||
-      state.data_soft_handle != solver.soft_handle ||
+      state.data_soft_handle != solver.soft_handle || state.data_rigid_version != rigid_version_ ||
       (soft && (!same_indices(state.data->fixed, solver.hard) ||
                 !same_indices(state.data->soft.vertices, solver.soft.vertices)))) {
     ArapOptions options;
@@ -325,6 +357,8 @@ void Session::prepare_data(MethodState& state, ArapMethod method, bool planar,
     options.planar = planar;
     // Uploaded meshes may have pieces the user did not select; pin them rather than refuse to solve.
     options.pin_unconstrained_components = true;
+    for (const Eigen::VectorXi& group : rigid_groups_)
+      options.rigid_groups.emplace_back(group.data(), group.data() + group.size());
     state.data.reset(); // a throw leaves no data, rebuilt next time
     if (tets_) {
       state.data = !soft ? arap_precompute_tets(mesh_->V, *tets_, solver.hard, options)
@@ -337,6 +371,7 @@ void Session::prepare_data(MethodState& state, ArapMethod method, bool planar,
     }
     state.data_soft_version = soft_version_;
     state.data_soft_handle = solver.soft_handle;
+    state.data_rigid_version = rigid_version_;
     result.precompute_ms = ms_since(precompute_start);
   } else if (!same_indices(state.data->fixed, solver.hard)) {
     arap_set_fixed(*state.data, solver.hard); // keeps the previous set on a throw

@@ -103,12 +103,18 @@ public:
   const Eigen::VectorXi& fixed() const;
   const Eigen::VectorXi& handle() const;
   const SoftSession& soft() const; // the loaded file's soft constraints, targets as loaded
+  // The rigid groups (ArapOptions::rigid_groups) every method's setup uses; none after a load.
+  const std::vector<Eigen::VectorXi>& rigid_groups() const;
 
   // Throws InputError naming the position for an index out of range, a repeat within a set, or a vertex
   // in both sets or also a soft vertex of the loaded file (kept: it stays soft); nothing changes then. Empty
   // sets are allowed (solve then throws SessionConflict). Returns the new revision: the sets with every
   // method's anchors, which restore_constraints brings back (undo).
-  int set_constraints(const Eigen::VectorXi& fixed, const Eigen::VectorXi& handle);
+  // rigid_groups: each at least 2 vertices, none in two groups (InputError naming rigid_groups[g][k]);
+  // they may hold fixed or handle vertices, as `iarap deform --rigid` allows (the solver's checks apply at
+  // the next solve).
+  int set_constraints(const Eigen::VectorXi& fixed, const Eigen::VectorXi& handle,
+                      const std::vector<Eigen::VectorXi>& rigid_groups = {});
   // Back to the sets and anchors of an earlier revision (one of the last ConstraintHistory::limit);
   // SessionConflict when it is no longer kept. U stays: the next solve moves the shape back.
   void restore_constraints(int revision);
@@ -174,13 +180,15 @@ private:
     Eigen::MatrixXd soft_anchor;   // #soft x 3 positions of the soft points (solver order) when set
     int data_soft_version = 0;     // soft_version_ of the soft constraints data was built with
     bool data_soft_handle = false; // data was built with the handle as soft vertices
+    int data_rigid_version = 0;    // rigid_version_ of the rigid groups data was built with
   };
 
   void require_mesh() const;
   void use_mesh(MeshData mesh, std::optional<Eigen::MatrixXi> tets); // the rest of a load
   void check_sets(const Eigen::VectorXi& fixed, const Eigen::VectorXi& handle,
                   const SoftConstraintSet& soft) const;
-  void use_sets(const Eigen::VectorXi& fixed, const Eigen::VectorXi& handle);
+  void use_sets(const Eigen::VectorXi& fixed, const Eigen::VectorXi& handle,
+                const std::vector<Eigen::VectorXi>& rigid_groups);
   int record_revision();
   MethodState& state_of(ArapMethod method);
   const MethodState& state_of(ArapMethod method) const;
@@ -198,6 +206,8 @@ private:
   Eigen::VectorXi fixed_, handle_, constrained_;
   SoftSession soft_;
   int soft_version_ = 0; // counts the soft sets loaded (a method's data is rebuilt for a new one)
+  std::vector<Eigen::VectorXi> rigid_groups_;
+  int rigid_version_ = 0; // counts the changes of rigid_groups_ (a method's data is rebuilt for a new set)
   std::array<MethodState, 3> methods_;
   std::shared_ptr<const IntrinsicOverlay> overlay_;
   std::shared_ptr<const FitTarget> target_;

@@ -46,6 +46,9 @@ json state_json(const ServeConfig& config, const Session& session) {
     const Eigen::VectorXi& handle = session.handle();
     j["fixed"] = std::vector<int>(fixed.data(), fixed.data() + fixed.size());
     j["handle"] = std::vector<int>(handle.data(), handle.data() + handle.size());
+    j["rigid_groups"] = json::array();
+    for (const Eigen::VectorXi& group : session.rigid_groups())
+      j["rigid_groups"].push_back(std::vector<int>(group.data(), group.data() + group.size()));
     j["soft"] = soft_json(session.soft());
     j["revision"] = session.revision();
     j["target"] = nullptr;

@@ -440,6 +440,53 @@ try {
   await page.uncheck('#soft-handle');
   await settle();
 
+  // 8b. Rigid group and rotation smoothing (issue 45): a box stroke in the Rigid group mode paints one
+  // group across the middle, which the server then keeps rigid through a drag (pairwise distances to
+  // float32 rounding, 1e-6 of the height); the smoothing slider with a group is the solver's refusal in the
+  // banner, and without groups a solve with it goes through.
+  {
+    await page.click('#reset');
+    await settle();
+    await boxSelect('rigid', 0.45, 0.55);
+    const groups = await viewer('rigidGroups');
+    const members = groups.flatMap((g, i) => (g === 0 ? [i] : []));
+    assert.ok(members.length > 10 && groups.every((g) => g <= 0), `rigid group of ${members.length} vertices`);
+    assert.match(await page.textContent('#selection-info'), /, 1 rigid group$/);
+    const state = await (await fetch(server.url + 'api/state')).json();
+    assert.deepEqual(state.rigid_groups, [members]);
+    await dragGizmo(0, 60);
+    await converge();
+    const rest = rowsOf(await (async () => Array.from(new Float32Array(await (await fetch(server.url + 'api/positions?method=rest')).arrayBuffer())))(), members);
+    const moved = rowsOf(await viewer('displayedPositions'), members);
+    let worst = 0;
+    for (let a = 0; a < members.length; ++a)
+      for (let b = a + 1; b < members.length; ++b)
+        worst = Math.max(worst, Math.abs(Math.hypot(...moved[a].map((x, k) => x - moved[b][k])) - Math.hypot(...rest[a].map((x, k) => x - rest[b][k]))));
+    console.log(`rigid group of ${members.length} vertices: largest change of a pairwise distance ${(worst / height).toExponential(2)} x height`);
+    assert.ok(worst <= 1e-6 * height, `the group bent by ${worst}`);
+    const errorsBefore = await viewer('errors');
+    await page.evaluate(() => {
+      const slider = document.getElementById('smoothing');
+      slider.value = '-1';
+      slider.dispatchEvent(new Event('input'));
+    });
+    await settle();
+    assert.equal(await page.textContent('#smoothing-value'), 'alpha = 0.10');
+    assert.equal(await viewer('errors'), errorsBefore + 1);
+    assert.match(await page.textContent('#banner'), /rotation smoothing is not supported with rigid groups/);
+    await page.click('#clear-rigid');
+    await settle();
+    assert.equal(await viewer('errors'), errorsBefore + 1, 'a smoothed solve without groups is refused');
+    assert.deepEqual((await (await fetch(server.url + 'api/state')).json()).rigid_groups, []);
+    await page.evaluate(() => {
+      const slider = document.getElementById('smoothing');
+      slider.value = slider.min;
+      slider.dispatchEvent(new Event('input'));
+    });
+    await settle();
+    assert.equal(await page.textContent('#smoothing-value'), 'off');
+  }
+
   // 9. Fit to a scan: the page's bunny deformed by a short drag (a few % of its height), its vertices as a
   // point cloud, is the target; after a reset the Fit button registers the rest bunny to it, redrawing it
   // every round, and says the final distance.

@@ -58,7 +58,7 @@ export const api = {
   upload: async (file) => (await postFile(`/api/upload?name=${encodeURIComponent(file.name)}`, file)).json(),
   faces: async () => new Uint32Array(await getBuffer('/api/faces')),
   positions: async (method) => new Float32Array(await getBuffer(`/api/positions?method=${method}`)),
-  setConstraints: async (fixed, handle) => (await postJson('/api/constraints', { fixed, handle })).json(),
+  setConstraints: async (fixed, handle, rigidGroups = []) => (await postJson('/api/constraints', { fixed, handle, rigid_groups: rigidGroups })).json(),
   restoreConstraints: async (revision) => (await postJson('/api/constraints', { revision })).json(),
   solve: async (body) => decodeFrame(await (await postJson('/api/solve', body)).arrayBuffer()),
   progress: () => getJson('/api/progress'),

@@ -7,6 +7,7 @@ import { FitPanel } from './fit_panel.js';
 import { UndoHistory } from './history.js';
 import { LatestOnly } from './latest_only.js';
 import { RefinementFeed } from './refinement.js';
+import { NO_GROUP, emptyGroups, groupLists, groupsFromLists, nextGroup } from './rigid_groups.js';
 import { FIXED, HANDLE, box, brush, indicesWith, paintLabel } from './selection.js';
 import { UvPanel } from './uv_panel.js';
 import { Viewer } from './viewer.js';
@@ -16,6 +17,7 @@ const $ = (id) => document.getElementById(id);
 const viewer = new Viewer($('viewport'), $('labels'));
 const app = {
   labels: new Uint8Array(0), mesh: null, revision: 0, limits: { max_iterations: 1000 },
+  groups: new Int32Array(0), // the rigid group of each vertex (rigid_groups.js), apart from the labels
   soft: { dragged: [], count: 0 }, // a loaded file's soft constraints (setSoft)
   cellEnergy: {}, energyColors: {}, scale: null, curves: {},
   history: new UndoHistory(), cancelling: false, converge: false, solves: 0, errors: 0,
@@ -73,6 +75,18 @@ function tolerance() {
   return value;
 }
 
+// The rotation smoothing weight (docs/smoothing.md) from the log slider: 10^value, 0 (off) at the slider's
+// lowest position.
+function rotationSmoothing() {
+  const slider = $('smoothing');
+  return Number(slider.value) <= Number(slider.min) ? 0 : 10 ** Number(slider.value);
+}
+
+function showRotationSmoothing() {
+  const alpha = rotationSmoothing();
+  $('smoothing-value').textContent = alpha > 0 ? `alpha = ${alpha.toPrecision(2)}` : 'off';
+}
+
 // The soft handle's weight from the log slider (10^value), or null for a hard handle.
 function handleWeight() {
   return $('soft-handle').checked ? 10 ** Number($('handle-weight').value) : null;
@@ -113,14 +127,17 @@ function updateEnergyColors() {
 
 function repaint() {
   const showEnergy = $('show-energy').checked;
-  viewer.paint(app.labels, showEnergy ? app.energyColors : null);
+  viewer.paint(app.labels, showEnergy ? app.energyColors : null, app.groups);
   $('colorbar').hidden = !(showEnergy && app.scale);
   const fixed = indicesWith(app.labels, FIXED).length;
   const handle = indicesWith(app.labels, HANDLE).length;
   const soft = app.soft.count ? `, ${app.soft.count} soft (from the file)` : '';
   const weight = handleWeight();
   const softHandle = weight !== null && handle > 0 ? ` (soft, w = ${weight.toPrecision(2)})` : '';
-  $('selection-info').textContent = `${fixed} fixed, ${handle} handle vertices${softHandle}${soft}`;
+  const { lists, leftOut } = groupLists(app.groups);
+  const rigid = lists.length ? `, ${lists.length} rigid group${lists.length > 1 ? 's' : ''}` : '';
+  const single = leftOut ? ` (${leftOut} lone vertices not in a group: a group needs 2)` : '';
+  $('selection-info').textContent = `${fixed} fixed, ${handle} handle vertices${softHandle}${soft}${rigid}${single}`;
   $('undo').disabled = !app.history.canUndo();
   $('redo').disabled = !app.history.canRedo();
 }
@@ -183,11 +200,12 @@ async function solveShown() {
   const refine = $('refine').checked && methods.length === 1 && !cellEnergy && !converge;
   const refineAccelerator = $('refine-accelerator').value;
   const weights = handleWeights(handle.length);
+  const smoothing = rotationSmoothing();
   refinement.stop();
   $('refine-info').textContent = '';
   const stopWatching = watchProgress();
   const results = await guarded(() =>
-    Promise.all(methods.map((method) => api.solve({ method, ...stopping, accelerator, transform, cell_energy: cellEnergy, refine, refine_accelerator: refineAccelerator, ...(weights ? { handle_weights: weights } : {}) }))),
+    Promise.all(methods.map((method) => api.solve({ method, ...stopping, accelerator, transform, cell_energy: cellEnergy, refine, refine_accelerator: refineAccelerator, rotation_smoothing: smoothing, ...(weights ? { handle_weights: weights } : {}) }))),
   ).finally(stopWatching);
   if (!results) return;
   const lines = [];
@@ -248,7 +266,7 @@ async function showPositions(methods) {
 }
 
 // Undo snapshots: the selection, the server's constraint revision (sets and anchors) and the gizmos.
-const snapshot = () => ({ labels: app.labels.slice(), revision: app.revision, gizmo: viewer.gizmoState() });
+const snapshot = () => ({ labels: app.labels.slice(), groups: app.groups.slice(), revision: app.revision, gizmo: viewer.gizmoState() });
 
 function record() {
   app.history.push(snapshot());
@@ -273,6 +291,7 @@ function setLabels(state) {
   app.labels = new Uint8Array(state.mesh.vertices);
   for (const i of state.fixed) app.labels[i] = FIXED;
   for (const i of state.handle) app.labels[i] = HANDLE;
+  app.groups = groupsFromLists(state.mesh.vertices, state.rigid_groups);
   app.revision = state.revision ?? 0;
 }
 
@@ -349,7 +368,7 @@ async function commitSelection() {
   await solver.idle();
   refinement.stop();
   const handle = indicesWith(app.labels, HANDLE);
-  app.revision = (await api.setConstraints(indicesWith(app.labels, FIXED), handle)).revision;
+  app.revision = (await api.setConstraints(indicesWith(app.labels, FIXED), handle, groupLists(app.groups).lists)).revision;
   viewer.placeGizmo(gizmoVertices());
   record();
   solver.request();
@@ -362,13 +381,14 @@ async function travel(state) {
   await solver.idle();
   refinement.stop(); // a frame still on its way would undo the undo
   let answer = null;
-  if (state.revision === 0) answer = await api.setConstraints([], []);
+  if (state.revision === 0) answer = await api.setConstraints([], [], []);
   else if (state.revision !== app.revision) answer = await api.restoreConstraints(state.revision);
   if (answer) {
     app.revision = answer.revision;
     setSoft(answer); // an undo past a file's load takes its soft constraints away
   }
   app.labels.set(state.labels);
+  app.groups.set(state.groups);
   viewer.setGizmoState(state.gizmo);
   repaint();
   solver.request();
@@ -403,9 +423,22 @@ function setupSelectionTools() {
     viewer.orbit.mouseButtons.RIGHT = selecting ? 0 : 2;
   };
   document.querySelectorAll('input[name=tool]').forEach((input) => input.addEventListener('change', applyTool));
+  // What a stroke paints: [array, value] pairs. A rigid-group stroke paints a new group; the eraser
+  // clears both the labels and the groups.
+  const strokeTargets = (done) => {
+    const paint = radio('paint');
+    if (paint === 'rigid') return [[app.groups, done.group]];
+    const targets = [[app.labels, paintLabel(paint)]];
+    if (paint === 'erase') targets.push([app.groups, NO_GROUP]);
+    return targets;
+  };
   const brushAt = (event) => {
     const hit = viewer.pick(event.clientX, event.clientY);
-    if (hit && brush(app.labels, hit.view.positions(), hit.point, Number($('brush-radius').value) * viewer.diagonal, paintLabel(radio('paint')))) {
+    if (!hit) return;
+    const radius = Number($('brush-radius').value) * viewer.diagonal;
+    let changed = false;
+    for (const [array, value] of strokeTargets(stroke)) changed = brush(array, hit.view.positions(), hit.point, radius, value) || changed;
+    if (changed) {
       stroke.changed = true;
       repaint();
     }
@@ -413,7 +446,7 @@ function setupSelectionTools() {
   canvas.addEventListener('pointerdown', (event) => {
     const tool = radio('tool');
     if (tool === 'orbit' || event.button !== 0 || !app.mesh || viewer.gizmoActive()) return;
-    stroke = { tool, x0: event.clientX, y0: event.clientY, changed: false, view: viewer.viewAt(event.clientX, event.clientY) };
+    stroke = { tool, x0: event.clientX, y0: event.clientY, changed: false, view: viewer.viewAt(event.clientX, event.clientY), group: nextGroup(app.groups) };
     canvas.setPointerCapture(event.pointerId);
     if (tool === 'brush') brushAt(event);
   });
@@ -437,7 +470,7 @@ function setupSelectionTools() {
     rectElement.hidden = true;
     if (done.tool === 'box') {
       const rect = { x0: Math.min(done.x0, event.clientX), x1: Math.max(done.x0, event.clientX), y0: Math.min(done.y0, event.clientY), y1: Math.max(done.y0, event.clientY) };
-      done.changed = box(app.labels, viewer, done.view, rect, paintLabel(radio('paint')));
+      for (const [array, value] of strokeTargets(done)) done.changed = box(array, viewer, done.view, rect, value) || done.changed;
     }
     if (done.changed) await guarded(commitSelection);
   });
@@ -486,6 +519,12 @@ function setupPanel(state) {
     setStatus(`loaded ${file.name}`);
   }));
   $('clear-selection').addEventListener('click', () => guarded(async () => { app.labels.fill(0); await commitSelection(); }));
+  $('clear-rigid').addEventListener('click', () => guarded(async () => { app.groups.fill(NO_GROUP); await commitSelection(); }));
+  $('smoothing').addEventListener('input', () => {
+    showRotationSmoothing();
+    solver.request();
+  });
+  showRotationSmoothing();
   $('undo').addEventListener('click', () => guarded(() => travel(app.history.undo())));
   $('redo').addEventListener('click', () => guarded(() => travel(app.history.redo())));
   $('method').addEventListener('change', () => guarded(changeLayout));
@@ -588,6 +627,7 @@ window.iarapViewer = {
   idle: () => solver.idle(),
   displayedPositions: (method) => Array.from(viewer.view(method ?? shownMethods()[0]).positions()),
   labels: () => Array.from(app.labels),
+  rigidGroups: () => Array.from(app.groups),
   viewCount: () => viewer.views.length,
   meshScreenBox: (index = 0) => viewer.screenBox(index),
   handleTransform: () => viewer.handleTransform(),

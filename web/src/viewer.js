@@ -10,6 +10,7 @@
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { TransformControls } from 'three/addons/controls/TransformControls.js';
+import { NO_GROUP, groupColor } from './rigid_groups.js';
 import { checkerTexture } from './uv_layout.js';
 
 const baseColor = [0.72, 0.74, 0.78];
@@ -273,15 +274,16 @@ export class Viewer {
     return this.views.find((v) => v.method === method);
   }
 
-  // Vertex colours from the selection labels (0 free, 1 fixed, 2 handle, paler when soft), or energy
-  // colours for free ones.
-  paint(labels, energyColorsByMethod) {
+  // Vertex colours from the selection labels (0 free, 1 fixed, 2 handle, paler when soft), then the rigid
+  // groups' colours (groups: per vertex, NO_GROUP for none), or energy colours for the rest.
+  paint(labels, energyColorsByMethod, groups = null) {
     const handle = this.softHandle ? softHandleColor : handleColor;
     for (const view of this.views) {
       const colors = view.mesh.geometry.attributes.color.array;
       const energy = energyColorsByMethod?.[view.method];
       for (let i = 0; i < labels.length; ++i) {
-        const c = labels[i] === 1 ? fixedColor : labels[i] === 2 ? handle : null;
+        const group = groups ? groups[i] : NO_GROUP;
+        const c = labels[i] === 1 ? fixedColor : labels[i] === 2 ? handle : group !== NO_GROUP ? groupColor(group) : null;
         for (let k = 0; k < 3; ++k) colors[3 * i + k] = c ? c[k] : energy ? energy[3 * i + k] : baseColor[k];
       }
       view.mesh.geometry.attributes.color.needsUpdate = true;
