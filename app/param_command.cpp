@@ -103,18 +103,24 @@ UvPins read_pins(const std::string& path, const MeshData& mesh) {
   return pins;
 }
 
-nlohmann::json report_json(const ParamArguments& args, const MeshData& mesh, const ParamOptions& options,
-                           const ParamReport& report) {
+// The fields every param report has, one chart or an atlas: the files, the mesh's size, the threads.
+nlohmann::json run_json(const ParamArguments& args, const MeshData& mesh) {
   nlohmann::json j;
   j["input"] = args.mesh;
   j["output"] = args.out;
   j["vertices"] = mesh.V.rows();
   j["faces"] = mesh.F.rows();
+  j["threads"] = thread_count();
+  return j;
+}
+
+nlohmann::json report_json(const ParamArguments& args, const MeshData& mesh, const ParamOptions& options,
+                           const ParamReport& report) {
+  nlohmann::json j = run_json(args, mesh);
   j["boundary"] = param_boundary_name(options.boundary);
   j["pins"] = options.pins.size();
   if (!args.pins.empty()) j["pins_file"] = args.pins;
   j["allow_flips"] = options.allow_flips;
-  j["threads"] = thread_count();
   j.update(param_report_json(report));
   return j;
 }
@@ -151,11 +157,7 @@ bool one_chart(const ParamArguments& args, const MeshData& mesh) {
 
 nlohmann::json atlas_json(const ParamArguments& args, const MeshData& mesh, const AtlasOptions& options,
                           const AtlasReport& report) {
-  nlohmann::json j;
-  j["input"] = args.mesh;
-  j["output"] = args.out;
-  j["vertices"] = mesh.V.rows();
-  j["faces"] = mesh.F.rows();
+  nlohmann::json j = run_json(args, mesh);
   j["charts_mode"] = args.charts;
   j["energy_kind"] = param_energy_name(options.param.energy);
   j["allow_flips"] = options.param.allow_flips;
@@ -174,7 +176,6 @@ nlohmann::json atlas_json(const ParamArguments& args, const MeshData& mesh, cons
   }
   j["chart_list"] = charts;
   visit_atlas_report(report, [&j](const char* name, const auto& value) { j[name] = value; });
-  j["threads"] = thread_count();
   return j;
 }
 
