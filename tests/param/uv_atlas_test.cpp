@@ -138,12 +138,9 @@ TEST(UvAtlas, DistortionSplitsACurvedChart) {
 
 TEST(UvAtlas, BadInputIsRefused) {
   // Three triangles on one edge: no chart can hold them as a disk.
-  Eigen::MatrixXd V(5, 3);
-  V << 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, -1, 0, 0, 0, 1;
-  Eigen::MatrixXi F(3, 3);
-  F << 0, 1, 2, 1, 0, 3, 0, 1, 4;
+  const test::SmallMesh fin = test::fin(3);
   try {
-    uv_atlas(V, F);
+    uv_atlas(fin.V, fin.F);
     FAIL() << "a non-manifold edge was accepted";
   } catch (const TopologyError& e) {
     EXPECT_NE(std::string(e.what()).find("cannot be cut into disk charts"), std::string::npos) << e.what();
@@ -160,7 +157,7 @@ TEST(UvAtlas, BadInputIsRefused) {
   options.param.pins.vertices = Eigen::VectorXi::Constant(1, 0);
   options.param.pins.uv = Eigen::MatrixXd::Zero(1, 2);
   EXPECT_THROW(uv_atlas(torus.V, torus.F, options), InputError);
-  EXPECT_THROW(uv_atlas(V, Eigen::MatrixXi(0, 3)), InputError);
+  EXPECT_THROW(uv_atlas(fin.V, Eigen::MatrixXi(0, 3)), InputError);
 }
 
 TEST(ChartPacking, FourEqualSquaresFillTheUnitSquare) {
