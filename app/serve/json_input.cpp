@@ -166,6 +166,14 @@ int integer_field(const nlohmann::json& object, const char* field, int fallback,
   return it->get<int>();
 }
 
+double number_field(const nlohmann::json& object, const char* field, double fallback) {
+  const auto it = object.find(field);
+  if (it == object.end()) return fallback;
+  if (!it->is_number() || !std::isfinite(it->get<double>())) // "1e999" parses to inf
+    throw HttpError(400, std::string(field) + " must be a finite number, got " + short_description(*it));
+  return it->get<double>();
+}
+
 std::string string_field(const nlohmann::json& object, const char* field, const std::string& fallback) {
   const auto it = object.find(field);
   if (it == object.end()) return fallback;

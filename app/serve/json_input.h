@@ -50,6 +50,10 @@ std::vector<double> number_array_field(const nlohmann::json& object, const char*
 // object[field] as an integer in [min, max], fallback when absent; 400 otherwise.
 int integer_field(const nlohmann::json& object, const char* field, int fallback, int min, int max);
 
+// object[field] as a finite number, fallback when absent; 400 otherwise (ranges: the caller's, which knows
+// what the number means).
+double number_field(const nlohmann::json& object, const char* field, double fallback);
+
 // object[field] as a string, fallback when absent; 400 otherwise.
 std::string string_field(const nlohmann::json& object, const char* field, const std::string& fallback);
 

@@ -132,6 +132,8 @@ def intrinsic_delaunay(
     refine_boundary: bool = False,
     max_boundary_insertions: int = -1,
 ) -> dict[str, Any]: ...
+# One chart (a disk): parameterize, one UV per vertex. Any mesh: uv_atlas, one UV per corner and a chart per
+# face; parameterize's TopologyError for a non-disk names uv_atlas.
 def parameterize(
     V: npt.ArrayLike,
     F: npt.ArrayLike,

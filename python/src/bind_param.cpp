@@ -5,6 +5,7 @@
 #include "solve_option_keywords.h"
 
 #include "iarap/core/errors.h"
+#include "iarap/mesh/validate.h"
 #include "iarap/param/arap_parameterize.h"
 #include "iarap/param/atlas_report_fields.h"
 #include "iarap/param/param_report_fields.h"
@@ -63,6 +64,15 @@ UvPins to_pins(const py::object& pins, const py::object& pin_uv, Eigen::Index n)
   return result;
 }
 
+// What parameterize's TopologyError adds for a usable mesh that is not a disk: the call that takes it.
+std::string atlas_hint(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
+  const MeshReport check = check_mesh(V, F);
+  const bool disk = check.components == 1 && check.boundary_loops == 1 && check.genus == 0;
+  if (!check.usable() || disk) return "";
+  return "\n(iarap.uv_atlas(V, F) cuts any oriented manifold into disk charts and packs them: per-corner "
+         "UVs and chart ids)";
+}
+
 py::tuple parameterize_py(const BoundArguments& arguments) {
   const Eigen::MatrixXd positions = to_points(arguments["V"], "V");
   const Eigen::MatrixXi faces = to_faces(arguments["F"], "F", positions.rows());
@@ -75,9 +85,11 @@ py::tuple parameterize_py(const BoundArguments& arguments) {
   options.pins = to_pins(arguments["pins"], arguments["pin_uv"], positions.rows());
   set_solve_options(options.solve, arguments);
   ParamResult result;
-  {
+  try {
     py::gil_scoped_release release;
     result = arap_parameterize(positions, faces, options);
+  } catch (const TopologyError& error) {
+    throw TopologyError(error.what() + atlas_hint(positions, faces));
   }
   return py::make_tuple(to_numpy(result.UV), report_dict(result.report));
 }
@@ -153,6 +165,7 @@ iterations), seam_length, flipped, degenerate_faces, boundary_overlaps, overlap_
 energy, area, distortion (energy / area), packing_efficiency (UV area / unit square),
 merged_small_charts, splits_for_distortion, splits_for_overlap, segment_ms, flatten_ms, pack_ms,
 parameterize_ms.
+A disk is cut into charts too; parameterize flattens a disk as one chart (one UV per vertex).
 Raises InputError for bad arrays or options, TopologyError for a mesh that is not an oriented manifold.)");
 
   def_with_signature(
@@ -183,7 +196,8 @@ accelerator, iterations, converged, stop_reason, initial_energy, energies, initi
 gradient_norms, rejected, solves, elapsed_ms (as ARAP.solve's report), requested_init, init, init_flipped,
 init_fallback, pinned, check_ms, init_ms, cells_ms, factor_ms, iterate_ms, parameterize_ms.
 Raises InputError for bad arrays or options, TopologyError for a mesh that is not a disk (saying what it has:
-components, boundary loops, genus) or has degenerate triangles.)"));
+components, boundary loops, genus, and naming uv_atlas, which cuts any oriented manifold into an atlas of
+charts: per-corner UVs and chart ids) or has degenerate triangles.)"));
 }
 
 } // namespace iarap::python

@@ -111,6 +111,20 @@ TEST(ServeJsonInput, ScalarFieldsNameTheirTypeAndRange) {
   EXPECT_EQ(serve::integer_field(body, "absent", 7, 1, 10), 7);
 }
 
+TEST(ServeJsonInput, NumberFieldsAreFiniteNumbers) {
+  json body = json::parse(R"({"padding": 2.5, "max_angle": "60", "flag": true})");
+  body["huge"] = std::numeric_limits<double>::infinity(); // a parsed body cannot hold one: a caller's can
+  EXPECT_EQ(serve::number_field(body, "padding", 0), 2.5);
+  EXPECT_EQ(serve::number_field(body, "absent", 7), 7);
+  EXPECT_EQ(refusal([&] { serve::number_field(body, "max_angle", 0); }).second,
+            "max_angle must be a finite number, got \"60\"");
+  EXPECT_EQ(refusal([&] { serve::number_field(body, "flag", 0); }).second,
+            "flag must be a finite number, got true");
+  const auto [status, message] = refusal([&] { serve::number_field(body, "huge", 0); });
+  EXPECT_EQ(status, 400);
+  EXPECT_TRUE(contains(message, "huge must be a finite number")) << message;
+}
+
 TEST(ServeJsonInput, SolveRequestFieldsAreChecked) {
   const auto solve_error = [](const std::string& text) {
     return input_error([&] { serve::parse_solve_request(json::parse(text), 1000); });

@@ -3,7 +3,8 @@
 // scenario, undoes and redoes the drag, loads the scenario back and compares the page's solve with the
 // CLI's replay of the file, then side by side selects and drags on the right copy and checks the shared
 // colour scale, takes a screenshot (a test artefact, not blank), uploads an STL (nothing of the bunny's
-// session left), flattens an uploaded disk in the UV tab (layout, report, checkerboard on the mesh) and
+// session left), flattens an uploaded disk in the UV tab (layout, report, checkerboard on the mesh), makes
+// an atlas of the closed bunny (charts coloured in the layout and on the mesh) and
 // makes the handle soft (it lags behind, less as its weight grows), fits the bunny to a point cloud of its
 // deformed shape (progress per round, final distance), uploads a tetrahedral mesh (shown by its boundary,
 // iarap only) and finally stops the server (the banner says so). Exit 77 (CTest: skipped) without
@@ -398,6 +399,47 @@ try {
   await page.selectOption('#mesh-select', 'bunny.off');
   await page.waitForFunction(() => window.iarapViewer.labels().length === 3485, null, { timeout: 30000 });
   assert.equal(await page.evaluate(() => document.getElementById('uv-layout').hidden), true);
+  assert.deepEqual(problems, []);
+
+  // 6c. The UV tab on the closed bunny (not a disk): Flatten makes an atlas. The layout shows the unit
+  // square with each chart in its own colour, the report its figures, and every copy the checkerboard
+  // through the atlas, tinted by chart; unchecking takes it off.
+  await page.check('#uv-texture');
+  await page.fill('#uv-texture-size', '512');
+  await page.click('#uv-flatten');
+  await page.waitForFunction(() => window.iarapViewer.uvReport()?.atlas === true, null, { timeout: 60000 });
+  const atlas = await page.evaluate(() => {
+    const pixels = document.getElementById('uv-layout-canvas').getContext('2d').getImageData(0, 0, 320, 320).data;
+    const colours = new Set();
+    let ink = 0;
+    for (let i = 0; i < pixels.length; i += 4) {
+      if (pixels[i + 3] === 255) { ink += 1; colours.add((pixels[i] << 16) | (pixels[i + 1] << 8) | pixels[i + 2]); }
+    }
+    return {
+      report: window.iarapViewer.uvReport(),
+      title: document.getElementById('uv-layout-title').textContent,
+      info: document.getElementById('uv-info').textContent,
+      atlasShown: window.iarapViewer.hasAtlas(),
+      ink,
+      colours: colours.size,
+    };
+  });
+  assert.equal(atlas.report.flipped, 0);
+  assert.ok(atlas.report.charts >= 2 && atlas.report.packing_efficiency >= 0.5, JSON.stringify(atlas.report));
+  assert.ok(atlas.atlasShown, 'no atlas on the 3D copies');
+  assert.match(atlas.title, new RegExp(`UV atlas: ${atlas.report.charts} charts`));
+  assert.match(atlas.info, /atlas of \d+ charts \(closed, genus 0\)[\s\S]*0 flipped triangles[\s\S]*packing efficiency 0\.\d{3} at 512 texels/);
+  // The charts fill packing_efficiency of the square (308 x 308 pixels of the 320 x 320 canvas), their
+  // edges drawn half-transparent over them: at least half of that area is opaque chart colour, in at least
+  // as many colours as charts (antialiased edges add more).
+  assert.ok(atlas.ink > 0.5 * atlas.report.packing_efficiency * 308 * 308, `atlas pixels: ${atlas.ink}`);
+  assert.ok(atlas.colours >= atlas.report.charts, `${atlas.colours} colours for ${atlas.report.charts} charts`);
+  await settle();
+  await page.screenshot({ path: path.join(artefactDir, 'viewer_atlas.png') });
+  await page.uncheck('#uv-texture');
+  assert.equal(await page.evaluate(() => window.iarapViewer.hasAtlas()), false);
+  await page.click('#uv-layout-close');
+  console.log(`UV tab: bunny atlas, ${atlas.report.charts} charts, packing ${atlas.report.packing_efficiency.toFixed(3)}, ${atlas.colours} layout colours`);
   assert.deepEqual(problems, []);
 
   // 8. A soft handle: with the gizmo held still, a weight of 0.001 lets the handle lag behind where the hard

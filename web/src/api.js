@@ -69,7 +69,9 @@ export const api = {
   },
   cancel: async () => (await postJson('/api/cancel', {})).json(),
   reset: async () => (await postJson('/api/reset', {})).json(),
-  // The rest mesh's UV map (the UV tab): {header: report, arrays: {uv: Float32Array #V x 2}}.
+  // The rest mesh's UV map (the UV tab): {header: report, arrays: {uv: Float32Array #V x 2}} for a disk,
+  // {header: atlas report (atlas: true), arrays: {corner_uv: Float32Array #F x 3 x 2, chart: Int32Array #F}}
+  // for any other mesh.
   param: async (body) => decodeFrame(await (await postJson('/api/param', body)).arrayBuffer()),
   intrinsicEdges: async () => decodeFrame(await getBuffer('/api/intrinsic_edges')),
   downloadUrl: (method, format) => `/api/download?method=${method}&format=${format}`,

@@ -635,6 +635,7 @@ window.iarapViewer = {
   cellEnergy: (method) => Array.from(app.cellEnergy[method] ?? []),
   uvReport: () => uvPanel.map?.report ?? null,
   hasTexture: () => viewer.hasTexture(),
+  hasAtlas: () => viewer.hasAtlas(),
   // A point on copy `index`'s gizmo x arrow (TransformControls scales its handles by this factor; the x
   // picker spans 0..0.6 of it along +x).
   gizmoXArrowScreenPoint: (index = 0) => {

@@ -94,3 +94,67 @@ export function drawLayout(canvas, faces, checker, flipped) {
     if (edges) ctx.stroke();
   }
 }
+
+// An atlas (corner UVs in [0,1]^2, #F x 3 x 2, and a chart per face) shows `atlasChecks` squares across the
+// unit square, as `iarap param --picture` draws it.
+export const atlasChecks = 64;
+
+// A distinct, mid-bright colour per chart (hues a golden angle apart, as sRGB HSL); grey for no chart (-1).
+// A THREE.Color: toArray() gives linear RGB for vertex colours, getStyle() the canvas's sRGB.
+export function chartColor(chart) {
+  if (chart < 0) return new THREE.Color().setHSL(0, 0, 0.5, THREE.SRGBColorSpace);
+  return new THREE.Color().setHSL((chart * 0.618033988749895) % 1, 0.6, 0.62, THREE.SRGBColorSpace);
+}
+
+// Per-corner arrays of an atlas for the 3D copies: checker coordinates (#F x 3 x 2: corner uv * atlasChecks)
+// and the chart's colour (#F x 3 x 3), which tints the checkerboard.
+export function atlasCornerArrays(cornerUv, chart) {
+  const checker = new Float32Array(cornerUv.length);
+  for (let i = 0; i < cornerUv.length; ++i) checker[i] = cornerUv[i] * atlasChecks;
+  const colors = new Float32Array((cornerUv.length / 2) * 3);
+  for (let f = 0; f < chart.length; ++f) {
+    const c = chartColor(chart[f]).toArray();
+    for (let k = 0; k < 3; ++k) colors.set(c, 9 * f + 3 * k);
+  }
+  return { checker, colors };
+}
+
+// Faces whose corner UVs fold over (signed area <= 0), as flippedFaces does for a map per vertex; faces of
+// no chart (-1: no area, their corners on one point) are not counted.
+export function flippedAtlasFaces(cornerUv, chart) {
+  const flipped = new Uint8Array(chart.length);
+  for (let f = 0; f < chart.length; ++f) {
+    const u = (k, d) => cornerUv[6 * f + 2 * k + d];
+    const area = (u(1, 0) - u(0, 0)) * (u(2, 1) - u(0, 1)) - (u(1, 1) - u(0, 1)) * (u(2, 0) - u(0, 0));
+    flipped[f] = chart[f] >= 0 && area <= 0 ? 1 : 0;
+  }
+  return flipped;
+}
+
+// The atlas on a 2D canvas: the unit square's outline, each chart's triangles filled in its colour (flipped
+// ones red), edges drawn while they stay apart (under 20,000 faces).
+export function drawAtlas(canvas, cornerUv, chart, flipped) {
+  const ctx = canvas.getContext('2d');
+  const { width, height } = canvas;
+  ctx.clearRect(0, 0, width, height);
+  const margin = 6;
+  const side = Math.min(width, height) - 2 * margin;
+  const x = (f, k) => margin + cornerUv[6 * f + 2 * k] * side;
+  const y = (f, k) => height - margin - cornerUv[6 * f + 2 * k + 1] * side; // v up
+  ctx.strokeStyle = '#fff8';
+  ctx.lineWidth = 1;
+  ctx.strokeRect(margin - 0.5, height - margin - side - 0.5, side + 1, side + 1);
+  const edges = chart.length < 20000;
+  ctx.lineWidth = 0.3;
+  ctx.strokeStyle = '#0006';
+  for (let f = 0; f < chart.length; ++f) {
+    ctx.fillStyle = flipped[f] ? '#e62929' : chartColor(chart[f]).getStyle();
+    ctx.beginPath();
+    ctx.moveTo(x(f, 0), y(f, 0));
+    ctx.lineTo(x(f, 1), y(f, 1));
+    ctx.lineTo(x(f, 2), y(f, 2));
+    ctx.closePath();
+    ctx.fill();
+    if (edges) ctx.stroke();
+  }
+}

@@ -42,6 +42,7 @@ class MethodView {
     this.wire.visible = false;
     this.intrinsic = null;
     this.targetPoints = null; // the fit's target (Viewer.setTarget)
+    this.atlas = null; // the UV tab's atlas drawn on the faces' own corners (setAtlas)
   }
 
   positions() {
@@ -55,6 +56,51 @@ class MethodView {
     this.mesh.geometry.computeVertexNormals();
     this.mesh.geometry.computeBoundingSphere();
     this.mesh.geometry.computeBoundingBox();
+    if (this.atlas) this.#spreadToCorners(this.atlas.geometry);
+  }
+
+  // The shared geometry's positions and smooth normals copied to each face's own three corners.
+  #spreadToCorners(cornerGeometry) {
+    const index = this.mesh.geometry.index.array;
+    const { position, normal } = this.mesh.geometry.attributes;
+    const cornerPosition = cornerGeometry.attributes.position;
+    const cornerNormal = cornerGeometry.attributes.normal;
+    for (let c = 0; c < index.length; ++c) {
+      for (let k = 0; k < 3; ++k) {
+        cornerPosition.array[3 * c + k] = position.array[3 * index[c] + k];
+        cornerNormal.array[3 * c + k] = normal.array[3 * index[c] + k];
+      }
+    }
+    cornerPosition.needsUpdate = cornerNormal.needsUpdate = true;
+    cornerGeometry.computeBoundingSphere();
+  }
+
+  // An atlas on this copy ({checker, colors} per corner, uv_layout.js's atlasCornerArrays), or none (null).
+  // A UV per corner needs each face on its own three vertices: a second mesh of the same surface is drawn
+  // instead of the shared one, which stays for picking (its material hidden) and keeps the wireframe.
+  setAtlas(atlas, texture) {
+    if (this.atlas) {
+      this.mesh.remove(this.atlas);
+      this.atlas.geometry.dispose();
+      this.atlas.material.dispose();
+      this.atlas = null;
+    }
+    this.mesh.material.visible = !atlas;
+    if (!atlas) return;
+    const corners = this.mesh.geometry.index.count;
+    const geometry = new THREE.BufferGeometry();
+    geometry.setAttribute('position', new THREE.BufferAttribute(new Float32Array(3 * corners), 3));
+    geometry.setAttribute('normal', new THREE.BufferAttribute(new Float32Array(3 * corners), 3));
+    geometry.setAttribute('uv', new THREE.BufferAttribute(atlas.checker, 2));
+    geometry.setAttribute('color', new THREE.BufferAttribute(atlas.colors, 3));
+    this.#spreadToCorners(geometry);
+    const { polygonOffset, polygonOffsetFactor, polygonOffsetUnits } = this.mesh.material;
+    this.atlas = new THREE.Mesh(geometry, new THREE.MeshStandardMaterial({
+      vertexColors: true, map: texture, roughness: 0.75, metalness: 0.0, side: THREE.DoubleSide,
+      polygonOffset, polygonOffsetFactor, polygonOffsetUnits,
+    }));
+    this.atlas.raycast = () => {}; // picking goes to the shared mesh
+    this.mesh.add(this.atlas); // follows the copy's offset
   }
 
   // The checkerboard on this copy (checker: Float32Array #V x 2 in checker units), or none (null).
@@ -75,6 +121,7 @@ class MethodView {
     scene.remove(this.mesh, this.wire);
     if (this.intrinsic) scene.remove(this.intrinsic);
     if (this.targetPoints) scene.remove(this.targetPoints);
+    this.setAtlas(null);
     this.mesh.geometry.dispose();
     this.intrinsic?.geometry.dispose();
   }
@@ -147,6 +194,7 @@ export class Viewer {
     this.rest = rest;
     this.overlay = null;
     this.checker = null;
+    this.atlas = null;
     this.handleIndices = [];
     this.handleMatrix.identity();
     const box = new THREE.Box3().setFromArray(rest);
@@ -173,6 +221,7 @@ export class Viewer {
     this.#buildTargetPoints();
     if (this.overlay) this.setIntrinsicOverlay(this.overlay);
     if (this.checker) this.setTexture(this.checker);
+    if (this.atlas) this.setAtlas(this.atlas);
     this.requestRender();
   }
 
@@ -183,6 +232,20 @@ export class Viewer {
     this.checkerTexture ??= checkerTexture();
     for (const view of this.views) view.setTexture(checker, this.checkerTexture);
     this.requestRender();
+  }
+
+  // The UV tab's atlas on every copy (atlas: {checker, colors} per corner, see uv_layout.js's
+  // atlasCornerArrays, checker coordinates tiling the same texture), kept across layouts until a new mesh
+  // or null.
+  setAtlas(atlas) {
+    this.atlas = atlas;
+    this.checkerTexture ??= checkerTexture();
+    for (const view of this.views) view.setAtlas(atlas, this.checkerTexture);
+    this.requestRender();
+  }
+
+  hasAtlas() {
+    return this.views.length > 0 && this.views.every((view) => view.atlas !== null);
   }
 
   hasTexture() {
