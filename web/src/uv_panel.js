@@ -36,7 +36,7 @@ function describeAtlas(report) {
   return [
     `atlas of ${report.charts} charts (${topology(report)}), ${report.energy_kind} energy, ${report.parameterize_ms.toFixed(0)} ms`,
     `distortion ${report.distortion.toPrecision(3)} (energy / area; worst chart ${worst.toPrecision(3)})`,
-    `${report.flipped} flipped triangles, overlap ${report.overlap_ratio.toPrecision(2)} of the covered texels`,
+    `${report.flipped} flipped triangles, overlap ${report.overlap_ratio === 0 ? '0' : report.overlap_ratio.toExponential(1)} of the covered texels`,
     `packing efficiency ${report.packing_efficiency.toFixed(3)} at ${report.texture_size} texels, padding ${report.padding}`,
     `seam length ${report.seam_length.toPrecision(4)}, splits ${report.splits_for_distortion} for distortion, ${report.splits_for_overlap} for overlap`,
     ...(report.degenerate_faces ? [`${report.degenerate_faces} faces without an area left out (grey)`] : []),
