@@ -443,6 +443,17 @@ describe('UV maps', () => {
       assert.ok(header.energy < 1e-2, `${energy}: energy ${header.energy}`);
       assert.ok(arrays.uv.every(Number.isFinite));
     }
+    // A disk is one chart whatever "charts" says: auto (the default) answers what one does, the same map
+    // to the bit and the same report but its times (the same library, input and options).
+    const [auto, one] = await Promise.all([{}, { charts: 'one' }].map(async (charts) => {
+      const response = await postJson('/api/param', { iterations: 50, ...charts });
+      assert.equal(response.status, 200, await response.clone().text());
+      return decodeFrame(await response.arrayBuffer());
+    }));
+    assert.equal(auto.header.atlas, undefined);
+    assert.deepEqual(auto.arrays.uv, one.arrays.uv);
+    const untimed = (header) => Object.fromEntries(Object.entries(header).filter(([key]) => !key.includes('_ms')));
+    assert.deepEqual(untimed(auto.header), untimed(one.header));
     await expectError(postJson('/api/param', { energy: 'spokes-rims' }), 400, /unknown energy/);
     await expectError(postJson('/api/param', { boundary: 'circle', init: 'lscm' }), 400, /circular boundary needs/);
     await expectError(postJson('/api/param', { iterations: 100000 }), 400, /iterations/);
