@@ -75,6 +75,19 @@ class MethodView {
     cornerGeometry.computeBoundingSphere();
   }
 
+  // The atlas's corner colours: a vertex's selection colour (selectionColor(v), null for none) on the
+  // corners of selected vertices, so that painting stays visible, its chart's colour on the others.
+  paintAtlas(selectionColor) {
+    if (!this.atlas) return;
+    const index = this.mesh.geometry.index.array;
+    const color = this.atlas.geometry.attributes.color;
+    for (let c = 0; c < index.length; ++c) {
+      const own = selectionColor ? selectionColor(index[c]) : null;
+      for (let k = 0; k < 3; ++k) color.array[3 * c + k] = own ? own[k] : this.chartColors[3 * c + k];
+    }
+    color.needsUpdate = true;
+  }
+
   // An atlas on this copy ({checker, colors} per corner, uv_layout.js's atlasCornerArrays), or none (null).
   // A UV per corner needs each face on its own three vertices: a second mesh of the same surface is drawn
   // instead of the shared one, which stays for picking (its material hidden) and keeps the wireframe.
@@ -92,7 +105,8 @@ class MethodView {
     geometry.setAttribute('position', new THREE.BufferAttribute(new Float32Array(3 * corners), 3));
     geometry.setAttribute('normal', new THREE.BufferAttribute(new Float32Array(3 * corners), 3));
     geometry.setAttribute('uv', new THREE.BufferAttribute(atlas.checker, 2));
-    geometry.setAttribute('color', new THREE.BufferAttribute(atlas.colors, 3));
+    geometry.setAttribute('color', new THREE.BufferAttribute(new Float32Array(atlas.colors), 3)); // painted per copy
+    this.chartColors = atlas.colors;
     this.#spreadToCorners(geometry);
     const { polygonOffset, polygonOffsetFactor, polygonOffsetUnits } = this.mesh.material;
     this.atlas = new THREE.Mesh(geometry, new THREE.MeshStandardMaterial({
@@ -195,6 +209,7 @@ export class Viewer {
     this.overlay = null;
     this.checker = null;
     this.atlas = null;
+    this.selectionColor = null; // the next paint() sets it for this mesh's labels
     this.handleIndices = [];
     this.handleMatrix.identity();
     const box = new THREE.Box3().setFromArray(rest);
@@ -240,7 +255,10 @@ export class Viewer {
   setAtlas(atlas) {
     this.atlas = atlas;
     this.checkerTexture ??= checkerTexture();
-    for (const view of this.views) view.setAtlas(atlas, this.checkerTexture);
+    for (const view of this.views) {
+      view.setAtlas(atlas, this.checkerTexture);
+      view.paintAtlas(this.selectionColor);
+    }
     this.requestRender();
   }
 
@@ -341,15 +359,20 @@ export class Viewer {
   // groups' colours (groups: per vertex, NO_GROUP for none), or energy colours for the rest.
   paint(labels, energyColorsByMethod, groups = null) {
     const handle = this.softHandle ? softHandleColor : handleColor;
+    // A vertex's selection or group colour, null for none; kept for an atlas drawn later (setAtlas).
+    this.selectionColor = (i) => {
+      const group = groups ? groups[i] : NO_GROUP;
+      return labels[i] === 1 ? fixedColor : labels[i] === 2 ? handle : group !== NO_GROUP ? groupColor(group) : null;
+    };
     for (const view of this.views) {
       const colors = view.mesh.geometry.attributes.color.array;
       const energy = energyColorsByMethod?.[view.method];
       for (let i = 0; i < labels.length; ++i) {
-        const group = groups ? groups[i] : NO_GROUP;
-        const c = labels[i] === 1 ? fixedColor : labels[i] === 2 ? handle : group !== NO_GROUP ? groupColor(group) : null;
+        const c = this.selectionColor(i);
         for (let k = 0; k < 3; ++k) colors[3 * i + k] = c ? c[k] : energy ? energy[3 * i + k] : baseColor[k];
       }
       view.mesh.geometry.attributes.color.needsUpdate = true;
+      view.paintAtlas(this.selectionColor);
     }
     this.requestRender();
   }
