@@ -37,8 +37,8 @@ void read_atlas_fields(const nlohmann::json& body, AtlasOptions& atlas) {
   atlas.padding = number_field(body, "padding", atlas.padding);
   if (!(atlas.padding >= 0 && atlas.padding < atlas.texture_size / 2.0))
     throw HttpError(400, "padding must lie in [0, texture_size / 2) = [0, " +
-                             std::to_string(atlas.texture_size / 2) + ") texels; got " +
-                             short_description(body.at("padding")));
+                             std::to_string(atlas.texture_size / 2) + (atlas.texture_size % 2 ? ".5" : "") +
+                             ") texels; got " + short_description(body.at("padding")));
   atlas.max_normal_angle = checked_number(
       body, "max_angle", atlas.max_normal_angle, [](double a) { return a > 0 && a <= 180; },
       "in (0, 180] degrees");

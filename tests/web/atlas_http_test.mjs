@@ -108,6 +108,7 @@ describe('UV atlas', () => {
     await expectError(postJson('/api/param', { texture_size: 64.5 }), 400, /^texture_size/);
     await expectError(postJson('/api/param', { padding: 512 }), 400, /^padding must lie in \[0, texture_size \/ 2\) = \[0, 512\)/);
     await expectError(postJson('/api/param', { padding: -1 }), 400, /^padding/);
+    await expectError(postJson('/api/param', { texture_size: 33, padding: 16.5 }), 400, /^padding must lie in \[0, texture_size \/ 2\) = \[0, 16\.5\) texels; got 16\.5/);
     await expectError(postJson('/api/param', { padding: '2' }), 400, /^padding must be a finite number/);
     await expectError(postJson('/api/param', { max_angle: 0 }), 400, /^max_angle must be in \(0, 180\] degrees; got 0/);
     await expectError(postJson('/api/param', { max_angle: 181 }), 400, /^max_angle/);
