@@ -293,7 +293,10 @@ void run_param(const ParamArguments& args) {
     if (!args.pins.empty())
       throw CLI::ValidationError("--pins needs one chart: " + args.mesh +
                                  " is not a topological disk (use --charts one for a disk)");
-    set_thread_count(args.threads == 0 ? 1 : args.threads);
+    // Automatic: the charts are flattened in parallel, each on one thread (the atlas is the same on any
+    // count), so from serial_vertex_threshold vertices every hardware thread.
+    set_thread_count(args.threads == 0 ? automatic_thread_count(static_cast<int>(mesh.V.rows()))
+                                       : args.threads);
     run_atlas(args, input, options, total_start);
     return;
   }
@@ -401,7 +404,10 @@ const bool registered = register_command(
                      "may fold, as in libigl and CGAL");
        // The engine's options, as deform's (solve_option_flags.h); each accelerator stays flip-free.
        add_solve_option_flags(*sub, args->solve);
-       sub->add_option("--threads", args->threads, "Threads for the parallel loops; 0 = automatic (one)")
+       sub->add_option(
+              "--threads", args->threads,
+              "Threads for the parallel loops; 0 = automatic (one chart: one thread; an atlas, whose "
+              "charts are flattened in parallel: all from 10K vertices)")
            ->check(CLI::Range(0, 4096))
            ->capture_default_str();
        sub->add_option("--picture", args->picture,

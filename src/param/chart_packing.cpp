@@ -212,6 +212,15 @@ public:
     }
     return size_;
   }
+  // The first p >= from with cells [p, p + length) of row y all free (size() if none).
+  int first_fit(int y, int from, int length) const {
+    for (int p = first_clear(y, from); p + length <= size_; p = first_clear(y, p)) {
+      const int occupied = first_set(y, p, p + length);
+      if (occupied < 0) return p;
+      p = occupied;
+    }
+    return size_;
+  }
   void set(int y, int begin, int end) {
     for (int x = begin; x < end; ++x) row(y)[x / 64] |= std::uint64_t{1} << (x % 64);
     int longest = 0;
@@ -234,20 +243,33 @@ private:
 };
 
 // The lowest (then leftmost) place where the mask meets no occupied cell with its top row at most max_top
-// (y + height <= max_top): (x, y), or x = -1. A conflict in a row moves x past the occupied run it met; a
-// row whose longest free run is shorter than the mask's longest run there is skipped at once.
+// (y + height <= max_top): (x, y), or x = -1. A conflict in a row moves x to the next gap of that row wide
+// enough for the mask's run there; a y that puts a mask row on a bitmap row whose longest free run is
+// shorter than that mask row's widest run is skipped without looking at x.
 Eigen::Vector2i lowest_place(const CellBitmap& bitmap, const CellMask& mask, int max_top) {
   const int n = bitmap.size();
   std::vector<int> widest(static_cast<std::size_t>(mask.height), 0);
   for (int r = 0; r < mask.height; ++r)
     for (const auto& [begin, end] : mask.runs[static_cast<std::size_t>(r)])
       widest[static_cast<std::size_t>(r)] = std::max(widest[static_cast<std::size_t>(r)], end - begin);
+  // Rows are tested widest first (the likeliest to fail). When bitmap row y + r is too narrow for mask row
+  // r, every later y' that puts a mask row at least as wide on it fails too: the search jumps to the first
+  // y' that puts a narrower one there, or past it.
+  const auto widest_row = static_cast<int>(std::max_element(widest.begin(), widest.end()) - widest.begin());
   int last_conflict = 0;
-  for (int y = 0; y + mask.height <= std::min(n, max_top); ++y) {
-    bool rows_fit = true;
-    for (int r = 0; r < mask.height && rows_fit; ++r)
-      rows_fit = bitmap.longest_free(y + r) >= widest[static_cast<std::size_t>(r)];
-    if (!rows_fit) continue;
+  for (int y = 0; y + mask.height <= std::min(n, max_top);) {
+    int blocked = -1; // a mask row that does not fit its bitmap row
+    for (int i = 0; i < mask.height && blocked < 0; ++i) {
+      const int r = (widest_row + i) % mask.height;
+      if (bitmap.longest_free(y + r) < widest[static_cast<std::size_t>(r)]) blocked = r;
+    }
+    if (blocked >= 0) {
+      const int free_run = bitmap.longest_free(y + blocked);
+      int shift = 1;
+      while (shift <= blocked && widest[static_cast<std::size_t>(blocked - shift)] > free_run) ++shift;
+      y += shift;
+      continue;
+    }
     for (int x = 0; x + mask.width <= n;) {
       int next = -1;
       for (int i = 0; i < mask.height && next < 0; ++i) {
@@ -255,7 +277,8 @@ Eigen::Vector2i lowest_place(const CellBitmap& bitmap, const CellMask& mask, int
         for (const auto& [begin, end] : mask.runs[static_cast<std::size_t>(r)]) {
           const int hit = bitmap.first_set(y + r, x + begin, x + end);
           if (hit >= 0) {
-            next = std::max(x + 1, bitmap.first_clear(y + r, hit) - begin);
+            // The run needs end - begin free cells in this row: past every shorter gap at once.
+            next = std::max(x + 1, bitmap.first_fit(y + r, hit, end - begin) - begin);
             last_conflict = r;
             break;
           }
@@ -264,6 +287,7 @@ Eigen::Vector2i lowest_place(const CellBitmap& bitmap, const CellMask& mask, int
       if (next < 0) return Eigen::Vector2i(x, y);
       x = next;
     }
+    ++y;
   }
   return Eigen::Vector2i(-1, -1);
 }

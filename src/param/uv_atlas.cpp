@@ -2,6 +2,7 @@
 
 #include "iarap/core/errors.h"
 #include "iarap/core/stopwatch.h"
+#include "iarap/core/threads.h"
 #include "iarap/mesh/normalize_scale.h"
 #include "iarap/mesh/validate.h"
 #include "iarap/param/arap_parameterize.h"
@@ -216,6 +217,9 @@ void flatten_dirty(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const Cha
 #pragma omp parallel for schedule(dynamic, 1)
   for (std::ptrdiff_t i = 0; i < n; ++i) {
     const auto c = static_cast<std::size_t>(todo[static_cast<std::size_t>(i)]);
+    // Everything inside on this one thread (this task's setting only): the factorizations' BLAS too, whose
+    // thread count would otherwise follow the caller's and change the sums' order with it.
+    set_thread_count(1);
     try {
       maps[c] = flatten_chart(V, F, faces[c], param, mesh, starts[c]);
     } catch (...) {
