@@ -125,10 +125,11 @@ bool on_boundary(const DiskMesh& disk, int v) {
   return std::find(disk.boundary.begin(), disk.boundary.end(), v) != disk.boundary.end();
 }
 
-// The requested initial map, or Tutte's when the iteration is to stay flip-free and the requested one is
-// not injective and Tutte's can hold the pins (not with three or more pins one of which is on the boundary,
-// which Tutte's map puts on the circle). Records which one in the report. Throws InputError when the
-// flip-free iteration is left with a start the pins fold.
+// The caller's initial_uv (in V's units; s the disk's scale) when given and it folds nothing (or folds are
+// allowed); else the requested initial map, or Tutte's when the iteration is to stay flip-free and the
+// requested one is not injective and Tutte's can hold the pins (not with three or more pins one of which is
+// on the boundary, which Tutte's map puts on the circle). Records which one in the report. Throws
+// InputError when the flip-free iteration is left with a start the pins fold.
 Eigen::MatrixXd starting_map(const DiskMesh& disk, const ParamOptions& options, const UvPins& pins, double s,
                              ParamReport& report) {
   if (options.initial_uv.size() > 0) {

@@ -2,7 +2,10 @@
 // their layout (`--charts keep`), texture_seam_charts; and an atlas that does not depend on the threads.
 #include "iarap/core/errors.h"
 #include "iarap/core/threads.h"
+#include "iarap/mesh/normalize_scale.h"
+#include "iarap/param/arap_parameterize.h"
 #include "iarap/param/disk_mesh.h"
+#include "iarap/param/lscm.h"
 #include "iarap/param/texture_seam_charts.h"
 #include "iarap/param/uv_atlas.h"
 #include "param/disk_meshes.h"
@@ -118,6 +121,32 @@ TEST(UvAtlasInput, TheAtlasDoesNotDependOnTheThreadCount) {
   set_thread_count(threads);
   EXPECT_EQ(one.chart, two.chart);
   EXPECT_EQ(one.corner_uv, two.corner_uv); // bit for bit: each chart is flattened on one thread
+}
+
+TEST(InitialUv, AGivenStartIsUsedWhenItFoldsNothing) {
+  const test::TestMesh disk = test::flat_disk(4, 16);
+  const ParamResult plain = arap_parameterize(disk.V, disk.F);
+  // LSCM's own map given as the start, computed as arap_parameterize does (on V / s, s a power of two): the
+  // same iteration, so the same map to the bit.
+  ParamOptions given;
+  const double s = normalizing_scale(disk.V);
+  given.initial_uv = lscm(prepare_disk(disk.V / s, disk.F)) * s;
+  const ParamResult from_given = arap_parameterize(disk.V, disk.F, given);
+  EXPECT_TRUE(from_given.report.initial_uv_used);
+  EXPECT_FALSE(plain.report.initial_uv_used);
+  EXPECT_EQ(from_given.UV, plain.UV);
+  // Mirrored (every triangle folded): not used, the default start instead, so the default map.
+  given.initial_uv.col(0) *= -1;
+  const ParamResult mirrored = arap_parameterize(disk.V, disk.F, given);
+  EXPECT_FALSE(mirrored.report.initial_uv_used);
+  EXPECT_EQ(mirrored.UV, plain.UV);
+  // Wrong size, or with pins: refused.
+  given.initial_uv = Eigen::MatrixXd::Zero(3, 2);
+  EXPECT_THROW(arap_parameterize(disk.V, disk.F, given), InputError);
+  given.initial_uv = plain.UV;
+  given.pins.vertices = Eigen::VectorXi::Constant(1, 0);
+  given.pins.uv = Eigen::MatrixXd::Zero(1, 2);
+  EXPECT_THROW(arap_parameterize(disk.V, disk.F, given), InputError);
 }
 
 TEST(TextureSeamCharts, EdgesGlueWhereBothEndsShareTheirTextureIndices) {
