@@ -107,6 +107,7 @@ private:
     // In cyclic order: each next edge starts where the last ended. A boundary that is not one simple cycle
     // (a polygon pinched at a vertex) is refused.
     const std::size_t m = boundary_.size();
+    if (m < 3) return false; // no boundary to share (a closed group) or none a polygon can have
     for (std::size_t i = 0; i + 1 < m; ++i) {
       std::size_t j = i + 1;
       while (j < m && boundary_[j].from != boundary_[i].to) ++j;

@@ -261,7 +261,7 @@ std::vector<ChartMap> flatten_charts(const Eigen::MatrixXd& V, const Eigen::Matr
         ++report.splits_for_overlap;
         report.splits_before_solve += map.start_crosses;
       } else if (!given && round < options.max_rounds && map.summary.distortion > options.target_distortion &&
-                 map.summary.faces >= 2 * options.min_chart_faces) {
+                 map.summary.faces >= 2 * options.min_chart_faces && map.polygons >= 2) {
         split.push_back(static_cast<int>(c));
         ++report.splits_for_distortion;
       }
