@@ -382,10 +382,10 @@ ChartPacking pack_charts(const std::vector<Eigen::MatrixXd>& chart_uv,
     placement.translation = best_corner[i] + Eigen::Vector2d::Constant(gap / 2) - lo * rects[i].min;
     packing.placements.push_back(placement);
   }
-  // The raster, from the shelves' scale up while every chart finds a place: kept only above the shelves'
-  // scale (else the shelves' placements stay). After a fit that used h of the n rows the next scale is
-  // the last times sqrt(n / h) (the rows the charts would fill at a uniform density), at least 3% more;
-  // then bisection between the last scale that fit and the first that did not, to within 1%.
+  // The raster, from 3% above the shelves' scale up while every chart finds a place: kept only above the
+  // shelves' scale (else the shelves' placements stay). After a fit that used h of the n rows the next
+  // scale is the last times 0.995 sqrt(n / h) (the rows the charts would fill at their density), none when
+  // that is below 1% more; after a scale that did not fit, bisection to within 1%.
   const int cells = std::min(texture_size, 512);
   const int dilation = static_cast<int>(std::ceil(gap * cells - 1e-9));
   std::vector<std::size_t> by_area(order);
@@ -403,7 +403,9 @@ ChartPacking pack_charts(const std::vector<Eigen::MatrixXd>& chart_uv,
     }
     packing.scale = scale;
     packing.placements = trial;
-    scale *= std::max(1.03, 0.995 * std::sqrt(static_cast<double>(cells) / std::max(used, 1)));
+    const double grow = 0.995 * std::sqrt(static_cast<double>(cells) / std::max(used, 1));
+    if (grow < 1.01) break; // the rows left hold less than the bisection's 1%
+    scale *= grow;
   }
   while (failed > 0 && failed > 1.01 * packing.scale) {
     const double scale = (packing.scale + failed) / 2;
