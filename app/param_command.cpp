@@ -12,10 +12,12 @@
 #include "iarap/core/threads.h"
 #include "iarap/io/check_output_path.h"
 #include "iarap/io/read_mesh.h"
+#include "iarap/io/read_obj_textured.h"
 #include "iarap/mesh/validate.h"
 #include "iarap/param/arap_parameterize.h"
 #include "iarap/param/atlas_report_fields.h"
 #include "iarap/param/render_uv_picture.h"
+#include "iarap/param/texture_seam_charts.h"
 #include "iarap/param/uv_atlas.h"
 #include "iarap/param/write_uv_map.h"
 #include "iarap/scene/read_constraints.h"
@@ -27,6 +29,7 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <optional>
 
 namespace iarap::cli {
 namespace {
@@ -151,6 +154,7 @@ template <class Render> void add_picture(const ParamArguments& args, nlohmann::j
 // else into charts; a mesh check_mesh cannot use goes to the atlas, which refuses it with check_mesh's words.
 bool one_chart(const ParamArguments& args, const MeshData& mesh) {
   if (args.charts == "one") return true;
+  if (args.charts == "keep") return false;
   const MeshReport check = check_mesh(mesh.V, mesh.F);
   return check.usable() && check.components == 1 && check.boundary_loops == 1 && check.genus == 0;
 }
@@ -198,14 +202,74 @@ RgbImage atlas_picture(const MeshData& mesh, const UvAtlas& atlas) {
   return render_uv_picture(V, F, UV, options);
 }
 
-void run_atlas(const ParamArguments& args, const MeshData& mesh, const ParamOptions& param,
+// What an OBJ adds to its mesh: the face lines as written and the texture coordinates (empty otherwise).
+struct MeshInput {
+  MeshData mesh;
+  std::optional<TexturedObj> obj; // for a .obj input
+};
+
+MeshInput read_input(const std::string& path) {
+  MeshInput input;
+  if (lower_extension(path) != ".obj") {
+    input.mesh = read_mesh(path);
+    return input;
+  }
+  input.obj = read_obj_textured(path);
+  input.mesh = input.obj->mesh;
+  return input;
+}
+
+bool has_polygons(const MeshInput& input) {
+  return input.obj && input.obj->polygons.size() != input.mesh.F.rows();
+}
+
+// An OBJ output of an input with polygons gets the input's face lines back (a .txt has per-vertex or
+// per-triangle-corner lines as without polygons).
+bool writes_polygons(const ParamArguments& args, const MeshInput& input) {
+  return has_polygons(input) && lower_extension(args.out) == ".obj";
+}
+
+// `--charts keep`: the charts and layout of the file's vt, every face needing texture indices.
+void keep_file_charts(const ParamArguments& args, const MeshInput& input, AtlasInput& atlas_input) {
+  if (!input.obj)
+    throw InputError(args.mesh +
+                     ": --charts keep reads an OBJ's texture coordinates (vt); this is not an OBJ");
+  const TexturedObj& obj = *input.obj;
+  if (obj.TC.rows() == 0)
+    throw InputError(args.mesh +
+                     ": --charts keep needs the file's texture coordinates, and it has no vt lines");
+  for (int p = 0; p < obj.polygons.size(); ++p)
+    if (obj.polygons.texture[static_cast<std::size_t>(obj.polygons.first[static_cast<std::size_t>(p)])] < 0)
+      throw InputError(args.mesh + ": --charts keep needs texture indices (i/t) on every face; face " +
+                       std::to_string(p) + " (the file's f line number " + std::to_string(p + 1) +
+                       ") has none");
+  atlas_input.charts = texture_seam_charts(obj.mesh.F, obj.FT);
+  atlas_input.corner_uv.resize(3 * obj.FT.rows(), 2);
+  for (Eigen::Index f = 0; f < obj.FT.rows(); ++f)
+    for (int k = 0; k < 3; ++k) atlas_input.corner_uv.row(3 * f + k) = obj.TC.row(obj.FT(f, k));
+}
+
+void write_atlas(const ParamArguments& args, const MeshInput& input, const UvAtlas& atlas) {
+  if (writes_polygons(args, input))
+    write_uv_atlas_polygons(args.out, input.mesh.V, input.mesh.F, atlas.corner_uv, atlas.chart,
+                            input.obj->polygons);
+  else
+    write_uv_atlas(args.out, input.mesh.V, input.mesh.F, atlas.corner_uv);
+}
+
+void run_atlas(const ParamArguments& args, const MeshInput& input, const ParamOptions& param,
                Clock::time_point total_start) {
+  const MeshData& mesh = input.mesh;
   AtlasOptions options = args.atlas;
   options.param = param;
   if (!args.tolerance_given) options.param.solve.tolerance = default_atlas_param_options().solve.tolerance;
-  const UvAtlas atlas = naming_the_mesh(args.mesh, [&] { return uv_atlas(mesh.V, mesh.F, options); });
+  AtlasInput atlas_input;
+  if (has_polygons(input)) atlas_input.polygon_of_face = input.obj->polygon_of_triangle;
+  if (args.charts == "keep") keep_file_charts(args, input, atlas_input);
+  const UvAtlas atlas =
+      naming_the_mesh(args.mesh, [&] { return uv_atlas(mesh.V, mesh.F, options, atlas_input); });
   const AtlasReport& report = atlas.report;
-  write_uv_atlas(args.out, mesh.V, mesh.F, atlas.corner_uv);
+  write_atlas(args, input, atlas);
   nlohmann::json j = atlas_json(args, mesh, options, report);
   add_picture(args, j, [&] { return atlas_picture(mesh, atlas); });
   j["total_ms"] = ms_since(total_start);
@@ -223,13 +287,17 @@ void run_param(const ParamArguments& args) {
   check_paths(args);
   ParamOptions options = options_of(args);
   const auto total_start = Clock::now();
-  const MeshData mesh = read_mesh(args.mesh);
+  const MeshInput input = read_input(args.mesh);
+  const MeshData& mesh = input.mesh;
   if (!one_chart(args, mesh)) {
     if (!args.pins.empty())
       throw CLI::ValidationError("--pins needs one chart: " + args.mesh +
                                  " is not a topological disk (use --charts one for a disk)");
-    set_thread_count(args.threads == 0 ? 1 : args.threads);
-    run_atlas(args, mesh, options, total_start);
+    // Automatic: the charts are flattened in parallel, each on one thread (the atlas is the same on any
+    // count), so from serial_vertex_threshold vertices every hardware thread.
+    set_thread_count(args.threads == 0 ? automatic_thread_count(static_cast<int>(mesh.V.rows()))
+                                       : args.threads);
+    run_atlas(args, input, options, total_start);
     return;
   }
   if (!args.pins.empty()) options.pins = read_pins(args.pins, mesh);
@@ -239,7 +307,15 @@ void run_param(const ParamArguments& args) {
   const ParamResult result =
       naming_the_mesh(args.mesh, [&] { return arap_parameterize(mesh.V, mesh.F, options); });
   const ParamReport& report = result.report;
-  write_uv_map(args.out, mesh.V, mesh.F, result.UV);
+  if (writes_polygons(args, input)) { // the polygons as written, one vt per vertex
+    Eigen::MatrixXd corner_uv(3 * mesh.F.rows(), 2);
+    for (Eigen::Index f = 0; f < mesh.F.rows(); ++f)
+      for (int k = 0; k < 3; ++k) corner_uv.row(3 * f + k) = result.UV.row(mesh.F(f, k));
+    write_uv_atlas_polygons(args.out, mesh.V, mesh.F, corner_uv, Eigen::VectorXi::Zero(mesh.F.rows()),
+                            input.obj->polygons);
+  } else {
+    write_uv_map(args.out, mesh.V, mesh.F, result.UV);
+  }
   nlohmann::json j = report_json(args, mesh, options, report);
   add_picture(args, j, [&] { return render_uv_picture(mesh.V, mesh.F, result.UV); });
   j["total_ms"] = ms_since(total_start);
@@ -272,8 +348,9 @@ const bool registered = register_command(
            ->check(CLI::ExistingFile);
        sub->add_option(
               "--out", args->out,
-              "Output: .obj (the mesh with one vt per vertex, faces a/a) or .txt (one 'u v' per vertex), "
-              "written atomically")
+              "Output: .obj (the mesh with one vt per vertex, faces a/a; an atlas: per vertex and chart; "
+              "an OBJ's polygons as written) or .txt (one 'u v' per vertex; an atlas: per triangle "
+              "corner), written atomically")
            ->required();
        sub->add_option(
               "--energy", args->energy,
@@ -298,8 +375,10 @@ const bool registered = register_command(
            ->check(CLI::ExistingFile);
        sub->add_option("--charts", args->charts,
                        "auto: a topological disk is one chart, any other mesh is cut into disk charts and "
-                       "packed into [0,1]^2; one: a single chart (the mesh must be a disk)")
-           ->check(CLI::IsMember({"auto", "one"}))
+                       "packed into [0,1]^2; one: a single chart (the mesh must be a disk); keep: the "
+                       "charts of the OBJ's own vt seams, each flattened from its vt layout when that "
+                       "folds nothing, then packed")
+           ->check(CLI::IsMember({"auto", "one", "keep"}))
            ->capture_default_str();
        sub->add_option("--texture-size", args->atlas.texture_size,
                        "Atlas: texels along a side of the texture")
@@ -325,7 +404,10 @@ const bool registered = register_command(
                      "may fold, as in libigl and CGAL");
        // The engine's options, as deform's (solve_option_flags.h); each accelerator stays flip-free.
        add_solve_option_flags(*sub, args->solve);
-       sub->add_option("--threads", args->threads, "Threads for the parallel loops; 0 = automatic (one)")
+       sub->add_option(
+              "--threads", args->threads,
+              "Threads for the parallel loops; 0 = automatic (one chart: one thread; an atlas, whose "
+              "charts are flattened in parallel: all from 10K vertices)")
            ->check(CLI::Range(0, 4096))
            ->capture_default_str();
        sub->add_option("--picture", args->picture,

@@ -10,6 +10,7 @@
 #include "iarap/solver/solve_option_fields.h"
 
 #include "../solver/local_global_loops.h"
+#include "arap_parameterize_disk.h"
 #include "injectivity_barrier.h"
 #include "uv_elastic_energy.h"
 #include "uv_problem.h"
@@ -41,6 +42,14 @@ void check_options(const ParamOptions& options) {
   if (!(options.barrier_threshold > 0) || !std::isfinite(options.barrier_threshold))
     throw InputError("barrier_threshold must be a finite number > 0; got " +
                      std::to_string(options.barrier_threshold));
+  if (options.initial_uv.size() > 0) {
+    if (options.boundary != ParamBoundary::Free || options.pins.size() > 0)
+      throw InputError("a given initial map (initial_uv) needs the free boundary and no pins");
+    if (options.initial_uv.cols() != 2 || !options.initial_uv.allFinite())
+      throw InputError("initial_uv must be #V x 2 finite UV positions; got " +
+                       std::to_string(options.initial_uv.rows()) + " x " +
+                       std::to_string(options.initial_uv.cols()));
+  }
   if (options.boundary == ParamBoundary::Circle && options.init == ParamInit::Lscm)
     throw InputError(
         "a circular boundary needs an initial map with that boundary: tutte or harmonic, not lscm");
@@ -116,12 +125,24 @@ bool on_boundary(const DiskMesh& disk, int v) {
   return std::find(disk.boundary.begin(), disk.boundary.end(), v) != disk.boundary.end();
 }
 
-// The requested initial map, or Tutte's when the iteration is to stay flip-free and the requested one is
-// not injective and Tutte's can hold the pins (not with three or more pins one of which is on the boundary,
-// which Tutte's map puts on the circle). Records which one in the report. Throws InputError when the
-// flip-free iteration is left with a start the pins fold.
-Eigen::MatrixXd starting_map(const DiskMesh& disk, const ParamOptions& options, const UvPins& pins,
+// The caller's initial_uv (in V's units; s the disk's scale) when given and it folds nothing (or folds are
+// allowed); else the requested initial map, or Tutte's when the iteration is to stay flip-free and the
+// requested one is not injective and Tutte's can hold the pins (not with three or more pins one of which is
+// on the boundary, which Tutte's map puts on the circle). Records which one in the report. Throws
+// InputError when the flip-free iteration is left with a start the pins fold.
+Eigen::MatrixXd starting_map(const DiskMesh& disk, const ParamOptions& options, const UvPins& pins, double s,
                              ParamReport& report) {
+  if (options.initial_uv.size() > 0) {
+    if (options.initial_uv.rows() != disk.V.rows())
+      throw InputError("initial_uv must be #V x 2 = " + std::to_string(disk.V.rows()) + " x 2; got " +
+                       std::to_string(options.initial_uv.rows()) + " x 2");
+    const Eigen::MatrixXd given = options.initial_uv / s;
+    if (options.allow_flips || flipped_triangles(disk, given) == 0) {
+      report.requested_init = report.init = options.init;
+      report.initial_uv_used = true;
+      return given;
+    }
+  }
   Eigen::MatrixXd UV = initial_map(disk, options.init, options.boundary, pins);
   report.requested_init = report.init = options.init;
   report.init_flipped = flipped_triangles(disk, UV);
@@ -194,18 +215,25 @@ ParamResult arap_parameterize(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F
                               const ParamOptions& options) {
   const auto total_start = Clock::now();
   check_options(options);
-  ParamResult result;
-  ParamReport& report = result.report;
   // Exact power-of-two scaling: the solve sees coordinates near 1 whatever the units (areas of a mesh at
   // 1e200 would overflow); UV scales back by s, energies by s^2.
   const double s = V.cols() == 3 ? normalizing_scale(V) : 1.0;
-  const DiskMesh disk = prepare_disk(V / s, F);
+  return param_detail::arap_parameterize_disk(prepare_disk(V / s, F), s, options, total_start);
+}
+
+namespace param_detail {
+
+ParamResult arap_parameterize_disk(const DiskMesh& disk, double s, const ParamOptions& options,
+                                   Clock::time_point total_start) {
+  check_options(options);
+  ParamResult result;
+  ParamReport& report = result.report;
   check_uv_pins(options.pins, disk.V.rows());
   const UvPins pins = scaled_pins(options.pins, s);
   report.check_ms = ms_since(total_start);
 
   auto phase_start = Clock::now();
-  Eigen::MatrixXd UV = starting_map(disk, options, pins, report);
+  Eigen::MatrixXd UV = starting_map(disk, options, pins, s, report);
   report.init_ms = ms_since(phase_start);
 
   report.energy = options.energy;
@@ -223,5 +251,7 @@ ParamResult arap_parameterize(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F
   report.total_ms = ms_since(total_start);
   return result;
 }
+
+} // namespace param_detail
 
 } // namespace iarap

@@ -178,11 +178,13 @@ RasterChart raster_chart(const Eigen::MatrixXd& uv, const Eigen::MatrixXi& faces
   return chart;
 }
 
-// The packing bitmap: one bit per cell, rows of 64-bit words.
+// The packing bitmap: one bit per cell, rows of 64-bit words, and per row its longest run of free cells
+// (so that a search skips the rows a chart's row cannot fit in).
 class CellBitmap {
 public:
   explicit CellBitmap(int size)
-      : size_(size), words_((size + 63) / 64), bits_(static_cast<std::size_t>(size * words_), 0) {}
+      : size_(size), words_((size + 63) / 64), bits_(static_cast<std::size_t>(size * words_), 0),
+        longest_free_(static_cast<std::size_t>(size), size) {}
   int size() const { return size_; }
 
   // The first occupied cell of row y in [begin, end), or -1.
@@ -210,23 +212,64 @@ public:
     }
     return size_;
   }
+  // The first p >= from with cells [p, p + length) of row y all free (size() if none).
+  int first_fit(int y, int from, int length) const {
+    for (int p = first_clear(y, from); p + length <= size_; p = first_clear(y, p)) {
+      const int occupied = first_set(y, p, p + length);
+      if (occupied < 0) return p;
+      p = occupied;
+    }
+    return size_;
+  }
   void set(int y, int begin, int end) {
     for (int x = begin; x < end; ++x) row(y)[x / 64] |= std::uint64_t{1} << (x % 64);
+    int longest = 0;
+    for (int x = first_clear(y, 0); x < size_;) {
+      const int set_at = first_set(y, x, size_);
+      const int end_of_run = set_at < 0 ? size_ : set_at;
+      longest = std::max(longest, end_of_run - x);
+      x = first_clear(y, end_of_run);
+    }
+    longest_free_[static_cast<std::size_t>(y)] = longest;
   }
+  int longest_free(int y) const { return longest_free_[static_cast<std::size_t>(y)]; }
 
 private:
   std::uint64_t* row(int y) { return &bits_[static_cast<std::size_t>(y * words_)]; }
   const std::uint64_t* row(int y) const { return &bits_[static_cast<std::size_t>(y * words_)]; }
   int size_, words_;
   std::vector<std::uint64_t> bits_;
+  std::vector<int> longest_free_;
 };
 
-// The lowest (then leftmost) place where the mask meets no occupied cell: (x, y), or x = -1. A conflict
-// in a row moves x past the occupied run it met.
-Eigen::Vector2i lowest_place(const CellBitmap& bitmap, const CellMask& mask) {
+// The lowest (then leftmost) place where the mask meets no occupied cell with its top row at most max_top
+// (y + height <= max_top): (x, y), or x = -1. A conflict in a row moves x to the next gap of that row wide
+// enough for the mask's run there; a y that puts a mask row on a bitmap row whose longest free run is
+// shorter than that mask row's widest run is skipped without looking at x.
+Eigen::Vector2i lowest_place(const CellBitmap& bitmap, const CellMask& mask, int max_top) {
   const int n = bitmap.size();
+  std::vector<int> widest(static_cast<std::size_t>(mask.height), 0);
+  for (int r = 0; r < mask.height; ++r)
+    for (const auto& [begin, end] : mask.runs[static_cast<std::size_t>(r)])
+      widest[static_cast<std::size_t>(r)] = std::max(widest[static_cast<std::size_t>(r)], end - begin);
+  // Rows are tested widest first (the likeliest to fail). When bitmap row y + r is too narrow for mask row
+  // r, every later y' that puts a mask row at least as wide on it fails too: the search jumps to the first
+  // y' that puts a narrower one there, or past it.
+  const auto widest_row = static_cast<int>(std::max_element(widest.begin(), widest.end()) - widest.begin());
   int last_conflict = 0;
-  for (int y = 0; y + mask.height <= n; ++y)
+  for (int y = 0; y + mask.height <= std::min(n, max_top);) {
+    int blocked = -1; // a mask row that does not fit its bitmap row
+    for (int i = 0; i < mask.height && blocked < 0; ++i) {
+      const int r = (widest_row + i) % mask.height;
+      if (bitmap.longest_free(y + r) < widest[static_cast<std::size_t>(r)]) blocked = r;
+    }
+    if (blocked >= 0) {
+      const int free_run = bitmap.longest_free(y + blocked);
+      int shift = 1;
+      while (shift <= blocked && widest[static_cast<std::size_t>(blocked - shift)] > free_run) ++shift;
+      y += shift;
+      continue;
+    }
     for (int x = 0; x + mask.width <= n;) {
       int next = -1;
       for (int i = 0; i < mask.height && next < 0; ++i) {
@@ -234,7 +277,8 @@ Eigen::Vector2i lowest_place(const CellBitmap& bitmap, const CellMask& mask) {
         for (const auto& [begin, end] : mask.runs[static_cast<std::size_t>(r)]) {
           const int hit = bitmap.first_set(y + r, x + begin, x + end);
           if (hit >= 0) {
-            next = std::max(x + 1, bitmap.first_clear(y + r, hit) - begin);
+            // The run needs end - begin free cells in this row: past every shorter gap at once.
+            next = std::max(x + 1, bitmap.first_fit(y + r, hit, end - begin) - begin);
             last_conflict = r;
             break;
           }
@@ -243,14 +287,18 @@ Eigen::Vector2i lowest_place(const CellBitmap& bitmap, const CellMask& mask) {
       if (next < 0) return Eigen::Vector2i(x, y);
       x = next;
     }
+    ++y;
+  }
   return Eigen::Vector2i(-1, -1);
 }
 
-// Places every chart (largest first) at the given scale; false when one finds no place.
-bool raster_fit(const std::vector<Eigen::MatrixXd>& chart_uv, const std::vector<Eigen::MatrixXi>& chart_faces,
-                const std::vector<Rectangle>& rects, const std::vector<std::size_t>& order, double scale,
-                int cells, int dilation, std::vector<ChartPlacement>& placements) {
+// Places every chart (largest first) at the given scale: returns the rows the placed cells reach (their
+// highest top), or -1 when a chart finds no place.
+int raster_fit(const std::vector<Eigen::MatrixXd>& chart_uv, const std::vector<Eigen::MatrixXi>& chart_faces,
+               const std::vector<Rectangle>& rects, const std::vector<std::size_t>& order, double scale,
+               int cells, int dilation, std::vector<ChartPlacement>& placements) {
   CellBitmap bitmap(cells);
+  int used_rows = 0;
   Eigen::Matrix2d quarter;
   quarter << 0, -1, 1, 0;
   for (std::size_t i : order) {
@@ -259,25 +307,28 @@ bool raster_fit(const std::vector<Eigen::MatrixXd>& chart_uv, const std::vector<
     Eigen::Matrix2d rotation = rects[i].rotation;
     for (int turn = 0; turn < 4; ++turn, rotation = quarter * rotation) {
       RasterChart chart = raster_chart(chart_uv[i], chart_faces[i], rotation, scale * cells, dilation);
-      const Eigen::Vector2i place = lowest_place(bitmap, chart.dilated);
-      if (place.x() < 0) continue;
       const auto top = [](const Eigen::Vector2i& p, const RasterChart& c) {
         return p.y() + c.dilated.height;
       };
+      // A turn can only win with its top at most the best one's (the same choice as an unbounded search).
+      const Eigen::Vector2i place =
+          lowest_place(bitmap, chart.dilated, best_place.x() < 0 ? cells : top(best_place, best));
+      if (place.x() < 0) continue;
       if (best_place.x() < 0 || top(place, chart) < top(best_place, best) ||
           (top(place, chart) == top(best_place, best) && place.x() < best_place.x())) {
         best = std::move(chart);
         best_place = place;
       }
     }
-    if (best_place.x() < 0) return false;
+    if (best_place.x() < 0) return -1;
+    used_rows = std::max(used_rows, best_place.y() + best.cells.height);
     for (int y = 0; y < best.cells.height; ++y)
       for (const auto& [begin, end] : best.cells.runs[static_cast<std::size_t>(y)])
         bitmap.set(best_place.y() + y, best_place.x() + begin, best_place.x() + end);
     placements[i].rotation = best.rotation;
     placements[i].translation = (best.offset + best_place.cast<double>()) / cells;
   }
-  return true;
+  return used_rows;
 }
 
 } // namespace
@@ -331,8 +382,10 @@ ChartPacking pack_charts(const std::vector<Eigen::MatrixXd>& chart_uv,
     placement.translation = best_corner[i] + Eigen::Vector2d::Constant(gap / 2) - lo * rects[i].min;
     packing.placements.push_back(placement);
   }
-  // The raster, from the shelves' scale up in steps of 3% while every chart finds a place: kept only
-  // above the shelves' scale (else the shelves' placements stay).
+  // The raster, from 3% above the shelves' scale up while every chart finds a place: kept only above the
+  // shelves' scale (else the shelves' placements stay). After a fit that used h of the n rows the next
+  // scale is the last times 0.995 sqrt(n / h) (the rows the charts would fill at their density), none when
+  // that is below 1% more; after a scale that did not fit, bisection to within 1%.
   const int cells = std::min(texture_size, 512);
   const int dilation = static_cast<int>(std::ceil(gap * cells - 1e-9));
   std::vector<std::size_t> by_area(order);
@@ -340,19 +393,23 @@ ChartPacking pack_charts(const std::vector<Eigen::MatrixXd>& chart_uv,
     return rects[a].width * rects[a].height > rects[b].width * rects[b].height;
   });
   std::vector<ChartPlacement> trial(rects.size());
+  const double limit = 1.5 / std::sqrt(area);
   double failed = 0; // the smallest scale seen not to fit (0: none yet)
-  for (double scale = packing.scale * 1.03; scale < 1.5 / std::sqrt(area); scale *= 1.03) {
-    if (!raster_fit(chart_uv, chart_faces, rects, by_area, scale, cells, dilation, trial)) {
+  for (double scale = packing.scale * 1.03; scale < limit;) {
+    const int used = raster_fit(chart_uv, chart_faces, rects, by_area, scale, cells, dilation, trial);
+    if (used < 0) {
       failed = scale;
       break;
     }
     packing.scale = scale;
     packing.placements = trial;
+    const double grow = 0.995 * std::sqrt(static_cast<double>(cells) / std::max(used, 1));
+    if (grow < 1.01) break; // the rows left hold less than the bisection's 1%
+    scale *= grow;
   }
-  // Three bisection steps between the last scale that fit and the first that did not (within 0.4%).
-  for (int step = 0; step < 3 && failed > 0; ++step) {
+  while (failed > 0 && failed > 1.01 * packing.scale) {
     const double scale = (packing.scale + failed) / 2;
-    if (raster_fit(chart_uv, chart_faces, rects, by_area, scale, cells, dilation, trial)) {
+    if (raster_fit(chart_uv, chart_faces, rects, by_area, scale, cells, dilation, trial) >= 0) {
       packing.scale = scale;
       packing.placements = trial;
     } else {

@@ -23,19 +23,26 @@ public:
   ChartGrowth(const ChartMesh& mesh, std::vector<int>& label, int open, GrowthCost cost, double min_cos)
       : mesh_(mesh), label_(label), open_(open), cost_(cost), min_cos_(min_cos) {}
 
-  // Puts face f into chart c (a seed, or a face the chart already had) and queues its open neighbours.
+  // Puts face f's polygon into chart c (a seed, or faces the chart already had) and queues the open faces
+  // next to it.
   void add_face(int c, int f) {
     Chart& chart = charts_[c];
     if (chart.faces == 0) chart.seed = mesh_.centroid.row(f).transpose();
-    ++chart.faces;
-    added_.push_back(f);
-    label_[static_cast<std::size_t>(f)] = c;
-    chart.normal_sum += mesh_.area(f) * mesh_.normal.row(f).transpose();
-    for (int k = 0; k < 3; ++k) chart.vertex_angle[mesh_.F(f, k)] += mesh_.angle(f, k);
-    for (int k = 0; k < 3; ++k) {
-      const int g = mesh_.neighbour(f, k);
-      if (g >= 0 && label_[static_cast<std::size_t>(g)] == open_) queue_.push({cost(chart, g), g, c});
+    const int* polygon = mesh_.polygon_begin(f);
+    const int size = mesh_.polygon_size(f);
+    for (int i = 0; i < size; ++i) {
+      const int g = polygon[i];
+      ++chart.faces;
+      added_.push_back(g);
+      label_[static_cast<std::size_t>(g)] = c;
+      chart.normal_sum += mesh_.area(g) * mesh_.normal.row(g).transpose();
+      for (int k = 0; k < 3; ++k) chart.vertex_angle[mesh_.F(g, k)] += mesh_.angle(g, k);
     }
+    for (int i = 0; i < size; ++i)
+      for (int k = 0; k < 3; ++k) {
+        const int h = mesh_.neighbour(polygon[i], k);
+        if (h >= 0 && label_[static_cast<std::size_t>(h)] == open_) queue_.push({cost(chart, h), h, c});
+      }
   }
 
   void run() {
@@ -44,7 +51,7 @@ public:
       queue_.pop();
       if (label_[static_cast<std::size_t>(next.face)] != open_) continue;
       Chart& chart = charts_[next.chart];
-      if (mesh_.normal.row(next.face).dot(chart.normal_sum.normalized()) < min_cos_) continue;
+      if (polygon_normal(next.face).dot(chart.normal_sum.normalized()) < min_cos_) continue;
       if (keeps_disk(chart, next.chart, next.face)) add_face(next.chart, next.face);
     }
   }
@@ -68,40 +75,69 @@ private:
     return 1 - mesh_.normal.row(f).dot(chart.normal_sum.normalized());
   }
 
-  // Adding a triangle to a disk along one edge with its third vertex new to the disk, or along two edges
-  // (their common vertex becomes inner), leaves a disk; a third vertex already in the disk would pinch it,
-  // three shared edges would close it.
-  bool keeps_disk(const Chart& chart, int c, int f) const {
-    int shared = 0, free_corner = -1;
-    for (int k = 0; k < 3; ++k) {
-      const int g = mesh_.neighbour(f, k);
-      if (g >= 0 && label_[static_cast<std::size_t>(g)] == c) {
-        ++shared;
-        free_corner = k; // the corner opposite the shared edge
-      }
-    }
-    if (shared == 1 && chart.vertex_angle.count(mesh_.F(f, free_corner)) > 0) return false;
-    if (shared != 1 && shared != 2) return false;
-    // The vertices left on the chart's boundary: the chart may not wrap around one by more than
-    // max_boundary_angle, which a flattening with a free boundary would have to fold over itself near a
-    // saddle (angle sum above 2 pi). With two shared edges the corner opposite the open edge becomes inner.
-    for (int k = 0; k < 3; ++k) {
-      const bool becomes_inner = shared == 2 && k == open_corner(f, c);
-      if (becomes_inner) continue;
-      const auto it = chart.vertex_angle.find(mesh_.F(f, k));
-      const double before = it == chart.vertex_angle.end() ? 0 : it->second;
-      if (before + mesh_.angle(f, k) > max_boundary_angle) return false;
-    }
-    return true;
+  Eigen::Vector3d polygon_normal(int f) const {
+    if (mesh_.polygon_size(f) == 1) return mesh_.normal.row(f).transpose();
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    const int* polygon = mesh_.polygon_begin(f);
+    for (int i = 0; i < mesh_.polygon_size(f); ++i)
+      sum += mesh_.area(polygon[i]) * mesh_.normal.row(polygon[i]).transpose();
+    return sum.normalized();
   }
 
-  // With two edges shared with chart c, the corner between them (opposite the third, open edge).
-  int open_corner(int f, int c) const {
-    for (int k = 0; k < 3; ++k) {
-      const int g = mesh_.neighbour(f, k);
-      if (!(g >= 0 && label_[static_cast<std::size_t>(g)] == c)) return k;
+  // Adding a polygon (a disk) to a disk chart leaves a disk when the edges they share form one path along
+  // the polygon's boundary, not all of it, and the polygon's other vertices are new to the chart: the
+  // path's inner vertices become inner vertices of the chart, its ends stay on the boundary. For a
+  // triangle: one shared edge with the third vertex new (an ear), or two (a notch, their common vertex
+  // becomes inner); a third vertex already in the chart would pinch it, three shared edges would close it.
+  bool keeps_disk(const Chart& chart, int c, int f) const {
+    const int* polygon = mesh_.polygon_begin(f);
+    const int size = mesh_.polygon_size(f);
+    for (int i = 0; i < size; ++i)
+      if (label_[static_cast<std::size_t>(polygon[i])] != open_) return false;
+    boundary_.clear();
+    for (int i = 0; i < size; ++i)
+      for (int k = 0; k < 3; ++k) {
+        const int g = polygon[i], h = mesh_.neighbour(g, k);
+        if (h >= 0 &&
+            mesh_.polygon[static_cast<std::size_t>(h)] == mesh_.polygon[static_cast<std::size_t>(g)])
+          continue;
+        boundary_.push_back({mesh_.F(g, (k + 1) % 3), mesh_.F(g, (k + 2) % 3),
+                             h >= 0 && label_[static_cast<std::size_t>(h)] == c});
+      }
+    // In cyclic order: each next edge starts where the last ended. A boundary that is not one simple cycle
+    // (a polygon pinched at a vertex) is refused.
+    const std::size_t m = boundary_.size();
+    if (m < 3) return false; // no boundary to share (a closed group) or none a polygon can have
+    for (std::size_t i = 0; i + 1 < m; ++i) {
+      std::size_t j = i + 1;
+      while (j < m && boundary_[j].from != boundary_[i].to) ++j;
+      if (j == m) return false;
+      std::swap(boundary_[i + 1], boundary_[j]);
     }
-    return -1;
+    if (boundary_.back().to != boundary_.front().from) return false;
+    int shared = 0, runs = 0;
+    for (std::size_t i = 0; i < m; ++i) {
+      shared += boundary_[i].shared;
+      runs += boundary_[i].shared && !boundary_[(i + m - 1) % m].shared;
+    }
+    if (shared == 0 || shared == static_cast<int>(m) || runs != 1) return false;
+    // Each boundary vertex: inner after the addition (between two shared edges), on the shared path's ends,
+    // or off the path (must be new to the chart). The chart may not wrap around a vertex left on its
+    // boundary by more than max_boundary_angle, which a flattening with a free boundary would have to fold
+    // over itself near a saddle (angle sum above 2 pi).
+    for (std::size_t i = 0; i < m; ++i) {
+      const bool after_shared = boundary_[(i + m - 1) % m].shared, before_shared = boundary_[i].shared;
+      if (after_shared && before_shared) continue; // becomes inner
+      const int v = boundary_[i].from;
+      const auto it = chart.vertex_angle.find(v);
+      if (!after_shared && !before_shared && it != chart.vertex_angle.end()) return false;
+      double angle = it == chart.vertex_angle.end() ? 0 : it->second;
+      for (int p = 0; p < size; ++p)
+        for (int k = 0; k < 3; ++k)
+          if (mesh_.F(polygon[p], k) == v) angle += mesh_.angle(polygon[p], k);
+      if (angle > max_boundary_angle) return false;
+    }
+    return true;
   }
 
   const ChartMesh& mesh_;
@@ -112,6 +148,13 @@ private:
   std::unordered_map<int, Chart> charts_;
   std::priority_queue<Candidate> queue_;
   std::vector<int> added_;
+  // keeps_disk's scratch: the polygon's boundary edges (from, to) in the faces' orientation, and whether the
+  // chart lies across.
+  struct BoundaryEdge {
+    int from, to;
+    bool shared;
+  };
+  mutable std::vector<BoundaryEdge> boundary_;
 };
 
 // Grows new charts one at a time from open faces until none is left: each from an open face next to the
@@ -152,19 +195,49 @@ int compact_labels(std::vector<int>& label) {
   return static_cast<int>(id.size());
 }
 
-int farthest_face(const ChartMesh& mesh, const std::vector<int>& faces, int from) {
-  int best = faces.front();
+// The face of `faces` farthest from face `from` whose polygon is not skip_polygon (-1: any).
+int farthest_face(const ChartMesh& mesh, const std::vector<int>& faces, int from, int skip_polygon) {
+  int best = -1;
   double best_distance = -1;
   for (int f : faces) {
     const double d = (mesh.centroid.row(f) - mesh.centroid.row(from)).squaredNorm();
-    if (d > best_distance) best_distance = d, best = f;
+    if (d > best_distance && mesh.polygon[static_cast<std::size_t>(f)] != skip_polygon)
+      best_distance = d, best = f;
   }
   return best;
 }
 
+// Groups the faces by polygon: each face with an id >= 0 joins its polygon, the others are alone.
+void group_polygons(ChartMesh& mesh, const std::vector<int>& polygon_of_face) {
+  const auto faces = static_cast<std::size_t>(mesh.F.rows());
+  mesh.polygon.resize(faces);
+  std::unordered_map<int, int> id; // given id -> polygon
+  int polygons = 0;
+  for (std::size_t f = 0; f < faces; ++f) {
+    const int given = polygon_of_face.empty() ? -1 : polygon_of_face[f];
+    if (given < 0) {
+      mesh.polygon[f] = polygons++;
+    } else {
+      const auto [it, added] = id.emplace(given, polygons);
+      polygons += added;
+      mesh.polygon[f] = it->second;
+    }
+  }
+  mesh.polygon_first.assign(static_cast<std::size_t>(polygons) + 1, 0);
+  for (int p : mesh.polygon) ++mesh.polygon_first[static_cast<std::size_t>(p) + 1];
+  for (std::size_t p = 0; p < static_cast<std::size_t>(polygons); ++p)
+    mesh.polygon_first[p + 1] += mesh.polygon_first[p];
+  mesh.polygon_faces.resize(faces);
+  std::vector<int> next(mesh.polygon_first.begin(), mesh.polygon_first.end() - 1);
+  for (std::size_t f = 0; f < faces; ++f)
+    mesh.polygon_faces[static_cast<std::size_t>(next[static_cast<std::size_t>(mesh.polygon[f])]++)] =
+        static_cast<int>(f);
+}
+
 } // namespace
 
-ChartMesh chart_mesh(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
+ChartMesh chart_mesh(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
+                     const std::vector<int>& polygon_of_face) {
   ChartMesh mesh;
   mesh.F = F;
   const EdgeTopology topology = edge_topology(F, static_cast<int>(V.rows()));
@@ -190,6 +263,7 @@ ChartMesh chart_mesh(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
       mesh.angle(f, k) = std::atan2(e1.cross(e2).norm(), e1.dot(e2));
     }
   }
+  group_polygons(mesh, polygon_of_face);
   return mesh;
 }
 
@@ -209,8 +283,9 @@ int segment_charts(const ChartMesh& mesh, double max_normal_angle, int min_faces
     for (int& l : label)
       if (l >= 0 && size[static_cast<std::size_t>(l)] < min_faces) l = open_label;
     ChartGrowth growth(mesh, label, open_label, GrowthCost::Normal, -2);
-    for (std::size_t f = 0; f < label.size(); ++f)
-      if (label[f] >= 0) growth.add_face(label[f], static_cast<int>(f));
+    for (std::size_t f = 0; f < label.size(); ++f) // each kept polygon once, from its first face
+      if (label[f] >= 0 && *mesh.polygon_begin(static_cast<int>(f)) == static_cast<int>(f))
+        growth.add_face(label[f], static_cast<int>(f));
     growth.run();
     grow_remaining(mesh, label, open_label, GrowthCost::Normal, -2, grown);
   } else {
@@ -223,12 +298,11 @@ int split_chart(const ChartMesh& mesh, int id, const std::vector<int>& faces, in
                 std::vector<int>& label) {
   constexpr int splitting = -3;
   for (int f : faces) label[static_cast<std::size_t>(f)] = splitting;
-  const int a = farthest_face(mesh, faces, faces.front());
-  int b = farthest_face(mesh, faces, a);
-  if (b == a) b = faces.front() == a ? faces.back() : faces.front(); // all centroids at one point
+  const int a = farthest_face(mesh, faces, faces.front(), -1);
+  const int b = farthest_face(mesh, faces, a, mesh.polygon[static_cast<std::size_t>(a)]);
   ChartGrowth growth(mesh, label, splitting, GrowthCost::Distance, -2);
   growth.add_face(id, a);
-  if (b != a) growth.add_face(next_id++, b);
+  if (b >= 0) growth.add_face(next_id++, b);
   growth.run();
   return grow_remaining(mesh, label, splitting, GrowthCost::Distance, -2, next_id);
 }

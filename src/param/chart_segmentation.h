@@ -5,7 +5,9 @@
 
 namespace iarap::param_detail {
 
-// What growing charts reads of the mesh: per face its neighbours, unit normal, area and centroid.
+// What growing charts reads of the mesh: per face its neighbours, unit normal, area and centroid, and the
+// polygon it belongs to (the faces of one polygon join a chart together, so that the polygon keeps one UV per
+// corner when it is written back).
 struct ChartMesh {
   Eigen::MatrixXi F;         // #F x 3
   Eigen::MatrixXi neighbour; // #F x 3: the face across the edge opposite corner k, -1 for none
@@ -13,10 +15,26 @@ struct ChartMesh {
   Eigen::VectorXd area;      // #F
   Eigen::MatrixXd centroid;  // #F x 3
   Eigen::MatrixXd angle;     // #F x 3: the face's angle at corner k, radians
+  std::vector<int> polygon;  // #F: the polygon of each face (each face its own for a triangle mesh)
+  std::vector<int>
+      polygon_first; // #polygons + 1: polygon p's faces are polygon_faces[first[p] .. first[p+1])
+  std::vector<int> polygon_faces;
+
+  int polygon_size(int f) const {
+    const auto p = static_cast<std::size_t>(polygon[static_cast<std::size_t>(f)]);
+    return polygon_first[p + 1] - polygon_first[p];
+  }
+  const int* polygon_begin(int f) const {
+    return polygon_faces.data() +
+           polygon_first[static_cast<std::size_t>(polygon[static_cast<std::size_t>(f)])];
+  }
 };
 
-// F must be an oriented manifold (every edge in at most two faces, traversed oppositely).
-ChartMesh chart_mesh(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F);
+// F must be an oriented manifold (every edge in at most two faces, traversed oppositely). polygon_of_face:
+// empty (every face a polygon of its own) or #F polygon ids 0..n-1 (the triangles of each input polygon;
+// ids < 0 make a face a polygon of its own, as degenerate faces are).
+ChartMesh chart_mesh(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
+                     const std::vector<int>& polygon_of_face = {});
 
 // How a growing chart ranks the faces next to it.
 enum class GrowthCost {
@@ -33,8 +51,9 @@ enum class GrowthCost {
 int segment_charts(const ChartMesh& mesh, double max_normal_angle, int min_faces, std::vector<int>& label,
                    int& merged);
 
-// Splits chart `id` (its faces `faces`) into two disks grown from its two faces farthest apart, ranked by
-// distance; faces neither can take (the disk rule) become charts of their own. The first part keeps `id`,
+// Splits chart `id` (its faces `faces`, of at least two polygons) into two disks grown from its two faces
+// farthest apart in different polygons, ranked by distance; faces neither can take (the disk rule) become
+// charts of their own. The first part keeps `id`,
 // the others get next_id, next_id + 1, ...; returns the new next_id.
 int split_chart(const ChartMesh& mesh, int id, const std::vector<int>& faces, int next_id,
                 std::vector<int>& label);

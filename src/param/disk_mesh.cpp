@@ -110,4 +110,24 @@ DiskMesh prepare_disk(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
   return disk;
 }
 
+DiskMesh prepare_chart_disk(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
+  std::vector<std::vector<int>> loops = boundary_loops(F, static_cast<int>(V.rows()));
+  // Euler characteristic V - E + F with 2 E = 3 F + (boundary edges): 1 for a disk.
+  std::size_t boundary_edges = 0;
+  for (const std::vector<int>& loop : loops) boundary_edges += loop.size();
+  const auto edges = (3 * static_cast<std::size_t>(F.rows()) + boundary_edges) / 2;
+  const auto euler = static_cast<std::int64_t>(V.rows()) - static_cast<std::int64_t>(edges) + F.rows();
+  if (loops.size() != 1 || euler != 1)
+    throw TopologyError("the chart is not a topological disk: " +
+                        plural(static_cast<int>(loops.size()), "boundary loop", "boundary loops") +
+                        ", Euler characteristic " + std::to_string(euler));
+  DiskMesh disk;
+  disk.V = V;
+  disk.F = F;
+  disk.frames = triangle_frames(V, F);
+  disk.boundary = std::move(loops.front());
+  disk.area = disk.frames.area.sum();
+  return disk;
+}
+
 } // namespace iarap

@@ -2,18 +2,24 @@
 
 #include "iarap/core/errors.h"
 #include "iarap/core/stopwatch.h"
+#include "iarap/core/threads.h"
+#include "iarap/mesh/normalize_scale.h"
 #include "iarap/mesh/validate.h"
 #include "iarap/param/arap_parameterize.h"
 #include "iarap/param/boundary_loops.h"
 #include "iarap/param/disk_mesh.h"
+#include "iarap/param/lscm.h"
 
+#include "arap_parameterize_disk.h"
 #include "chart_packing.h"
 #include "chart_segmentation.h"
 #include "uv_overlap.h"
 
 #include <algorithm>
 #include <cmath>
+#include <exception>
 #include <string>
+#include <unordered_map>
 
 namespace iarap {
 
@@ -55,6 +61,36 @@ void check_atlas_mesh(const MeshReport& check) {
   }
 }
 
+void check_atlas_input(const AtlasInput& input, Eigen::Index faces) {
+  const auto expect = static_cast<std::size_t>(faces);
+  if (!input.polygon_of_face.empty() && input.polygon_of_face.size() != expect)
+    throw InputError("polygon_of_face must have one id per face (" + std::to_string(faces) + "); got " +
+                     std::to_string(input.polygon_of_face.size()));
+  if (!input.charts.empty() && input.charts.size() != expect)
+    throw InputError("charts must have one id per face (" + std::to_string(faces) + "); got " +
+                     std::to_string(input.charts.size()));
+  for (std::size_t f = 0; f < input.charts.size(); ++f)
+    if (input.charts[f] < 0)
+      throw InputError("face " + std::to_string(f) + " has chart id " + std::to_string(input.charts[f]) +
+                       "; given chart ids must be >= 0");
+  if (input.corner_uv.size() > 0) {
+    if (input.charts.empty()) throw InputError("corner_uv is the layout of given charts: give charts too");
+    if (input.corner_uv.rows() != 3 * faces || input.corner_uv.cols() != 2 || !input.corner_uv.allFinite())
+      throw InputError("corner_uv must be (3 #F) x 2 = " + std::to_string(3 * faces) +
+                       " x 2 finite UVs; got " + std::to_string(input.corner_uv.rows()) + " x " +
+                       std::to_string(input.corner_uv.cols()));
+  }
+}
+
+// The caller's charts as labels 0..n-1 in order of first appearance (faces labelled -1, degenerate, stay
+// so); returns n.
+int given_charts(const std::vector<int>& charts, std::vector<int>& label) {
+  std::unordered_map<int, int> id;
+  for (std::size_t f = 0; f < label.size(); ++f)
+    if (label[f] != -1) label[f] = id.emplace(charts[f], static_cast<int>(id.size())).first->second;
+  return static_cast<int>(id.size());
+}
+
 // One chart and its flattening.
 struct ChartMap {
   std::vector<int> faces;    // global face indices
@@ -62,19 +98,49 @@ struct ChartMap {
   Eigen::MatrixXi F;         // the faces in local indices
   Eigen::MatrixXd UV;        // #vertices x 2, mesh units
   AtlasChart summary;
-  bool boundary_crosses = false;
+  int polygons = 0;              // distinct polygons among its faces (a split needs two)
+  bool boundary_crosses = false; // of the final map, or of the start when start_crosses
+  bool start_crosses = false;    // its LSCM start crossed itself: split before the solve, not flattened
 
   int local(int v) const {
     return static_cast<int>(std::lower_bound(vertices.begin(), vertices.end(), v) - vertices.begin());
   }
 };
 
+// How flatten_chart starts a chart's flattening.
+struct ChartStart {
+  const Eigen::MatrixXd* corner_uv = nullptr; // AtlasInput::corner_uv for a chart given by the caller
+  bool check_lscm = false; // compute the LSCM start here and split the chart if it crosses itself
+  int given_id = -1;       // the caller's chart (for errors), -1 for the atlas's own
+};
+
+// The given corner UVs of the chart's vertices, scaled so that the UV area equals the surface area (the
+// scale near which an ARAP map lies); empty if they have no area.
+Eigen::MatrixXd given_start(const ChartMap& chart, const Eigen::MatrixXi& F, const Eigen::MatrixXd& corner_uv,
+                            double surface_area) {
+  Eigen::MatrixXd UV(static_cast<Eigen::Index>(chart.vertices.size()), 2);
+  for (int f : chart.faces)
+    for (int k = 0; k < 3; ++k) UV.row(chart.local(F(f, k))) = corner_uv.row(3 * f + k);
+  double uv_area = 0;
+  for (Eigen::Index f = 0; f < chart.F.rows(); ++f) {
+    const Eigen::RowVector2d a = UV.row(chart.F(f, 0)), b = UV.row(chart.F(f, 1)), c = UV.row(chart.F(f, 2));
+    uv_area += ((b - a).x() * (c - a).y() - (b - a).y() * (c - a).x()) / 2;
+  }
+  if (!(uv_area > 0)) return {};
+  return UV * std::sqrt(surface_area / uv_area);
+}
+
 ChartMap flatten_chart(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, std::vector<int> faces,
-                       const ParamOptions& options, const ChartMesh& mesh) {
+                       ParamOptions options, const ChartMesh& mesh, const ChartStart& start) {
   ChartMap chart;
   chart.faces = std::move(faces);
-  for (int f : chart.faces)
+  std::vector<int> polygons;
+  for (int f : chart.faces) {
+    polygons.push_back(mesh.polygon[static_cast<std::size_t>(f)]);
     for (int k = 0; k < 3; ++k) chart.vertices.push_back(F(f, k));
+  }
+  std::sort(polygons.begin(), polygons.end());
+  chart.polygons = static_cast<int>(std::unique(polygons.begin(), polygons.end()) - polygons.begin());
   std::sort(chart.vertices.begin(), chart.vertices.end());
   chart.vertices.erase(std::unique(chart.vertices.begin(), chart.vertices.end()), chart.vertices.end());
   Eigen::MatrixXd Vc(static_cast<Eigen::Index>(chart.vertices.size()), 3);
@@ -83,17 +149,44 @@ ChartMap flatten_chart(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, std::
   Eigen::MatrixXi Fc(static_cast<Eigen::Index>(chart.faces.size()), 3);
   for (std::size_t i = 0; i < chart.faces.size(); ++i)
     for (int k = 0; k < 3; ++k) Fc(static_cast<Eigen::Index>(i), k) = chart.local(F(chart.faces[i], k));
-  const ParamResult result = arap_parameterize(Vc, Fc, options);
   chart.F = Fc;
-  chart.UV = result.UV;
   AtlasChart& s = chart.summary;
   s.faces = static_cast<int>(Fc.rows());
   s.vertices = static_cast<int>(Vc.rows());
   for (int f : chart.faces) s.area += mesh.area(f);
+  const auto chart_start = Clock::now();
+  const double scale = normalizing_scale(Vc);
+  DiskMesh disk;
+  if (start.given_id < 0) {
+    disk = prepare_chart_disk(Vc / scale, Fc);
+  } else {
+    try {
+      disk = prepare_disk(Vc / scale, Fc);
+    } catch (const TopologyError& e) {
+      throw TopologyError("chart " + std::to_string(start.given_id) + " of the texture seams (" +
+                          std::to_string(s.faces) + " triangles, face " +
+                          std::to_string(chart.faces.front()) + " among them): " + e.what());
+    }
+  }
+  if (start.corner_uv) {
+    options.initial_uv = given_start(chart, F, *start.corner_uv, s.area);
+  } else if (start.check_lscm) {
+    // The ARAP solve's own start (the same LSCM map of the same disk): when its boundary already crosses
+    // itself the solve is skipped and the chart split, since ARAP's boundary mostly keeps LSCM's shape.
+    const Eigen::MatrixXd lscm_map = lscm(disk);
+    if (chart.polygons >= 2 && param_detail::loop_crosses_itself(lscm_map, disk.boundary)) {
+      chart.boundary_crosses = chart.start_crosses = true;
+      return chart;
+    }
+    options.initial_uv = lscm_map * scale;
+  }
+  const ParamResult result = param_detail::arap_parameterize_disk(disk, scale, options, chart_start);
+  chart.UV = result.UV;
   s.energy = result.report.distortion.energy;
   s.distortion = s.energy / s.area;
   s.flipped = result.report.distortion.flipped;
   s.iterations = result.report.solve.iterations;
+  s.started_from_input = start.corner_uv && result.report.initial_uv_used ? 1 : 0;
   const std::vector<std::vector<int>> loops = boundary_loops(Fc, static_cast<int>(Vc.rows()));
   chart.boundary_crosses = param_detail::loop_crosses_itself(chart.UV, loops.front());
   return chart;
@@ -106,27 +199,69 @@ std::vector<std::vector<int>> faces_by_chart(const std::vector<int>& label, int 
   return faces;
 }
 
-// Flattens the charts, then splits those whose boundary crosses itself and, for up to max_rounds rounds,
-// those whose distortion exceeds the target (if both halves can keep min_chart_faces), and flattens the
-// parts. Splitting on overlap goes on until none is left: a chart of one face cannot overlap itself.
+// flatten_chart for the charts marked dirty, in parallel (one chart per thread: the maps do not depend on
+// the thread count); an exception of any chart is rethrown after the loop.
+void flatten_dirty(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const ChartMesh& mesh,
+                   const ParamOptions& param, const std::vector<std::vector<int>>& faces,
+                   const std::vector<char>& dirty, const std::vector<ChartStart>& starts,
+                   std::vector<ChartMap>& maps) {
+  std::vector<int> todo;
+  for (std::size_t c = 0; c < dirty.size(); ++c)
+    if (dirty[c]) todo.push_back(static_cast<int>(c));
+  // Largest first, so that the threads end together.
+  std::stable_sort(todo.begin(), todo.end(), [&faces](int a, int b) {
+    return faces[static_cast<std::size_t>(a)].size() > faces[static_cast<std::size_t>(b)].size();
+  });
+  std::vector<std::exception_ptr> errors(todo.size());
+  const auto n = static_cast<std::ptrdiff_t>(todo.size());
+#pragma omp parallel for schedule(dynamic, 1)
+  for (std::ptrdiff_t i = 0; i < n; ++i) {
+    const auto c = static_cast<std::size_t>(todo[static_cast<std::size_t>(i)]);
+    // Everything inside on this one thread (this task's setting only): the factorizations' BLAS too, whose
+    // thread count would otherwise follow the caller's and change the sums' order with it.
+    set_thread_count(1);
+    try {
+      maps[c] = flatten_chart(V, F, faces[c], param, mesh, starts[c]);
+    } catch (...) {
+      errors[static_cast<std::size_t>(i)] = std::current_exception();
+    }
+  }
+  for (const std::exception_ptr& error : errors)
+    if (error) std::rethrow_exception(error);
+}
+
+// Flattens the charts, then splits those whose boundary (or LSCM start) crosses itself and, for up to
+// max_rounds rounds, those whose distortion exceeds the target (if both halves can keep
+// min_chart_faces), and flattens the parts. Splitting on overlap goes on until none is left: a chart of
+// one polygon is not split (nor crosses itself, for a triangle).
 std::vector<ChartMap> flatten_charts(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
-                                     const ChartMesh& mesh, const AtlasOptions& options, int charts,
-                                     std::vector<int>& label, AtlasReport& report) {
+                                     const ChartMesh& mesh, const AtlasOptions& options,
+                                     const AtlasInput& input, int charts, std::vector<int>& label,
+                                     AtlasReport& report) {
+  const bool given = !input.charts.empty();
+  const bool lscm_start = options.param.init == ParamInit::Lscm &&
+                          options.param.boundary == ParamBoundary::Free && options.param.pins.size() == 0;
   std::vector<ChartMap> maps;
   std::vector<char> dirty(static_cast<std::size_t>(charts), 1);
+  std::vector<ChartStart> starts(static_cast<std::size_t>(charts));
+  for (std::size_t c = 0; c < starts.size(); ++c) {
+    starts[c].check_lscm = lscm_start;
+    if (given) starts[c].given_id = static_cast<int>(c);
+    if (given && input.corner_uv.size() > 0) starts[c].corner_uv = &input.corner_uv;
+  }
   for (int round = 0;; ++round) {
     const std::vector<std::vector<int>> faces = faces_by_chart(label, charts);
     maps.resize(static_cast<std::size_t>(charts));
-    for (std::size_t c = 0; c < maps.size(); ++c)
-      if (dirty[c]) maps[c] = flatten_chart(V, F, faces[c], options.param, mesh);
+    flatten_dirty(V, F, mesh, options.param, faces, dirty, starts, maps);
     std::vector<int> split;
     for (std::size_t c = 0; c < maps.size(); ++c) {
       const ChartMap& map = maps[c];
-      if (map.boundary_crosses && map.summary.faces >= 2) {
+      if (map.boundary_crosses && map.polygons >= 2) {
         split.push_back(static_cast<int>(c));
         ++report.splits_for_overlap;
-      } else if (round < options.max_rounds && map.summary.distortion > options.target_distortion &&
-                 map.summary.faces >= 2 * options.min_chart_faces) {
+        report.splits_before_solve += map.start_crosses;
+      } else if (!given && round < options.max_rounds && map.summary.distortion > options.target_distortion &&
+                 map.summary.faces >= 2 * options.min_chart_faces && map.polygons >= 2) {
         split.push_back(static_cast<int>(c));
         ++report.splits_for_distortion;
       }
@@ -137,6 +272,9 @@ std::vector<ChartMap> flatten_charts(const Eigen::MatrixXd& V, const Eigen::Matr
       charts = param_detail::split_chart(mesh, c, faces[static_cast<std::size_t>(c)], charts, label);
       dirty[static_cast<std::size_t>(c)] = 1;
       dirty.resize(static_cast<std::size_t>(charts), 1);
+      // The parts of a split chart start as the atlas's own charts (the given layout was the whole's).
+      starts[static_cast<std::size_t>(c)].corner_uv = nullptr;
+      starts.resize(static_cast<std::size_t>(charts), ChartStart{nullptr, lscm_start, -1});
     }
   }
   return maps;
@@ -162,9 +300,15 @@ ParamOptions default_atlas_param_options() {
 }
 
 UvAtlas uv_atlas(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const AtlasOptions& options) {
+  return uv_atlas(V, F, options, AtlasInput{});
+}
+
+UvAtlas uv_atlas(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const AtlasOptions& options,
+                 const AtlasInput& input) {
   const auto total_start = Clock::now();
   check_atlas_options(options);
   check_param_arrays(V, F);
+  check_atlas_input(input, F.rows());
   const MeshReport check = check_mesh(V, F);
   check_atlas_mesh(check);
   UvAtlas atlas;
@@ -177,14 +321,19 @@ UvAtlas uv_atlas(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const Atlas
       label[static_cast<std::size_t>(f)] = -1;
       ++report.degenerate_faces;
     }
-  const ChartMesh mesh = param_detail::chart_mesh(V, F);
-  const int charts = param_detail::segment_charts(mesh, options.max_normal_angle, options.min_chart_faces,
-                                                  label, report.merged_small_charts);
+  std::vector<int> polygon_of_face = input.polygon_of_face;
+  for (std::size_t f = 0; f < polygon_of_face.size(); ++f)
+    if (label[f] == -1) polygon_of_face[f] = -1; // a face without an area stays out of the charts
+  const ChartMesh mesh = param_detail::chart_mesh(V, F, polygon_of_face);
+  const int charts = input.charts.empty() ? param_detail::segment_charts(mesh, options.max_normal_angle,
+                                                                         options.min_chart_faces, label,
+                                                                         report.merged_small_charts)
+                                          : given_charts(input.charts, label);
   if (charts == 0) throw InputError("every face of the mesh is degenerate (no area): nothing to flatten");
   report.segment_ms = ms_since(phase_start);
 
   phase_start = Clock::now();
-  const std::vector<ChartMap> maps = flatten_charts(V, F, mesh, options, charts, label, report);
+  const std::vector<ChartMap> maps = flatten_charts(V, F, mesh, options, input, charts, label, report);
   report.flatten_ms = ms_since(phase_start);
 
   phase_start = Clock::now();

@@ -6,8 +6,10 @@
 
 #include "iarap/core/errors.h"
 
+#include <cstdint>
 #include <map>
 #include <tuple>
+#include <vector>
 
 namespace iarap {
 
@@ -70,13 +72,18 @@ void write_uv_map(const std::string& path, const Eigen::MatrixXd& V, const Eigen
   io_detail::write_file_atomically(path, out);
 }
 
-void write_uv_atlas(const std::string& path, const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
-                    const Eigen::MatrixXd& corner_uv) {
-  const std::string extension = checked_uv_extension(path, V, F, "a UV atlas");
-  if (corner_uv.rows() != 3 * F.rows() || corner_uv.cols() != 2)
-    throw InputError(path + ": corner UVs must be (3 #F) x 2 = " + std::to_string(3 * F.rows()) +
-                     " x 2; got " + std::to_string(corner_uv.rows()) + " x " +
-                     std::to_string(corner_uv.cols()));
+namespace {
+
+// An atlas's faces as polygons: corner c of polygon p is corners first[p] + c, at vertex[.] with uv[.].
+struct CornerFaces {
+  std::vector<int> first{0}, vertex;
+  Eigen::MatrixXd uv; // one row per corner
+};
+
+// .txt: one `u v` line per corner; .obj: the `v` lines, one `vt` per distinct (vertex, uv) pair in order
+// of first use, and `f a/ta b/tb ...` per polygon.
+void write_corner_faces(const std::string& path, const std::string& extension, const Eigen::MatrixXd& V,
+                        const CornerFaces& faces) {
   std::string out;
   auto append_uv = [&out](const char* prefix, double u, double v) {
     out += prefix;
@@ -85,27 +92,97 @@ void write_uv_atlas(const std::string& path, const Eigen::MatrixXd& V, const Eig
     io_detail::append_double(out, v);
     out += '\n';
   };
+  const Eigen::Index corners = faces.uv.rows();
   if (extension == ".txt") {
-    out.reserve(static_cast<std::size_t>(corner_uv.rows() * 48));
-    for (Eigen::Index c = 0; c < corner_uv.rows(); ++c) append_uv("", corner_uv(c, 0), corner_uv(c, 1));
+    out.reserve(static_cast<std::size_t>(corners * 48));
+    for (Eigen::Index c = 0; c < corners; ++c) append_uv("", faces.uv(c, 0), faces.uv(c, 1));
     io_detail::write_file_atomically(path, out);
     return;
   }
-  out.reserve(static_cast<std::size_t>(V.rows() * 110 + F.rows() * 130));
+  out.reserve(static_cast<std::size_t>(V.rows() * 110 + corners * 45));
   out += "# UV atlas written by iarap\n";
   io_detail::append_vertex_lines(out, V, "v ");
   std::map<std::tuple<int, double, double>, int> texture_index; // (vertex, u, v) -> vt index from 0
-  Eigen::MatrixXi corner_vt(F.rows(), 3);
-  for (Eigen::Index f = 0; f < F.rows(); ++f)
-    for (int k = 0; k < 3; ++k) {
-      const Eigen::Index c = 3 * f + k;
-      const auto key = std::make_tuple(F(f, k), corner_uv(c, 0), corner_uv(c, 1));
-      auto [it, added] = texture_index.emplace(key, static_cast<int>(texture_index.size()));
-      if (added) append_uv("vt ", corner_uv(c, 0), corner_uv(c, 1));
-      corner_vt(f, k) = it->second;
+  std::vector<int> corner_vt(static_cast<std::size_t>(corners));
+  for (Eigen::Index c = 0; c < corners; ++c) {
+    const auto key =
+        std::make_tuple(faces.vertex[static_cast<std::size_t>(c)], faces.uv(c, 0), faces.uv(c, 1));
+    auto [it, added] = texture_index.emplace(key, static_cast<int>(texture_index.size()));
+    if (added) append_uv("vt ", faces.uv(c, 0), faces.uv(c, 1));
+    corner_vt[static_cast<std::size_t>(c)] = it->second;
+  }
+  for (std::size_t p = 0; p + 1 < faces.first.size(); ++p) {
+    out += 'f';
+    for (int c = faces.first[p]; c < faces.first[p + 1]; ++c) {
+      out += ' ';
+      io_detail::append_int(out, faces.vertex[static_cast<std::size_t>(c)] + 1LL);
+      out += '/';
+      io_detail::append_int(out, corner_vt[static_cast<std::size_t>(c)] + 1LL);
     }
-  append_textured_faces(out, F, corner_vt);
+    out += '\n';
+  }
   io_detail::write_file_atomically(path, out);
+}
+
+void check_corner_uv(const std::string& path, const Eigen::MatrixXi& F, const Eigen::MatrixXd& corner_uv) {
+  if (corner_uv.rows() != 3 * F.rows() || corner_uv.cols() != 2)
+    throw InputError(path + ": corner UVs must be (3 #F) x 2 = " + std::to_string(3 * F.rows()) +
+                     " x 2; got " + std::to_string(corner_uv.rows()) + " x " +
+                     std::to_string(corner_uv.cols()));
+}
+
+} // namespace
+
+void write_uv_atlas(const std::string& path, const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
+                    const Eigen::MatrixXd& corner_uv) {
+  const std::string extension = checked_uv_extension(path, V, F, "a UV atlas");
+  check_corner_uv(path, F, corner_uv);
+  CornerFaces faces;
+  faces.uv = corner_uv;
+  for (Eigen::Index f = 0; f < F.rows(); ++f) {
+    for (int k = 0; k < 3; ++k) faces.vertex.push_back(F(f, k));
+    faces.first.push_back(static_cast<int>(faces.vertex.size()));
+  }
+  write_corner_faces(path, extension, V, faces);
+}
+
+void write_uv_atlas_polygons(const std::string& path, const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
+                             const Eigen::MatrixXd& corner_uv, const Eigen::VectorXi& chart,
+                             const ObjPolygons& polygons) {
+  const std::string extension = checked_uv_extension(path, V, F, "a UV atlas");
+  check_corner_uv(path, F, corner_uv);
+  std::int64_t triangles = 0;
+  for (int p = 0; p < polygons.size(); ++p) triangles += polygons.corners(p) - 2;
+  if (triangles != F.rows() || chart.size() != F.rows())
+    throw InputError(path + ": the polygons' fans have " + std::to_string(triangles) + " triangles and " +
+                     std::to_string(chart.size()) + " chart ids are given; the mesh has " +
+                     std::to_string(F.rows()) + " triangles");
+  CornerFaces faces;
+  faces.first = polygons.first;
+  faces.vertex = polygons.vertex;
+  faces.uv.resize(static_cast<Eigen::Index>(polygons.vertex.size()), 2);
+  Eigen::Index t0 = 0; // the polygon's first triangle: its fan is (c0, ci, ci+1), i = 1 .. n - 2
+  for (int p = 0; p < polygons.size(); ++p) {
+    const int n = polygons.corners(p);
+    for (int j = 0; j < n; ++j) {
+      // The triangle corners at polygon corner j; the first in a chart wins (a triangle without an area
+      // is in none, its corners put on one point).
+      std::vector<Eigen::Index> at;
+      if (j == 0)
+        for (int i = 0; i < n - 2; ++i) at.push_back(3 * (t0 + i));
+      if (j >= 2) at.push_back(3 * (t0 + j - 2) + 2);
+      if (j >= 1 && j <= n - 2) at.push_back(3 * (t0 + j - 1) + 1);
+      Eigen::Index best = at.front();
+      for (Eigen::Index c : at)
+        if (chart(c / 3) >= 0) {
+          best = c;
+          break;
+        }
+      faces.uv.row(polygons.first[static_cast<std::size_t>(p)] + j) = corner_uv.row(best);
+    }
+    t0 += n - 2;
+  }
+  write_corner_faces(path, extension, V, faces);
 }
 
 } // namespace iarap

@@ -2,6 +2,7 @@
 // JSON report come out; the errors a user meets exit 1 (runtime) or 2 (usage) and say what is wrong.
 #include "app/cli_runner.h"
 #include "iarap/io/read_mesh.h"
+#include "iarap/io/read_obj_textured.h"
 #include "iarap/io/write_mesh.h"
 #include "io/png_reader.h"
 #include "mesh/small_meshes.h"
@@ -150,6 +151,59 @@ TEST(ParamCommand, AtlasOfAClosedMesh) {
                                   true);
   EXPECT_EQ(pinned.code, 2) << pinned.out;
   EXPECT_NE(pinned.out.find("--pins needs one chart"), std::string::npos) << pinned.out;
+  fs::remove_all(dir);
+}
+
+// An OBJ of quads: the output has the same quads in the same order, a vt per corner; read back with
+// --charts keep, its vt seams give the same charts, each flattened from the file's layout.
+TEST(ParamCommand, QuadsKeptAndChartsKept) {
+  const auto dir = iarap::test::temp_dir("param_cli_quads");
+  const iarap::test::TestMesh torus = iarap::test::torus(24, 12); // quad q = faces 2 q, 2 q + 1
+  std::ofstream obj(dir / "quads.obj");
+  for (Eigen::Index v = 0; v < torus.V.rows(); ++v)
+    obj << "v " << torus.V(v, 0) << ' ' << torus.V(v, 1) << ' ' << torus.V(v, 2) << '\n';
+  for (Eigen::Index q = 0; q < torus.F.rows() / 2; ++q) // (a, b, d) and (a, d, c): the quad a b d c
+    obj << "f " << torus.F(2 * q, 0) + 1 << ' ' << torus.F(2 * q, 1) + 1 << ' ' << torus.F(2 * q, 2) + 1
+        << ' ' << torus.F(2 * q + 1, 2) + 1 << '\n';
+  obj.close();
+  const CliRun run = iarap_cli("param " + quoted(dir / "quads.obj") + " --out " + quoted(dir / "uv.obj") +
+                               " --json --quiet");
+  ASSERT_EQ(run.code, 0) << run.out;
+  const nlohmann::json j = parse_json(run);
+  EXPECT_EQ(j["flipped"], 0);
+  const iarap::TexturedObj in = iarap::read_obj_textured((dir / "quads.obj").string());
+  const iarap::TexturedObj out = iarap::read_obj_textured((dir / "uv.obj").string());
+  EXPECT_EQ(out.mesh.V.rows(), in.mesh.V.rows());
+  EXPECT_EQ(out.polygons.first, in.polygons.first); // 4 corners each, in order
+  EXPECT_EQ(out.polygons.vertex, in.polygons.vertex);
+  for (int t : out.polygons.texture) EXPECT_GE(t, 0);
+  EXPECT_GE(out.TC.minCoeff(), 0.0);
+  EXPECT_LE(out.TC.maxCoeff(), 1.0);
+
+  const CliRun kept = iarap_cli("param " + quoted(dir / "uv.obj") + " --out " + quoted(dir / "kept.obj") +
+                                " --charts keep --json --quiet");
+  ASSERT_EQ(kept.code, 0) << kept.out;
+  const nlohmann::json k = parse_json(kept);
+  EXPECT_EQ(k["charts_mode"], "keep");
+  EXPECT_EQ(k["charts"], j["charts"]);
+  EXPECT_EQ(k["flipped"], 0);
+  for (const nlohmann::json& chart : k["chart_list"]) EXPECT_EQ(chart["started_from_input"], 1);
+
+  // keep needs vt, on every face, in an OBJ.
+  const CliRun no_vt = iarap_cli(
+      "param " + quoted(dir / "quads.obj") + " --out " + quoted(dir / "x.obj") + " --charts keep", true);
+  EXPECT_EQ(no_vt.code, 1);
+  EXPECT_NE(no_vt.out.find("has no vt lines"), std::string::npos) << no_vt.out;
+  std::ofstream(dir / "some.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nvt 0 0\nf 1/1 2/1 3/1\nf 2 4 3\n";
+  const CliRun some = iarap_cli(
+      "param " + quoted(dir / "some.obj") + " --out " + quoted(dir / "x.obj") + " --charts keep", true);
+  EXPECT_EQ(some.code, 1);
+  EXPECT_NE(some.out.find("face 1 (the file's f line number 2) has none"), std::string::npos) << some.out;
+  iarap::write_mesh((dir / "torus.off").string(), torus.V, torus.F);
+  const CliRun off = iarap_cli(
+      "param " + quoted(dir / "torus.off") + " --out " + quoted(dir / "x.obj") + " --charts keep", true);
+  EXPECT_EQ(off.code, 1);
+  EXPECT_NE(off.out.find("not an OBJ"), std::string::npos) << off.out;
   fs::remove_all(dir);
 }
 

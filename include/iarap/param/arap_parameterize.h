@@ -36,6 +36,7 @@ struct ParamReport {
   ParamInit init = ParamInit::Lscm; // the initial map the iteration started from
   int init_flipped = 0;             // flipped triangles of the requested initial map
   bool init_fallback = false;       // it flipped, so the flip-free iteration started from Tutte's map
+  bool initial_uv_used = false;     // the iteration started from options.initial_uv (init is then unused)
   // The engine's report (arap_types.h): iterations, converged, stop_reason, accelerator, the minimized
   // energy W of the initial map and after each iteration (initial_energy, energies; W = E + the barrier
   // term when flip-free, E with allow_flips; squared mesh units), gradient norms (mesh units), rejected

@@ -15,6 +15,7 @@ template <typename Visitor> void visit_atlas_chart(const AtlasChart& chart, Visi
   visit("distortion", chart.distortion);
   visit("flipped", chart.flipped);
   visit("iterations", chart.iterations);
+  visit("started_from_input", chart.started_from_input);
 }
 
 // Calls visit(name, value) for each field of `report` but the charts (visit_atlas_chart): int or double;
@@ -32,6 +33,7 @@ template <typename Visitor> void visit_atlas_report(const AtlasReport& report, V
   visit("merged_small_charts", report.merged_small_charts);
   visit("splits_for_distortion", report.splits_for_distortion);
   visit("splits_for_overlap", report.splits_for_overlap);
+  visit("splits_before_solve", report.splits_before_solve);
   visit("segment_ms", report.segment_ms);
   visit("flatten_ms", report.flatten_ms);
   visit("pack_ms", report.pack_ms);

@@ -31,4 +31,9 @@ void check_param_arrays(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F);
 //   (components, boundary loops, genus) and that it must be cut into disks first.
 DiskMesh prepare_disk(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F);
 
+// prepare_disk for a chart its caller built as a disk out of a mesh it checked (uv_atlas: an oriented
+// manifold without degenerate faces, charts grown under a disk rule): check_mesh's checks are skipped, and
+// only the Euler characteristic and the single boundary loop are verified (TopologyError otherwise).
+DiskMesh prepare_chart_disk(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F);
+
 } // namespace iarap

@@ -74,6 +74,11 @@ struct ParamOptions {
   // Tutte or harmonic start too. Flip-free, a start that the pins fold is refused (InputError naming the
   // count): pins can demand a fold no iteration undoes, and the flip-free iteration needs an injective start.
   UvPins pins;
+  // A start map given by the caller (#V x 2, in the units of V; empty: none), e.g. an OBJ's own texture
+  // coordinates or an LSCM map already computed: used instead of `init` when it folds no triangle (or with
+  // allow_flips); when it folds one, the flip-free iteration starts from `init` as if it were not given.
+  // Only with the free boundary and without pins (InputError otherwise).
+  Eigen::MatrixXd initial_uv;
 };
 
 // The initial map to use when none is named: lscm for a free boundary, harmonic for a circular one (the

@@ -12,7 +12,9 @@
 // normal turns fastest (sharp features). Charts below the minimum size are dissolved into their neighbours.
 // Then, the distortion-driven splitting of the Blender / xatlas family: a flattened chart whose energy per
 // area exceeds the target, or whose UV boundary crosses itself, is regrown from its two farthest faces
-// into two charts and flattened again.
+// into two charts and flattened again. A chart whose LSCM start (the ARAP solve's start) already crosses
+// itself is split before the solve. Charts are flattened in parallel (OpenMP, thread_count() threads),
+// each on one thread, so the atlas does not depend on the thread count.
 #pragma once
 #include "iarap/param/param_options.h"
 
@@ -37,18 +39,37 @@ struct AtlasOptions {
   int max_rounds = 8;              // rounds of splitting flattened charts
 };
 
+// What a caller may give beside the mesh (each part optional, empty when not given).
+struct AtlasInput {
+  // #F polygon ids (a face with an id < 0 is a polygon of its own), e.g. read_obj_textured's
+  // polygon_of_triangle: the faces of one polygon join one chart together, so that the polygon, written
+  // back, has one UV per corner.
+  std::vector<int> polygon_of_face;
+  // #F chart ids >= 0 (`--charts keep`: texture_seam_charts of an OBJ's vt): the charts to flatten instead
+  // of segmenting the mesh. They are not split for distortion; one whose flattening crosses itself is split
+  // as the atlas splits its own; one that is not a disk is refused (TopologyError naming the chart).
+  std::vector<int> charts;
+  // (3 #F) x 2 corner UVs with `charts` (the file's vt): each chart starts from them, scaled to its surface
+  // area, when they fold none of its triangles (else from the default start).
+  Eigen::MatrixXd corner_uv;
+};
+
 struct AtlasChart {
   int faces = 0, vertices = 0;
-  double area = 0;       // surface area
-  double energy = 0;     // per-triangle ARAP energy of its flattening (squared mesh units)
-  double distortion = 0; // energy / area
-  int flipped = 0;       // triangles with det J <= 0 in its flattening
-  int iterations = 0;    // of the engine
+  double area = 0;            // surface area
+  double energy = 0;          // per-triangle ARAP energy of its flattening (squared mesh units)
+  double distortion = 0;      // energy / area
+  int flipped = 0;            // triangles with det J <= 0 in its flattening
+  int iterations = 0;         // of the engine
+  int started_from_input = 0; // 1: its flattening started from AtlasInput::corner_uv
 };
 
 struct AtlasReport {
   std::vector<AtlasChart> charts;
   int splits_for_distortion = 0, splits_for_overlap = 0, merged_small_charts = 0;
+  // Of splits_for_overlap, those made because the chart's LSCM start already crossed itself: split before
+  // the ARAP solve, which its parts need instead.
+  int splits_before_solve = 0;
   double seam_length = 0;    // mesh units: edges whose two faces lie in different charts
   int flipped = 0;           // triangles with a UV area <= 0 in the atlas (degenerate input faces excluded)
   int degenerate_faces = 0;  // input faces without an area, their corners put on one UV point
@@ -70,5 +91,10 @@ struct UvAtlas {
 // three faces, vertices joining separate fans, inconsistent orientation), which cannot be cut into disks
 // without a repair. Faces without an area are left out of the charts (counted in degenerate_faces).
 UvAtlas uv_atlas(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const AtlasOptions& options = {});
+
+// The same with polygons, given charts or a given layout (AtlasInput); InputError for parts of the wrong
+// size or a negative chart id.
+UvAtlas uv_atlas(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const AtlasOptions& options,
+                 const AtlasInput& input);
 
 } // namespace iarap

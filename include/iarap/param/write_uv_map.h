@@ -1,5 +1,7 @@
 // Writing a UV map: an OBJ with texture coordinates, or plain `u v` lines.
 #pragma once
+#include "iarap/io/read_obj_textured.h"
+
 #include <Eigen/Core>
 #include <string>
 
@@ -23,5 +25,14 @@ namespace iarap {
 // corner. Atomic; throws InputError as write_uv_map does.
 void write_uv_atlas(const std::string& path, const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
                     const Eigen::MatrixXd& corner_uv);
+
+// The same on the input's own face lines (read_obj_textured's polygons, whose fans are the triangles F in
+// order): .obj writes `f a/ta b/tb c/tc d/td ...` per polygon, in order; .txt one `u v` line per polygon
+// corner. A polygon corner takes the UV of its triangle corner in the first of its triangles that lies in
+// a chart (chart(f) >= 0; uv_atlas keeps a polygon's triangles in one chart, so they agree). InputError as
+// write_uv_atlas, and for polygons whose fans are not F's count or a chart vector of another size.
+void write_uv_atlas_polygons(const std::string& path, const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
+                             const Eigen::MatrixXd& corner_uv, const Eigen::VectorXi& chart,
+                             const ObjPolygons& polygons);
 
 } // namespace iarap
