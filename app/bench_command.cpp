@@ -440,9 +440,9 @@ const bool registered = register_command(
               "TOL (relative) of a reference minimum, on the scene of data/bend60_scenario.json")
            ->check(CLI::PositiveNumber);
        sub->add_option("--accels", args->accelerators,
-                       "With --converge: comma-separated subset of none,anderson,lbfgs,newton")
+                       "With --converge: comma-separated subset of none,anderson,lbfgs,newton,hybrid")
            ->delimiter(',')
-           ->check(CLI::IsMember({"none", "anderson", "lbfgs", "newton"}))
+           ->check(CLI::IsMember({"none", "anderson", "lbfgs", "newton", "hybrid"}))
            ->capture_default_str();
        sub->add_option("--window", args->window,
                        "With --converge: accelerator history length (0 = the default)")

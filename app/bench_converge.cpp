@@ -99,6 +99,12 @@ nlohmann::json converge_one(const std::string& path, const Eigen::MatrixXd& V, c
     const ArapReport report = arap_solve(data, constraints.targets, U, run);
     const bool reached = !report.energies.empty() && report.energies.back() <= target;
     const double ms = report.elapsed_ms.empty() ? 0.0 : report.elapsed_ms.back();
+    // The first iterate within the early gap (-1: none).
+    const double early_target = reference + settings.early_gap * std::abs(reference);
+    const auto early = std::find_if(report.energies.begin(), report.energies.end(),
+                                    [early_target](double e) { return e <= early_target; });
+    const auto early_k = early - report.energies.begin();
+    const bool early_reached = early != report.energies.end();
     j["runs"].push_back(
         {{"accelerator", accelerator},
          {"window", accelerator == "none" ? 0 : run.window},
@@ -109,6 +115,10 @@ nlohmann::json converge_one(const std::string& path, const Eigen::MatrixXd& V, c
          {"rejected", report.rejected},
          {"solves", report.solves},
          {"reached", reached},
+         {"early_gap", settings.early_gap},
+         {"early_iterations", early_reached ? static_cast<int>(early_k) + 1 : -1},
+         {"early_ms", early_reached ? report.elapsed_ms[static_cast<size_t>(early_k)] : -1.0},
+         {"newton_from", report.newton_from_iteration},
          {"stationary", !reached && report.converged},
          {"final_energy", report.energies.empty() ? report.initial_energy : report.energies.back()},
          {"final_gap",
@@ -120,8 +130,9 @@ nlohmann::json converge_one(const std::string& path, const Eigen::MatrixXd& V, c
 void print_converge_table(const nlohmann::json& results, double tolerance) {
   std::printf("iterations and milliseconds to an energy within %.0e (relative) of the reference minimum\n",
               tolerance);
-  std::printf("%-28s %-12s %-9s %10s %7s %12s %10s %9s %9s %9s %8s\n", "mesh", "method", "accel",
-              "iterations", "solves", "ms", "ms/iter", "x iter", "x time", "overhead", "rejected");
+  std::printf("%-28s %-12s %-9s %10s %7s %12s %10s %9s %9s %9s %8s %10s %8s\n", "mesh", "method", "accel",
+              "iterations", "solves", "ms", "ms/iter", "x iter", "x time", "overhead", "rejected", "early ms",
+              "x early");
   for (const auto& r : results) {
     std::string name = r["mesh"].get<std::string>();
     if (name.size() > 28) name = "..." + name.substr(name.size() - 25);
@@ -157,7 +168,18 @@ void print_converge_table(const nlohmann::json& results, double tolerance) {
       } else {
         std::printf(" %9s %9s %9s", "", "", "");
       }
-      std::printf(" %8d\n", run["rejected"].get<int>());
+      std::printf(" %8d", run["rejected"].get<int>());
+      // The early gap: ms to it, and plain's ms over this run's ('-': not reached).
+      const double early_ms = run.value("early_ms", -1.0);
+      const double plain_early = plain ? plain->value("early_ms", -1.0) : -1.0;
+      if (early_ms >= 0)
+        std::printf(" %10.1f", early_ms);
+      else
+        std::printf(" %10s", "-");
+      if (early_ms > 0 && plain_early > 0 && run["accelerator"] != "none")
+        std::printf(" %8.2f\n", plain_early / early_ms);
+      else
+        std::printf(" %8s\n", "");
     }
   }
   std::printf(
@@ -165,8 +187,8 @@ void print_converge_table(const nlohmann::json& results, double tolerance) {
       "CG step); overhead: ms per solve over plain's ms per iteration; '+': the gap was not reached within "
       "the iteration "
       "limit; '*': the run converged (relative gradient %.0e) to another stationary point, energy in the "
-      "JSON's final_energy)\n",
-      ConvergeSettings{}.reference_gradient);
+      "JSON's final_energy; early ms: to a gap of %.0e, x early: plain's early ms over the run's)\n",
+      ConvergeSettings{}.reference_gradient, ConvergeSettings{}.early_gap);
 }
 
 } // namespace iarap::cli

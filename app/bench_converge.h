@@ -22,15 +22,19 @@ Scenario converge_scenario();
 
 struct ConvergeSettings {
   double tolerance = 1e-6; // energy gap E - E* <= tolerance |E*|
-  std::vector<std::string> accelerators = {"none", "anderson", "lbfgs", "newton"};
+  std::vector<std::string> accelerators = {"none", "anderson", "lbfgs", "newton", "hybrid"};
   int window = 0;                   // 0: ArapSolveOptions' default
   int max_iterations = 20000;       // per run, the plain one included
   double reference_gradient = 1e-9; // the reference run stops at this relative gradient norm
+  // Each run also records when it first came within this gap (iterations and ms; when above `tolerance`):
+  // the early phase and the end-game from one run (issue 48: 1e-2 and 1e-6).
+  double early_gap = 1e-2;
 };
 
 // One mesh and method: precompute, a long reference run (the lowest energy of L-BFGS and Anderson run to
 // reference_gradient), then one run per accelerator stopped at the gap. Returns a JSON record with a "runs"
-// array (accelerator, iterations, ms, ms_per_iteration, reached, rejected).
+// array (accelerator, iterations, ms, ms_per_iteration, reached, rejected, early_iterations and early_ms at
+// settings.early_gap, hybrid's newton_from).
 nlohmann::json converge_one(const std::string& path, const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
                             const std::string& method, const ConvergeSettings& settings);
 

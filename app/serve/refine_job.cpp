@@ -46,9 +46,10 @@ RefineJob refine_job_after(const SolveRequest& request, const ArapReport& report
   job.options.rotation_smoothing = request.solve.rotation_smoothing; // refines the energy the solve minimized
   job.tolerance = request.solve.tolerance;
   job.gradient_target = request.solve.gradient_tolerance * report.initial_gradient_norm;
-  if (request.refine_accelerator == request.solve.accelerator) { // Newton's state goes on (same targets)
+  if (request.refine_accelerator == request.solve.accelerator) { // the state goes on (same targets)
     job.trust_radius = report.newton_trust_radius;
     job.reference_gradient = report.newton_reference_gradient;
+    job.history = report.accelerator_history;
   }
   job.gradient_now =
       report.gradient_norms.empty() ? report.initial_gradient_norm : report.gradient_norms.back();
@@ -65,6 +66,7 @@ SessionFrame refine_chunk(RefineJob& job, ArapData& data, Eigen::MatrixXd& U, do
   if (job.gradient_target > 0) options.gradient_tolerance = job.gradient_target / job.gradient_now;
   options.newton_trust_radius = job.trust_radius;
   options.newton_reference_gradient = job.reference_gradient;
+  options.accelerator_history = job.history;
   const bool plain = job.options.accelerator == ArapAccelerator::None || job.options.window == 0;
   bool energy_rule = false;
   // The iteration boundary where a caller of the session takes over (or the server stops), and the
@@ -92,6 +94,7 @@ SessionFrame refine_chunk(RefineJob& job, ArapData& data, Eigen::MatrixXd& U, do
     if (!report.gradient_norms.empty()) job.gradient_now = report.gradient_norms.back();
     job.trust_radius = report.newton_trust_radius;
     job.reference_gradient = report.newton_reference_gradient;
+    job.history = report.accelerator_history;
     frame.energy = last_energy(report);
     frame.relative_decrease = last_relative_decrease(report);
     frame.converged = report.converged || energy_rule;

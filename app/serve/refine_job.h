@@ -18,6 +18,7 @@
 #include <Eigen/Core>
 #include <array>
 #include <functional>
+#include <memory>
 
 namespace iarap::serve {
 
@@ -33,6 +34,9 @@ struct RefineJob {
   // radius of the previous step let the first steps of the beetle's drag run far (its last answer's
   // energy was 400 times the minimum's instead of 1.2 times).
   double trust_radius = 0, reference_gradient = 0;
+  // L-BFGS's pairs, Anderson's differences, the hybrid's phase (ArapSolveOptions::accelerator_history):
+  // carried the same way, from the answer and from chunk to chunk, never over moved targets.
+  std::shared_ptr<ArapAcceleratorHistory> history;
   int iterations_done = 0;
   // The relative decreases of the two counted iterates before (0: none yet), the later one second.
   std::array<double, 2> earlier_decreases{0, 0};

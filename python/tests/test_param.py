@@ -160,7 +160,7 @@ def test_every_accelerator_of_the_engine():
         assert report["flipped"] == 0 and np.all(det_J_signs(V, F, UV) > 0)
     _, budget = iarap.parameterize(V, F, accelerator="none", tolerance=-1, time_budget_ms=1e-3)
     assert budget["stop_reason"] == "time_budget" and budget["iterations"] == 1
-    with pytest.raises(iarap.InputError, match="accelerator must be one of newton, lbfgs, anderson, none; got adam"):
+    with pytest.raises(iarap.InputError, match="accelerator must be one of newton, hybrid, lbfgs, anderson, none; got adam"):
         iarap.parameterize(V, F, accelerator="adam")
 
 

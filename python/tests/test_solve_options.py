@@ -136,7 +136,7 @@ def test_a_bad_tolerance_gets_one_message_everywhere(cli, server, tmp_path):
         iarap.Simulation(V, F, [0, 1, 2], dt=0.1, tolerance=np.float64("nan"))
     with pytest.raises(ValueError, match=re.escape("gradient_tolerance must be a finite number >= 0; got -1")):
         iarap.Simulation(V, F, [0, 1, 2], dt=0.1, gradient_tolerance=-1)
-    with pytest.raises(ValueError, match=re.escape("accelerator must be one of newton, lbfgs, anderson, none; got 2")):
+    with pytest.raises(ValueError, match=re.escape("accelerator must be one of newton, hybrid, lbfgs, anderson, none; got 2")):
         solver.solve(V[[0, 1, 2]], accelerator=2)
 
     run = subprocess.run([cli, "deform", REPO / "data" / "bunny.off", "--scenario",

@@ -2,16 +2,13 @@
 
 #include "iarap/core/stopwatch.h"
 
-#include "anderson_acceleration.h"
-
 namespace iarap::detail {
 
 // The accelerated iterate is kept only when its energy is not above the last accepted one; otherwise the
 // plain iterate G(x_k) (whose energy is not above it either, by block descent) replaces it and the history
 // restarts from there.
-void run_anderson(Problem& problem, const ArapSolveOptions& options, double energy, ArapReport& report,
-                  Progress& progress) {
-  AndersonAcceleration anderson(options.window, problem.free_count() * problem.dimension());
+void run_anderson(Problem& problem, const ArapSolveOptions& options, double energy,
+                  AndersonAcceleration& anderson, ArapReport& report, Progress& progress) {
   Eigen::MatrixXd x = problem.positions(), next(problem.free_count(), problem.dimension());
   for (int k = 0; k < options.max_iterations; ++k) {
     double local_ms = 0, global_ms = 0;

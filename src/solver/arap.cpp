@@ -334,6 +334,7 @@ void arap_set_soft_weights(ArapData& data, const Eigen::VectorXd& vertex_weights
   data.L_fc = std::move(L_fc);
   data.soft = std::move(soft);
   data.Q = std::move(Q);
+  data.free_rows.reset(); // of the old L + Q
   data.timings.analyze_ms = 0.0;
   data.timings.factor_ms = ms_since(start);
 }

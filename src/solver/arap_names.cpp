@@ -29,7 +29,9 @@ ArapAccelerator parse_arap_accelerator(const std::string& name) {
   if (name == "anderson") return ArapAccelerator::Anderson;
   if (name == "lbfgs") return ArapAccelerator::Lbfgs;
   if (name == "newton") return ArapAccelerator::Newton;
-  throw InputError("unknown ARAP accelerator '" + name + "'; expected anderson, lbfgs, newton or none");
+  if (name == "hybrid") return ArapAccelerator::Hybrid;
+  throw InputError("unknown ARAP accelerator '" + name +
+                   "'; expected anderson, lbfgs, newton, hybrid or none");
 }
 
 std::string arap_accelerator_name(ArapAccelerator accelerator) {
@@ -42,6 +44,8 @@ std::string arap_accelerator_name(ArapAccelerator accelerator) {
     return "lbfgs";
   case ArapAccelerator::Newton:
     return "newton";
+  case ArapAccelerator::Hybrid:
+    return "hybrid";
   }
   return "none";
 }

@@ -138,6 +138,7 @@ void commit_layout(ArapData& data, const Eigen::VectorXi& fixed, ConstraintLayou
   data.free =
       Eigen::Map<const Eigen::VectorXi>(layout.free.data(), static_cast<Eigen::Index>(layout.free.size()));
   data.free_slot = std::move(layout.free_slot);
+  data.free_rows.reset(); // of the old free set
 }
 
 } // namespace iarap::detail

@@ -10,12 +10,12 @@ namespace iarap::detail {
 
 // The energy is not convex, so each step is checked by Armijo backtracking; when that fails, the plain
 // local/global step (with no history the L-BFGS step itself) is taken and the history restarts.
-void run_lbfgs(Problem& problem, const ArapSolveOptions& options, double energy, Eigen::MatrixXd g,
-               ArapReport& report, Progress& progress) {
-  LbfgsDirection lbfgs(options.window);
+bool run_lbfgs(Problem& problem, const ArapSolveOptions& options, double& energy, Eigen::MatrixXd& g,
+               LbfgsDirection& lbfgs, ArapReport& report, Progress& progress,
+               const std::function<bool(double)>& hand_over) {
   const auto H0 = [&](const Eigen::MatrixXd& r) { return problem.solve(r); };
   Eigen::MatrixXd x = problem.positions();
-  for (int k = 0; k < options.max_iterations; ++k) {
+  while (report.iterations < options.max_iterations) {
     Eigen::MatrixXd d;
     double slope = 0;
     bool quasi_newton = false;
@@ -47,8 +47,10 @@ void run_lbfgs(Problem& problem, const ArapSolveOptions& options, double energy,
       g.swap(g_next);
     });
     if (progress.record(energy, g.norm(), quasi_newton && step.accepted, step.local_ms, step.global_ms))
-      return;
+      return true;
+    if (hand_over && hand_over(energy)) return false;
   }
+  return true;
 }
 
 } // namespace iarap::detail

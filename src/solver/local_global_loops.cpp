@@ -1,6 +1,8 @@
 #include "local_global_loops.h"
 
+#include "accelerator_history.h"
 #include "anderson_iteration.h"
+#include "hybrid_iteration.h"
 #include "lbfgs_iteration.h"
 #include "newton_trust_region.h"
 #include "plain_iteration.h"
@@ -27,7 +29,13 @@ ArapReport run_local_global(Problem& problem, const ArapSolveOptions& options,
   ArapReport report;
   report.accelerator = options.window == 0 ? ArapAccelerator::None : options.accelerator;
   Progress progress(options, report, factorization, start);
-  if (report.accelerator == ArapAccelerator::Newton) // it prepares the Hessian after nearly every local step
+  if (report.accelerator != ArapAccelerator::None && report.accelerator != ArapAccelerator::Newton)
+    report.accelerator_history =
+        continued_history(options, report.accelerator, problem.free_count() * problem.dimension());
+  ArapAcceleratorHistory* history = report.accelerator_history.get();
+  // Newton prepares the Hessian after nearly every local step; so does the hybrid once it has switched.
+  if (report.accelerator == ArapAccelerator::Newton ||
+      (report.accelerator == ArapAccelerator::Hybrid && history->newton_phase))
     problem.keep_covariances();
   double local_ms = 0, global_ms = 0;
   const double energy = timed(local_ms, [&] { return problem.local_step(); });
@@ -41,13 +49,21 @@ ArapReport run_local_global(Problem& problem, const ArapSolveOptions& options,
     run_plain(problem, options, progress);
     break;
   case ArapAccelerator::Anderson:
-    run_anderson(problem, options, energy, report, progress);
+    run_anderson(problem, options, energy, *history->anderson, report, progress);
     break;
-  case ArapAccelerator::Lbfgs:
-    run_lbfgs(problem, options, energy, std::move(g), report, progress);
+  case ArapAccelerator::Lbfgs: {
+    double e = energy;
+    run_lbfgs(problem, options, e, g, *history->lbfgs, report, progress);
     break;
-  case ArapAccelerator::Newton:
-    run_newton(problem, options, energy, std::move(g), report, progress);
+  }
+  case ArapAccelerator::Newton: {
+    const double reference = options.newton_reference_gradient > 0 ? options.newton_reference_gradient
+                                                                   : report.initial_gradient_norm;
+    run_newton(problem, options, energy, std::move(g), reference, report, progress);
+    break;
+  }
+  case ArapAccelerator::Hybrid:
+    run_hybrid(problem, options, energy, std::move(g), *history, report, progress);
     break;
   }
   report.solves = problem.solves();

@@ -16,7 +16,9 @@ namespace iarap::detail {
 LocalGlobalProblem::LocalGlobalProblem(ArapData& data, const Eigen::MatrixXd& targets, Eigen::MatrixXd& U,
                                        const Eigen::MatrixXd& soft_targets, const Eigen::MatrixXd& forces,
                                        double rotation_smoothing, bool warm_start_rotations)
-    : data_(data), U_(U) {
+    : data_(data), U_(U), rows_(free_row_system(data)), free_position_(rows_->free_position),
+      free_index_(rows_->free_index), L_row_start_(rows_->row_start), L_column_(rows_->column),
+      position_(rows_->position), L_value_(rows_->value) {
   // Constrained positions in L_fc's column order: targets, then pinned vertices where the guess has them.
   Eigen::MatrixXd U_c(data.fixed.size() + data.pinned.size(), 3);
   U_c.topRows(data.fixed.size()) = targets;
@@ -25,31 +27,9 @@ LocalGlobalProblem::LocalGlobalProblem(ArapData& data, const Eigen::MatrixXd& ta
   for (Eigen::Index k = 0; k < data.fixed.size(); ++k) U.row(data.fixed(k)) = targets.row(k);
   const ArapElements& el = data.elements;
   visit_rows(el, U, U_rows_);
-  position_ = inverse_permutation(streamed(el).visit_order);
   const std::vector<int>& position = position_;
   R_spare_.resize(static_cast<size_t>(el.num_cells));
-
-  // The free vertices in visit order (x's rows), and for each its row of the symmetric L (= its column),
-  // of L + Q with soft constraints.
-  const Eigen::SparseMatrix<double> L_soft =
-      data.Q.rows() > 0 ? with_soft(data.L, data.Q) : Eigen::SparseMatrix<double>();
-  const Eigen::SparseMatrix<double>& L = data.Q.rows() > 0 ? L_soft : data.L;
   const Eigen::Index nf = data.free.size();
-  std::vector<int> free_of_position(position.size(), -1);
-  for (Eigen::Index i = 0; i < nf; ++i)
-    free_of_position[static_cast<size_t>(position[static_cast<size_t>(data.free(i))])] = static_cast<int>(i);
-  L_row_start_.assign(1, 0);
-  for (size_t p = 0; p < free_of_position.size(); ++p) {
-    const int i = free_of_position[p];
-    if (i < 0) continue;
-    free_position_.push_back(static_cast<int>(p));
-    free_index_.push_back(i);
-    for (Eigen::SparseMatrix<double>::InnerIterator it(L, data.free(i)); it; ++it) {
-      L_column_.push_back(position[static_cast<size_t>(it.row())]);
-      L_value_.push_back(it.value());
-    }
-    L_row_start_.push_back(static_cast<int>(L_column_.size()));
-  }
   const Eigen::MatrixXd Lfc_Uc = data.L_fc * U_c; // rows in data.free's order
   Lfc_Uc_.resize(nf, 3);
   for (Eigen::Index r = 0; r < nf; ++r) Lfc_Uc_.row(r) = Lfc_Uc.row(free_index_[static_cast<size_t>(r)]);
@@ -153,6 +133,7 @@ Eigen::MatrixXd LocalGlobalProblem::positions() const {
 }
 
 void LocalGlobalProblem::set_positions(const Eigen::MatrixXd& x) {
+  covariances_current_ = false;
 #pragma omp parallel for schedule(static)
   for (Eigen::Index r = 0; r < free_count(); ++r)
     U_rows_.row(free_position_[static_cast<size_t>(r)]) = x.row(r);
@@ -169,6 +150,7 @@ double LocalGlobalProblem::local_step() {
     total = fit_rotations_in_visit_order(data_.elements, U_rows_, data_.R, cell_energy_,
                                          keep_covariances_ ? &S_ : nullptr);
   }
+  covariances_current_ = keep_covariances_;
   for (const auto& term : terms_) total += term->energy(U_rows_);
   return total;
 }
@@ -260,7 +242,8 @@ void LocalGlobalProblem::prepare_hessian() {
     smoothing_->prepare_tangent(S_, data_.R);
     return;
   }
-  if (!keep_covariances_)                          // else the last local step kept them
+  // Else the last local step kept them (a hybrid solve asks for that only from its switch to Newton on).
+  if (!covariances_current_)
     cell_covariances(data_.elements, U_rows_, S_); // U_rows_ holds the last local step's positions
   const auto n = static_cast<int>(S_.size());
   M_inverse_.resize(S_.size());

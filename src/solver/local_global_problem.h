@@ -12,6 +12,7 @@
 #pragma once
 #include "iarap/solver/arap_types.h"
 
+#include "free_row_system.h"
 #include "hard_points.h"
 #include "inner.h"
 #include "problem.h"
@@ -88,11 +89,14 @@ private:
   ArapData& data_;
   Eigen::MatrixXd& U_;
   Eigen::MatrixXd Lfc_Uc_; // #free x 3
-  // The free rows of the symmetric L in visit order, as flat CSR: row r belongs to the free vertex at
-  // position free_position_[r] (increasing) with free index free_index_[r]; its columns are visit positions.
-  // The fused right-hand-side and gradient pass and the Hessian product stream them beside U_rows_.
-  std::vector<int> free_position_, free_index_, L_row_start_, L_column_;
-  std::vector<double> L_value_;
+  // The free rows of the symmetric L in visit order, as flat CSR (free_row_system.h, kept in data between
+  // solves): row r belongs to the free vertex at position free_position_[r] (increasing) with free index
+  // free_index_[r]; its columns are visit positions. The fused right-hand-side and gradient pass and the
+  // Hessian product stream them beside U_rows_. position_: the visit position of each vertex (its row of
+  // U_rows_).
+  std::shared_ptr<const FreeRowSystem> rows_;
+  const std::vector<int>&free_position_, &free_index_, &L_row_start_, &L_column_, &position_;
+  const std::vector<double>& L_value_;
   ArapElements::ValueRows U_rows_;       // the positions in visit order (U's are written back at the end)
   std::vector<Eigen::Matrix3d> R_spare_; // num_cells: where data.R goes back to the file's order
   Eigen::VectorXd cell_energy_;
@@ -101,9 +105,9 @@ private:
       x_free_; // a solve's right-hand side and solution in the factor's row order
   std::vector<Eigen::Matrix3d> S_, dS_, M_inverse_, dR_; // Hessian workspaces (per cell)
   bool keep_covariances_ = false;
-  ArapElements::ValueRows v_rows_; // a direction v on all vertices, 0 at constrained ones
+  bool covariances_current_ = false; // S_ holds the last local step's covariances (kept, or smoothing's)
+  ArapElements::ValueRows v_rows_;   // a direction v on all vertices, 0 at constrained ones
   mutable int solves_ = 0;
-  std::vector<int> position_; // #V: the visit position of each vertex (its row of U_rows_)
   std::vector<std::unique_ptr<QuadraticTerm>> terms_; // evaluated on U_rows_
   Eigen::MatrixXd linear_f_; // #free x 3: sum_t s_t at the free rows (visit order), when there are terms
   std::unique_ptr<RotationSmoothing> smoothing_;             // ALPHA > 0 only

@@ -11,9 +11,11 @@
 
 namespace iarap::detail {
 
-// Up to options.max_iterations Newton steps (at most options.window CG steps each) from the problem's
-// current point, whose energy is `energy` and gradient g.
+// Newton steps (at most options.window CG steps each) from the problem's current point, whose energy is
+// `energy` and gradient g, until report.iterations reaches options.max_iterations or a stopping rule holds.
+// reference_gradient: the ||g_0|| of CG's forcing term (ArapSolveOptions::newton_reference_gradient, or the
+// gradient where the solve began).
 void run_newton(Problem& problem, const ArapSolveOptions& options, double energy, Eigen::MatrixXd g,
-                ArapReport& report, Progress& progress);
+                double reference_gradient, ArapReport& report, Progress& progress);
 
 } // namespace iarap::detail

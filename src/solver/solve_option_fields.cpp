@@ -14,8 +14,9 @@
 namespace iarap {
 namespace {
 
-constexpr std::array<ArapAccelerator, 4> accelerators = {ArapAccelerator::Newton, ArapAccelerator::Lbfgs,
-                                                         ArapAccelerator::Anderson, ArapAccelerator::None};
+constexpr std::array<ArapAccelerator, 5> accelerators = {ArapAccelerator::Newton, ArapAccelerator::Hybrid,
+                                                         ArapAccelerator::Lbfgs, ArapAccelerator::Anderson,
+                                                         ArapAccelerator::None};
 
 bool in_range(const SolveOptionField& field, double value) {
   return value >= field.low && value <= field.high &&

@@ -57,7 +57,7 @@ TEST(SolveOptionFlags, ABadValueIsAUsageErrorInTheLibrarysWords) {
       {deform + "--tolerance nan", "--tolerance: tolerance must be a finite number; got nan"},
       {deform + "--iterations 1.5", "--iterations: iterations must be an integer in [0, 1000000]; got 1.5"},
       {deform + "--accel fast",
-       "--accel: accelerator must be one of newton, lbfgs, anderson, none; got fast"},
+       "--accel: accelerator must be one of newton, hybrid, lbfgs, anderson, none; got fast"},
       {simulate + "--tolerance inf", "--tolerance: tolerance must be a finite number; got inf"},
       {simulate + "--grad-tol -1", "--grad-tol: gradient_tolerance must be a finite number >= 0; got -1"},
       {simulate + "--time-budget x", "--time-budget: time_budget_ms must be a finite number >= 0; got x"},

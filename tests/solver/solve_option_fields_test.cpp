@@ -95,7 +95,7 @@ TEST(SolveOptionFields, OneMessageNamesTheOptionItsRangeAndTheValue) {
   EXPECT_EQ(message_of_text("gradient_tolerance", "1e-6x"),
             "gradient_tolerance must be a finite number >= 0; got 1e-6x");
   EXPECT_EQ(message_of_text("accelerator", "fast"),
-            "accelerator must be one of newton, lbfgs, anderson, none; got fast");
+            "accelerator must be one of newton, hybrid, lbfgs, anderson, none; got fast");
   EXPECT_EQ(
       message_of_text("max_iterations", "5")
           .rfind("unknown solve option 'max_iterations'; the options are iterations, tolerance, accelerator, "

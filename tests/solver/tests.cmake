@@ -7,4 +7,5 @@ list(APPEND IARAP_TEST_SOURCES
   solver/closest_rotation_2d_test.cpp solver/stopping_test.cpp
   solver/unreferenced_vertices_test.cpp solver/soft_constraints_test.cpp solver/newton_warm_start_test.cpp
   solver/hard_points_test.cpp solver/solve_option_fields_test.cpp solver/stiffness_test.cpp solver/arap_memory_test.cpp
-  solver/tet_arap_test.cpp solver/rotation_smoothing_test.cpp solver/rigid_groups_test.cpp)
+  solver/tet_arap_test.cpp solver/rotation_smoothing_test.cpp solver/rigid_groups_test.cpp
+  solver/accelerator_history_test.cpp)

@@ -126,7 +126,7 @@ describe('api', () => {
     const { fixed, handle, height } = await bottomAndTop();
     await postJson('/api/constraints', { fixed, handle });
     const transform = [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0.2 * height, 0, 0, 1];
-    for (const accelerator of ['none', 'anderson', 'lbfgs', 'newton']) {
+    for (const accelerator of ['none', 'anderson', 'lbfgs', 'newton', 'hybrid']) {
       await postJson('/api/reset', {});
       const response = await postJson('/api/solve', { method: 'spokes-rims', iterations: 8, tolerance: -1, accelerator, transform });
       assert.equal(response.status, 200, await response.clone().text());
@@ -139,7 +139,7 @@ describe('api', () => {
     }
     const bad = await postJson('/api/solve', { method: 'iarap', accelerator: 'fast', transform });
     assert.equal(bad.status, 400);
-    assert.equal((await bad.json()).error, 'accelerator must be one of newton, lbfgs, anderson, none; got fast');
+    assert.equal((await bad.json()).error, 'accelerator must be one of newton, hybrid, lbfgs, anderson, none; got fast');
     // The solve options' one message (docs/options.md), as `iarap deform` and Python word it.
     await expectError(postJson('/api/solve', { method: 'iarap', gradient_tolerance: -1, transform }), 400,
       /^gradient_tolerance must be a finite number >= 0; got -1$/);

@@ -10,6 +10,7 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -98,6 +99,10 @@ struct ArapIntrinsicSummary {
 
 // Everything arap_solve needs, owned by value (copyable: a copy refactorizes; movable: cheap).
 // Fields are public for inspection; change them only through the functions below.
+namespace detail {
+struct FreeRowSystem; // src/solver/free_row_system.h
+} // namespace detail
+
 struct ArapData {
   ArapMethod method = ArapMethod::Iarap;
   bool pin_unconstrained_components = false;
@@ -120,6 +125,9 @@ struct ArapData {
   Eigen::SparseMatrix<double> Q;  // #V x #V soft system part sum_k 2 W_k c_k c_k^T (0 x 0 without soft)
   std::vector<Eigen::Matrix3d> R; // one per cell (arap_rotations) for the last iterate of arap_solve
   RigidGroupSystem rigid;         // ArapOptions::rigid_groups' system (empty: none)
+  // L's (L + Q's) free rows as the solves stream them, built by the first solve and kept for the next
+  // (free_row_system.h); cleared where the constrained set or Q changes.
+  std::shared_ptr<const detail::FreeRowSystem> free_rows;
   ArapPrecomputeTimings timings;
   ArapIntrinsicSummary intrinsic;
 };
@@ -131,14 +139,20 @@ enum class ArapAccelerator {
   Anderson, // Anderson acceleration of that fixed-point map (Peng et al. 2018) with their energy safeguard
   Lbfgs,    // L-BFGS on the rotation-minimized energy, initial inverse Hessian L_ff^{-1} (Liu et al. 2017)
   Newton,   // truncated Newton with the exact Hessian of that energy: trust-region CG preconditioned by L_ff
+  Hybrid,   // L-BFGS while it makes progress, then Newton's end-game (ArapSolveOptions::accelerator)
 };
 
-// "none" | "anderson" | "lbfgs" | "newton"; anything else throws InputError naming the value and the choices.
+// "none" | "anderson" | "lbfgs" | "newton" | "hybrid"; anything else throws InputError naming the value and
+// the choices.
 ArapAccelerator parse_arap_accelerator(const std::string& name);
 // The inverse of parse_arap_accelerator.
 std::string arap_accelerator_name(ArapAccelerator accelerator);
 
 struct ArapReport;
+// L-BFGS's pairs, Anderson's differences and the hybrid's phase after a solve
+// (src/solver/accelerator_history.h; opaque): ArapReport::accelerator_history, to hand on as
+// ArapSolveOptions::accelerator_history.
+struct ArapAcceleratorHistory;
 
 // Called after each iteration with the report so far; returning false stops the solve (converged stays
 // false). For progress display and for stopping on an outside criterion (the bench's energy gap).
@@ -186,6 +200,15 @@ struct ArapSolveOptions {
   // the superlinear end-game.
   double newton_trust_radius = 0;
   double newton_reference_gradient = 0;
+  // Warm start of L-BFGS's (s, y) pairs, Anderson's residual differences and the hybrid's phase from an
+  // earlier solve on the same data and targets (its ArapReport::accelerator_history), for a solve that
+  // continues one (the viewer's refinement in chunks): the second call then goes on where the first stopped
+  // instead of rebuilding the history from a plain step. The solve continues the history in place and the
+  // report hands back the same object (no copy of its window x #free x 3 vectors). A history of another
+  // accelerator or window is reset (a cold start); one of a problem of another size throws InputError.
+  // Over moved targets the pairs are those of a nearby energy: still safe (every step is checked), not
+  // always faster. Null: cold, as before.
+  std::shared_ptr<ArapAcceleratorHistory> accelerator_history;
   // Rotation smoothing ALPHA >= 0 (issue 45, docs/smoothing.md): the energy gains
   // (ALPHA A / 2) sum_i (1 / (2 d_i)) sum_{j in N(i)} |R_i - R_j|_F^2 (A the rest area, N(i) the cells
   // sharing an element with i's, d_i their number), the symmetric form of CGAL's SRE_ARAP with its alpha
@@ -252,6 +275,11 @@ struct ArapReport {
   // iteration, to pass on as ArapSolveOptions::newton_trust_radius / newton_reference_gradient.
   double newton_trust_radius = 0;
   double newton_reference_gradient = 0;
+  // L-BFGS, Anderson and hybrid only (null otherwise): their history after the last iteration, to pass on as
+  // ArapSolveOptions::accelerator_history.
+  std::shared_ptr<ArapAcceleratorHistory> accelerator_history;
+  // Hybrid only: the iteration (1-based) whose step was Newton's first; 0 while it has not switched.
+  int newton_from_iteration = 0;
 };
 
 } // namespace iarap

@@ -55,7 +55,8 @@ inline constexpr SolveOptionField accelerator{
     0,
     0,
     "",
-    "Accelerator of the local/global iteration: newton, lbfgs, anderson or none"};
+    "Accelerator of the local/global iteration: newton, hybrid (L-BFGS, then Newton once it stalls), "
+    "lbfgs, anderson or none"};
 inline constexpr SolveOptionField window{
     "window",
     "--window",
@@ -63,7 +64,8 @@ inline constexpr SolveOptionField window{
     0,
     1000,
     "",
-    "History length of the accelerator (newton: conjugate-gradient steps per Newton step; 0: plain)"};
+    "History length of the accelerator (newton: conjugate-gradient steps per Newton step; hybrid: both; 0: "
+    "plain)"};
 inline constexpr SolveOptionField gradient_tolerance{
     "gradient_tolerance",
     "--grad-tol",
@@ -120,11 +122,11 @@ void visit_solve_option_fields(Options& options, Visitor&& visit) {
   visit(solve_option::rotation_smoothing, options.rotation_smoothing);
 }
 
-// The names a Choice field accepts, comma-separated ("newton, lbfgs, anderson, none").
+// The names a Choice field accepts, comma-separated ("newton, hybrid, lbfgs, anderson, none").
 std::string solve_option_choices(const SolveOptionField& field);
 
 // What a field accepts, in words: "an integer in [0, 1000]", "a finite number >= 0", "a finite number",
-// "one of newton, lbfgs, anderson, none".
+// "one of newton, hybrid, lbfgs, anderson, none".
 std::string solve_option_range(const SolveOptionField& field);
 
 // The one message of a bad value, whatever the front-end: "tolerance must be a finite number; got nan".
