@@ -106,14 +106,15 @@ struct ArapIntrinsicSummary {
 struct ArapData {
   ArapMethod method = ArapMethod::Iarap;
   bool pin_unconstrained_components = false;
-  bool planar = false;     // rotations about z only; positions in the plane z = 0 (ArapOptions::planar)
-  Eigen::MatrixXd V;       // #V x 3 rest positions (z = 0 for planar data given as #V x 2)
-  Eigen::MatrixXi F;       // #F x 3 faces
-  ArapElements elements;   // the variant's elements (arap_elements.h)
-  double min_weight = 0.0; // the smallest element weight w_e (negative: a non-Delaunay cotan weight)
-  Eigen::Index negative_weights = 0; // how many elements have w_e < 0
-  Eigen::SparseMatrix<double> L;     // #V x #V system matrix, sum_e |cells(e)| w_e b_e b_e^T
-  Eigen::VectorXi component;         // #V connected component of each vertex
+  bool planar = false;           // rotations about z only; positions in the plane z = 0 (ArapOptions::planar)
+  Eigen::MatrixXd V;             // #V x 3 rest positions (z = 0 for planar data given as #V x 2)
+  Eigen::MatrixXi F;             // #F x 3 faces
+  ArapElements elements;         // the variant's elements (arap_elements.h)
+  double min_weight = 0.0;       // the smallest element weight w_e (negative: a non-Delaunay cotan weight)
+  Eigen::SparseMatrix<double> L; // #V x #V system matrix, sum_e |cells(e)| w_e b_e b_e^T
+  // How many elements have w_e < 0 (counted before the element arrays are released).
+  Eigen::Index negative_weights = 0;
+  Eigen::VectorXi component; // #V connected component of each vertex
   int component_count = 0;
   Eigen::VectorXi fixed;     // #fixed user-constrained vertices, in the order of the targets rows
   Eigen::VectorXi pinned;    // vertices pinned by pin_unconstrained_components, and vertices used by no face
