@@ -8,6 +8,7 @@
 
 #include "iarap/core/blas_library.h"
 #include "iarap/core/errors.h"
+#include "iarap/core/resident_memory.h"
 #include "iarap/core/stopwatch.h"
 #include "iarap/core/threads.h"
 #include "iarap/io/check_output_path.h"
@@ -114,6 +115,7 @@ nlohmann::json bench_one(const std::string& path, const Eigen::MatrixXd& V, cons
   // one vertex of each keeps them benchmarkable instead of singular.
   options.pin_unconstrained_components = true;
   options.ordering = ordering;
+  trace_resident("mesh loaded");
   const auto start = Clock::now();
   ArapData data = arap_precompute(V, F, constraints.fixed, options);
   const double precompute_ms = ms_since(start);
@@ -123,6 +125,7 @@ nlohmann::json bench_one(const std::string& path, const Eigen::MatrixXd& V, cons
   solve_options.tolerance = -1;                      // run them all
   solve_options.accelerator = ArapAccelerator::None; // the plain local/global iteration (issue 18's figure)
   const ArapReport report = arap_solve(data, constraints.targets, U, solve_options);
+  trace_resident("solved");
   const IterationFloor floor = iteration_floor(data, U, 11);
   std::vector<double> iteration_ms(report.local_ms_per_iteration.size());
   for (std::size_t k = 0; k < iteration_ms.size(); ++k)

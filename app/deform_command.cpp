@@ -117,7 +117,7 @@ void write_tet_result(const DeformArguments& args, const DeformScene& scene, con
   const double ratio =
       tet_signed_volumes(result.U, scene.tets).sum() / tet_signed_volumes(scene.mesh.V, scene.tets).sum();
   j["tetrahedra"] = scene.tets.rows();
-  j["negative_weights"] = (result.data.elements.w.array() < 0).count();
+  j["negative_weights"] = result.data.negative_weights;
   j["volume_ratio"] = ratio;
   if (!args.quiet)
     std::cerr << "deform: " << scene.tets.rows() << " tetrahedra, volume after / before " << ratio << "\n";

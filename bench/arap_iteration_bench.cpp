@@ -49,6 +49,7 @@ void BM_ArapIteration(benchmark::State& state, const std::string& path, iarap::A
   iarap::set_thread_count(static_cast<int>(state.range(0)));
   iarap::ArapOptions options;
   options.method = method;
+  options.keep_elements = true; // the element count below
   iarap::ArapData data = iarap::arap_precompute(p.mesh.V, p.mesh.F, p.fixed, options);
   iarap::ArapSolveOptions solve;
   solve.max_iterations = 10;

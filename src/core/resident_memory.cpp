@@ -1,8 +1,11 @@
 #include "iarap/core/resident_memory.h"
 
+#include <malloc.h>
 #include <sys/resource.h>
 #include <unistd.h>
 
+#include <cstdio>
+#include <cstdlib>
 #include <fstream>
 
 namespace iarap {
@@ -18,6 +21,19 @@ std::size_t current_resident_bytes() {
   std::size_t pages = 0, resident = 0;
   if (!(statm >> pages >> resident)) return 0;
   return resident * static_cast<std::size_t>(sysconf(_SC_PAGESIZE));
+}
+
+void release_free_heap() {
+  malloc_trim(0);
+}
+
+void trace_resident(const char* phase) {
+  static const bool enabled = std::getenv("IARAP_MEMORY_TRACE") != nullptr;
+  if (!enabled) return;
+  const struct mallinfo2 heap = mallinfo2();
+  std::fprintf(stderr, "memory: %s resident %.1f MB peak %.1f MB (malloc in use %.1f MB)\n", phase,
+               current_resident_bytes() / 1e6, peak_resident_bytes() / 1e6,
+               static_cast<double>(heap.uordblks + heap.hblkhd) / 1e6);
 }
 
 } // namespace iarap

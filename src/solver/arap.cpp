@@ -1,6 +1,7 @@
 #include "iarap/solver/arap.h"
 
 #include "iarap/core/errors.h"
+#include "iarap/core/resident_memory.h"
 #include "iarap/core/stopwatch.h"
 #include "iarap/mesh/connected_components.h"
 #include "iarap/mesh/cotan.h"
@@ -72,10 +73,23 @@ struct SystemBuild {
   bool factorized = false;
 };
 
+// Frees A's arrays: Eigen 3.4's SparseMatrix has no move assignment, and assigning it an empty matrix keeps
+// its capacity.
+void free_sparse(Eigen::SparseMatrix<double>& A) {
+  Eigen::SparseMatrix<double>().swap(A);
+}
+
+// The pattern's arrays, freed (as free_sparse).
+void free_pattern(SystemPattern& pattern) {
+  free_sparse(pattern.matrix);
+  pattern.face_slot.resize(0, 9);
+}
+
 // CHOLMOD's symbolic analysis of L_ff on the pattern.
 void analyze(const detail::ConstraintLayout& layout, SystemBuild& system) {
   detail::split_system(system.pattern.matrix, layout, system.L_ff, nullptr);
   timed(system.analyze_ms, [&] { system.solver.analyze(system.L_ff); });
+  free_sparse(system.L_ff); // the analysis keeps its own copy of the pattern
 }
 
 // L_ff and L_fc from L, and the numeric factorization of L_ff (throws SolverError).
@@ -83,7 +97,20 @@ void factorize(const Eigen::SparseMatrix<double>& L, const detail::ConstraintLay
                SystemBuild& system) {
   detail::split_system(detail::with_soft(L, system.Q), layout, system.L_ff, &system.L_fc);
   system.solver.factorize(system.L_ff);
+  free_sparse(system.L_ff); // the solver keeps its own copy for refactorization
   system.factorized = true;
+}
+
+// From this many vertices arap_precompute returns the freed heap to the system before and after its work:
+// the freed transients are then hundreds of megabytes (issue 44), and their page faults a small part of a
+// precompute of seconds.
+constexpr Eigen::Index kReleaseHeapVertices = 100000;
+
+// Returns the freed heap to the system on a large mesh (kReleaseHeapVertices): called where a phase of the
+// precompute has freed its transients, so that the other thread's next arrays (each thread allocates from a
+// heap of its own, and arrays of 32 MB and more are mappings of their own) do not add to them.
+void release_freed_transients(Eigen::Index vertices) {
+  if (vertices >= kReleaseHeapVertices) release_free_heap();
 }
 
 // The rest mesh as the builders take it, #V x 3: a #V x 2 V embedded at z = 0; a planar #V x 3 one must lie
@@ -96,6 +123,13 @@ Eigen::MatrixXd rest_positions(const Eigen::MatrixXd& V, bool planar) {
         throw InputError("ARAP: vertex " + std::to_string(v) + " has z = " + std::to_string(V(v, 2)) +
                          "; ArapOptions::planar needs a mesh in the plane z = 0");
   return V;
+}
+
+// data.min_weight and data.negative_weights from the elements' weights (before they are released).
+void summarize_weights(ArapData& data) {
+  const Eigen::VectorXd& w = data.elements.w;
+  data.min_weight = w.size() > 0 ? w.minCoeff() : 0.0;
+  data.negative_weights = (w.array() < 0.0).count();
 }
 
 // What arap_precompute knows before any element: the rest mesh, the method and the connected components.
@@ -196,8 +230,10 @@ void build_tufted_elements(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, c
 // topology and the input's face cotangents and corner angles are computed once (signpost_input) for both:
 // the pattern and the cotan Laplacian read the first two, the signpost triangulation all three; each drops
 // its references when done with them.
+// release_elements: nothing after the precompute reads the element arrays (ArapOptions::keep_elements,
+// rigid groups); where L then needs none of them either, the streamed layout's build releases them.
 void build_intrinsic_elements(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
-                              const IntrinsicOptions& intrinsic, bool cotan_identity,
+                              const IntrinsicOptions& intrinsic, bool cotan_identity, bool release_elements,
                               const detail::ConstraintLayout& layout, ArapData& data, SystemBuild& system) {
   std::optional<detail::TracedTriangulation> traced;
   double intrinsic_ms = 0.0, elements_ms = 0.0, cotan_ms = 0.0;
@@ -216,18 +252,31 @@ void build_intrinsic_elements(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F
         system.pattern = system_pattern(F, static_cast<int>(V.rows()), *topology);
         topology.reset();
         analyze(layout, system);
+        release_freed_transients(V.rows()); // the ordering's workspaces
+        trace_resident("analyzed");
         // Degenerate faces (mollified lengths) or stiffness: the identity does not hold.
         if (!cotan_identity || !C->allFinite()) return;
         data.L = timed(cotan_ms, [&] { return cotan_system_matrix(F, *C, system.pattern); });
         C.reset();
+        // The pattern (its face slots alone are 36 bytes per face) is not needed again unless the intrinsic
+        // build mollified lengths; factorize_element_system rebuilds it then.
+        free_pattern(system.pattern);
         factorize(data.L, layout, system);
+        release_freed_transients(V.rows()); // CHOLMOD's permuted copies and update matrices
+        trace_resident("factorized");
       },
       [&] {
         timed(intrinsic_ms,
               [&] { traced = detail::trace_phase(detail::flip_phase(V, F, intrinsic, &input), false); });
+        trace_resident("traced");
         timed(elements_ms, [&] {
           take_traced_elements(V, traced, data);
-          detail::finish_elements(V, data.elements, true);
+          release_freed_transients(V.rows()); // the intrinsic triangulation and its traces
+          trace_resident("elements");
+          summarize_weights(data);
+          detail::finish_elements(V, data.elements, true,
+                                  release_elements && cotan_identity && data.intrinsic.mollify_delta == 0.0);
+          release_freed_transients(V.rows()); // the element arrays and the layout's workspaces
         });
       },
       detail::Beside::CallerOutsideOpenMP);
@@ -241,8 +290,11 @@ void build_intrinsic_elements(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F
 // L from the elements (Eq. 17) and its factorization, where the element build did not factorize it.
 void factorize_element_system(const Eigen::MatrixXi& F, const detail::ConstraintLayout& layout,
                               ArapData& data, SystemBuild& system) {
-  data.L = timed(data.timings.assembly_ms,
-                 [&] { return element_system_matrix(data.elements, F, system.pattern); });
+  data.L = timed(data.timings.assembly_ms, [&] {
+    if (system.pattern.matrix.size() == 0)
+      system.pattern = system_pattern(F, static_cast<int>(data.V.rows()));
+    return element_system_matrix(data.elements, F, system.pattern);
+  });
   timed(data.timings.factor_ms, [&] { factorize(data.L, layout, system); });
 }
 
@@ -265,6 +317,11 @@ ArapData arap_precompute(const Eigen::MatrixXd& V_in, const Eigen::MatrixXi& F, 
 
 ArapData arap_precompute(const Eigen::MatrixXd& V_in, const Eigen::MatrixXi& F, const Eigen::VectorXi& fixed,
                          const ArapSoftConstraints& soft, const ArapOptions& options) {
+  // What the caller freed before (a subdivision's transients, say) goes back to the system first: the
+  // precompute's threads allocate from heaps of their own, which could not reuse it. Small meshes skip
+  // it: there the freed heap is what the next precompute reuses without page faults (malloc_settings.cpp).
+  release_freed_transients(V_in.rows());
+  trace_resident("precompute start");
   const Eigen::MatrixXd V = rest_positions(V_in, options.planar);
   check_arap_mesh(V, F);
   ArapData data = rest_data(V, F, options);
@@ -278,22 +335,31 @@ ArapData arap_precompute(const Eigen::MatrixXd& V_in, const Eigen::MatrixXi& F, 
   SystemBuild system;
   system.solver.set_ordering(options.ordering);
   system.Q = detail::soft_system_matrix(detail::soft_points(soft, F), static_cast<int>(V.rows()));
+  // Nothing after the precompute reads the element arrays but the rigid groups' system (and callers that
+  // ask for them): they are released, during the streamed layout's build where nothing later needs them.
+  const bool release_elements = !options.keep_elements && options.rigid_groups.empty();
   if (options.method == ArapMethod::Iarap)
-    build_intrinsic_elements(V, F, options.intrinsic, !stiffness, layout, data, system);
+    build_intrinsic_elements(V, F, options.intrinsic, !stiffness, release_elements, layout, data, system);
   else
     build_cotan_elements(V, F, options.method, layout, data, system);
   if (stiffness)
     detail::apply_cell_stiffness(data.elements, detail::cell_stiffness_of(data.elements, options.stiffness));
   if (!system.factorized) factorize_element_system(F, layout, data, system);
   data.elements.planar = data.planar;
-  data.min_weight = data.elements.size() > 0 ? data.elements.w.minCoeff() : 0.0;
+  if (!data.elements.arrays_released) summarize_weights(data);
   data.timings.analyze_ms = system.analyze_ms;
   data.R.assign(static_cast<size_t>(data.elements.num_cells), Eigen::Matrix3d::Identity());
   if (!options.rigid_groups.empty())
     data.rigid = detail::rigid_group_system(options.rigid_groups, data, system.Q, soft, fixed, layout);
   detail::commit_layout(data, fixed, layout, system.solver, system.L_fc);
   data.soft = soft;
-  data.Q = std::move(system.Q);
+  data.Q.swap(system.Q);
+  if (release_elements && !data.elements.arrays_released) release_element_arrays(data.elements);
+  free_pattern(system.pattern);
+  free_sparse(system.L_fc);
+  // What the precompute freed goes back to the system: the resident set is then what data holds.
+  release_freed_transients(V.rows());
+  trace_resident("precomputed");
   return data;
 }
 

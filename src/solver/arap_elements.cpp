@@ -1,6 +1,7 @@
 #include "iarap/solver/arap_elements.h"
 
 #include "iarap/core/errors.h"
+#include "iarap/core/resident_memory.h"
 #include "iarap/core/threads.h"
 #include "iarap/mesh/cotan.h"
 #include "iarap/mesh/edge_topology.h"
@@ -104,6 +105,75 @@ int intrinsic_cell_count(const Eigen::MatrixXi& E, int num_vertices) {
 }
 
 } // namespace
+
+void release_element_arrays(ArapElements& el) {
+  // The cell graph first, from the cell -> elements incidence, in two sweeps (count, then fill) so that no
+  // list per cell is allocated: each cell's other cells, marked off in a per-thread array so that each is
+  // listed once, then sorted.
+  const int cells = el.num_cells;
+  el.cell_neighbour_start.assign(static_cast<size_t>(cells) + 1, 0);
+  bool shared = false;
+  auto for_each_neighbour = [&](int c, std::vector<int>& seen, const auto& visit) {
+    for (int k = el.cell_element_start[static_cast<size_t>(c)];
+         k < el.cell_element_start[static_cast<size_t>(c) + 1]; ++k) {
+      const auto e = static_cast<size_t>(el.cell_element[static_cast<size_t>(k)]);
+      for (int j = el.cell_start[e]; j < el.cell_start[e + 1]; ++j) {
+        const int other = el.cell[static_cast<size_t>(j)];
+        if (other != c && seen[static_cast<size_t>(other)] != c) {
+          seen[static_cast<size_t>(other)] = c;
+          visit(other);
+        }
+      }
+    }
+  };
+#pragma omp parallel num_threads(loop_thread_count()) reduction(|| : shared)
+  {
+    std::vector<int> seen(static_cast<size_t>(cells), -1);
+#pragma omp for schedule(static)
+    for (int c = 0; c < cells; ++c)
+      for_each_neighbour(c, seen, [&](int) { ++el.cell_neighbour_start[static_cast<size_t>(c) + 1]; });
+#pragma omp single
+    {
+      for (int c = 0; c < cells; ++c)
+        el.cell_neighbour_start[static_cast<size_t>(c) + 1] +=
+            el.cell_neighbour_start[static_cast<size_t>(c)];
+      el.cell_neighbour.resize(static_cast<size_t>(el.cell_neighbour_start[static_cast<size_t>(cells)]));
+    }
+    std::fill(seen.begin(), seen.end(), -1);
+#pragma omp for schedule(static)
+    for (int c = 0; c < cells; ++c) {
+      int* out = el.cell_neighbour.data() + el.cell_neighbour_start[static_cast<size_t>(c)];
+      int* const begin = out;
+      for_each_neighbour(c, seen, [&](int other) { *out++ = other; });
+      std::sort(begin, out);
+    }
+#pragma omp for schedule(static)
+    for (Eigen::Index e = 0; e < el.size(); ++e)
+      shared =
+          shared || el.cell_start[static_cast<size_t>(e) + 1] - el.cell_start[static_cast<size_t>(e)] > 1;
+  }
+  el.cells_share_elements = shared;
+  el.b_index = {};
+  el.b_value = {};
+  el.s_hat = {};
+  el.w = {};
+  std::vector<int>().swap(el.face);
+  std::vector<int>().swap(el.cell_start);
+  std::vector<int>().swap(el.cell);
+  std::vector<int>().swap(el.cell_element_start);
+  std::vector<int>().swap(el.cell_element);
+  el.arrays_released = true;
+}
+
+namespace detail {
+void require_element_arrays(const ArapElements& el, const char* what) {
+  if (el.arrays_released)
+    throw InputError(
+        std::string(what) +
+        ": the element arrays were released after the precompute (set ArapOptions::keep_elements "
+        "to keep them)");
+}
+} // namespace detail
 
 void check_arap_mesh(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
   if (V.cols() != 3) throw InputError("ARAP: V must be #V x 3, got " + std::to_string(V.cols()) + " columns");
@@ -240,7 +310,7 @@ ArapElements iarap_elements(const Eigen::MatrixXd& V, const IntrinsicDelaunay& i
 
 namespace detail {
 
-void finish_elements(const Eigen::MatrixXd& V, ArapElements& el, bool has_rest_vectors) {
+void finish_elements(const Eigen::MatrixXd& V, ArapElements& el, bool has_rest_vectors, bool release_arrays) {
   const Eigen::Index m = el.size();
   if (!has_rest_vectors) {
     el.s_hat.resize(m, 3);
@@ -254,7 +324,8 @@ void finish_elements(const Eigen::MatrixXd& V, ArapElements& el, bool has_rest_v
           for (int c = el.cell_start[e]; c < el.cell_start[e + 1]; ++c) emit(el.cell[c], static_cast<int>(e));
       },
       el.cell_element_start, el.cell_element);
-  el.streamed = std::make_shared<const detail::StreamedLayout>(detail::streamed_layout(V, el));
+  el.streamed =
+      std::make_shared<const detail::StreamedLayout>(detail::streamed_layout(V, el, release_arrays));
 }
 
 ArapElements traced_iarap_elements(const Eigen::MatrixXd& V, const IntrinsicTriangulation& tri,
@@ -311,6 +382,7 @@ void drop_two_cell_elements(ArapElements& el, const std::vector<char>& drop) {
 } // namespace detail
 
 Eigen::SparseMatrix<double> element_system_matrix(const ArapElements& el) {
+  detail::require_element_arrays(el, "system matrix");
   std::vector<Eigen::Triplet<double>> triplets;
   triplets.reserve(static_cast<size_t>(9 * el.size()));
   for (Eigen::Index e = 0; e < el.size(); ++e) {

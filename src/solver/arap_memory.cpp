@@ -30,7 +30,8 @@ ArapMemory arap_memory(const ArapData& data) {
   m.elements = dense_bytes(el.b_index) + dense_bytes(el.b_value) + dense_bytes(el.s_hat) + dense_bytes(el.w) +
                vector_bytes(el.face) + vector_bytes(el.cell_start) + vector_bytes(el.cell) +
                vector_bytes(el.cell_element_start) + vector_bytes(el.cell_element) +
-               dense_bytes(el.cell_stiffness);
+               dense_bytes(el.cell_stiffness) + vector_bytes(el.cell_neighbour_start) +
+               vector_bytes(el.cell_neighbour);
   if (el.streamed) {
     const detail::StreamedLayout& sl = *el.streamed;
     m.streamed = vector_bytes(sl.visit_order) + vector_bytes(sl.cell_entry_start) +

@@ -131,7 +131,7 @@ void split_system(const Eigen::SparseMatrix<double>& L, const ConstraintLayout& 
 void commit_layout(ArapData& data, const Eigen::VectorXi& fixed, ConstraintLayout& layout,
                    SparseCholesky& solver, Eigen::SparseMatrix<double>& L_fc) {
   data.solver = std::move(solver);
-  data.L_fc = std::move(L_fc);
+  data.L_fc.swap(L_fc); // Eigen 3.4's SparseMatrix has no move assignment: a "move" would copy
   data.fixed = fixed;
   data.pinned = Eigen::Map<const Eigen::VectorXi>(layout.pinned.data(),
                                                   static_cast<Eigen::Index>(layout.pinned.size()));

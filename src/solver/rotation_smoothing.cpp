@@ -58,7 +58,13 @@ RotationSmoothing::RotationSmoothing(const ArapElements& el, const std::vector<i
                                      double area)
     : cells_(el.num_cells) {
   std::vector<std::set<int>> neighbours(static_cast<size_t>(cells_));
-  bool shared = false;
+  bool shared = el.arrays_released && el.cells_share_elements;
+  if (el.arrays_released) // the cell graph release_element_arrays kept
+    for (int c = 0; c < cells_; ++c)
+      for (int k = el.cell_neighbour_start[static_cast<size_t>(c)];
+           k < el.cell_neighbour_start[static_cast<size_t>(c) + 1]; ++k)
+        neighbours[static_cast<size_t>(position[static_cast<size_t>(c)])].insert(
+            position[static_cast<size_t>(el.cell_neighbour[static_cast<size_t>(k)])]);
   for (Eigen::Index e = 0; e < el.size(); ++e) {
     const int begin = el.cell_start[static_cast<size_t>(e)], end = el.cell_start[static_cast<size_t>(e) + 1];
     for (int a = begin; a < end; ++a)

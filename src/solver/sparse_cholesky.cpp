@@ -116,11 +116,13 @@ struct SparseCholesky::Impl {
   Impl& operator=(Impl&& other) noexcept {
     if (this == &other) return *this;
     workspace.release();
-    A = std::move(other.A);
+    // Swapped, not assigned: Eigen 3.4's SparseMatrix has no move assignment (it would copy), and its
+    // assignment from an empty matrix keeps the capacity. other (a temporary or a discarded Impl) frees them.
+    A.swap(other.A);
     kind = other.kind;
     ordering = other.ordering;
     used = other.used;
-    analyzed = std::move(other.analyzed);
+    analyzed.swap(other.analyzed);
     llt = std::move(other.llt);
     ldlt = std::move(other.ldlt);
     workspace = other.workspace;
@@ -270,6 +272,9 @@ void SparseCholesky::factorize(const Eigen::SparseMatrix<double>& A) {
     next.llt->compute(next.A);
   }
   if (next.llt->info() == Eigen::Success) {
+    // CHOLMOD's workspaces (sized by the rows and the supernodes) serve the next analysis or factorization
+    // only; a solve allocates what it needs.
+    cholmod_free_work(&next.llt->cholmod());
     next.kind = FactorizationKind::CholmodSupernodalLLT;
     next.supernodal = supernodal_plan(next.llt->factor());
     *impl_ = std::move(next);

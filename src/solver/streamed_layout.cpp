@@ -1,5 +1,6 @@
 #include "streamed_layout.h"
 
+#include "iarap/core/resident_memory.h"
 #include "iarap/core/threads.h"
 
 #include "visit_order.h"
@@ -126,10 +127,13 @@ void fill_rhs_terms(const ArapElements& el, StreamedLayout& sl) {
 
 } // namespace
 
-StreamedLayout streamed_layout(const Eigen::MatrixXd& V, const ArapElements& el) {
+StreamedLayout streamed_layout(const Eigen::MatrixXd& V, ArapElements& el, bool release_arrays) {
   StreamedLayout sl;
   fill_cell_entries(V, el, sl);
+  trace_resident("cell entries");
+  if (release_arrays) release_element_arrays(el);
   fill_rhs_terms(el, sl);
+  trace_resident("rhs terms");
   return sl;
 }
 

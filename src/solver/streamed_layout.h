@@ -49,7 +49,9 @@ struct StreamedLayout {
 
 // The layout of el from b, w, s_hat and the cell -> elements incidence (cell_element_start, cell_element),
 // with the visit order from the rest positions V (#V x 3). The result does not depend on the thread count.
-StreamedLayout streamed_layout(const Eigen::MatrixXd& V, const ArapElements& el);
+// release_arrays: el's per-element arrays are released (release_element_arrays) once the cell entries are
+// filled, before the right-hand side's terms, which read the cell entries only.
+StreamedLayout streamed_layout(const Eigen::MatrixXd& V, ArapElements& el, bool release_arrays);
 
 // el's layout (finish_elements made it; not checked).
 inline const StreamedLayout& streamed(const ArapElements& el) {

@@ -5,6 +5,7 @@
 #include "iarap/mesh/edge_topology.h"
 
 #include "cell_stiffness.h"
+#include "traced_elements.h"
 
 #include <string>
 #include <vector>
@@ -58,6 +59,7 @@ SystemPattern system_pattern(const Eigen::MatrixXi& F, int num_vertices, const E
 
 Eigen::SparseMatrix<double> element_system_matrix(const ArapElements& el, const Eigen::MatrixXi& F,
                                                   const SystemPattern& pattern) {
+  detail::require_element_arrays(el, "system matrix");
   Eigen::SparseMatrix<double> L = pattern.matrix;
   double* value = L.valuePtr();
   const int nf = static_cast<int>(F.rows());

@@ -24,6 +24,13 @@ void drop_two_cell_elements(ArapElements& el, const std::vector<char>& drop);
 // Fills the rest vectors s_hat (unless the builder did: has_rest_vectors), the transposed incidence
 // (cell -> elements) and the streamed layout (visit order, cell entries, right-hand-side terms) from b, w and
 // the element -> cell lists. Every builder ends with it; only the iterations read what it fills.
-void finish_elements(const Eigen::MatrixXd& V, ArapElements& el, bool has_rest_vectors = false);
+// release_arrays: the per-element arrays are released (release_element_arrays) as soon as the cell entries
+// hold their values, before the right-hand side's terms are built: they and the whole layout are then never
+// in memory at once (arap_precompute, when nothing after it reads them).
+void finish_elements(const Eigen::MatrixXd& V, ArapElements& el, bool has_rest_vectors = false,
+                     bool release_arrays = false);
+
+// Throws InputError naming `what` when el's arrays were released (ArapElements::arrays_released).
+void require_element_arrays(const ArapElements& el, const char* what);
 
 } // namespace iarap::detail

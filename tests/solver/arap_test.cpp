@@ -19,6 +19,7 @@ const ArapMethod kAllMethods[] = {ArapMethod::Arap, ArapMethod::SpokesRims, Arap
 ArapOptions with_method(ArapMethod method) {
   ArapOptions options;
   options.method = method;
+  options.keep_elements = true; // tests below read the element arrays
   return options;
 }
 

@@ -100,6 +100,7 @@ ArapData solved(const BentBunny& scene, ArapMethod method, int iterations, Eigen
                 ArapReport* report = nullptr) {
   ArapOptions options;
   options.method = method;
+  options.keep_elements = true; // the reference steps read the element arrays
   ArapData data = arap_precompute(scene.mesh.V, scene.mesh.F, scene.fixed, options);
   U = scene.mesh.V;
   ArapSolveOptions solve;

@@ -89,6 +89,7 @@ ArapSolveOptions plain(int iterations, double alpha) {
 ArapOptions method_options(ArapMethod method) {
   ArapOptions o;
   o.method = method;
+  o.keep_elements = true; // the reference sums below read the element arrays
   return o;
 }
 

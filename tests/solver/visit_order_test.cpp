@@ -25,6 +25,7 @@ ArapOptions options_for(ArapMethod method) {
   ArapOptions options;
   options.method = method;
   options.intrinsic.refine_boundary = true; // the bunny has holes: inserted boundary cells after the vertices
+  options.keep_elements = true;             // compared with the element arrays
   return options;
 }
 

@@ -10,4 +10,14 @@ std::size_t peak_resident_bytes();
 // The resident set now (/proc/self/statm), in bytes; 0 where the file cannot be read.
 std::size_t current_resident_bytes();
 
+// Returns the heap's free pages to the system (glibc's malloc_trim over every arena): after a precompute
+// freed its transient structures, what stays resident is what is held, not the high-water mark of a
+// heap that keeps freed memory for reuse (app/malloc_settings.cpp sets a 128 MB trim threshold).
+void release_free_heap();
+
+// With IARAP_MEMORY_TRACE set in the environment, writes "memory: PHASE resident R MB peak P MB (malloc in
+// use M MB)" to stderr: where the precompute's peak happens, phase by phase, and how much of the resident
+// set is live (the rest: freed memory malloc keeps, libraries, stacks). Otherwise nothing.
+void trace_resident(const char* phase);
+
 } // namespace iarap

@@ -45,12 +45,27 @@ struct ArapElements {
   // streamed layout's weights; empty: 1 everywhere. L weighs element e by (sum over cells(e) of s_c) w_e.
   Eigen::VectorXd cell_stiffness;
 
+  // True once release_element_arrays emptied the per-element arrays above (arap_precompute does unless
+  // ArapOptions::keep_elements): only num_vertices, num_cells, planar, cell_stiffness and the streamed
+  // layout are left, which is all the iterations read; element_system_matrix then throws.
+  bool arrays_released = false;
+  // What rotation smoothing needs of the arrays once they are released (release_element_arrays fills it):
+  // the other cells that share an element with each cell, cell_neighbour[cell_neighbour_start[c] ..
+  // cell_neighbour_start[c + 1]) ascending, and whether any element has two or more cells.
+  std::vector<int> cell_neighbour_start;
+  std::vector<int> cell_neighbour;
+  bool cells_share_elements = false;
+
   // The same elements regrouped cell by cell in a cache-friendly visit order, as the iterations stream them
   // (internal; every builder fills it, and copies of the elements share it: it is never changed).
   std::shared_ptr<const detail::StreamedLayout> streamed;
 
   Eigen::Index size() const { return w.size(); }
 };
+
+// Frees el's per-element arrays (b_index, b_value, s_hat, w, face, cells and their transpose) and sets
+// arrays_released; the streamed layout, the counts and the stiffness stay.
+void release_element_arrays(ArapElements& el);
 
 // Checks a rest mesh for the builders: V #V x 3 finite, F #F x 3 with indices in 0..#V-1.
 // Throws InputError naming the vertex or the face and index.
@@ -82,7 +97,8 @@ ArapElements spokes_rims_elements(const Eigen::MatrixXd& V, const Eigen::MatrixX
 ArapElements iarap_elements(const Eigen::MatrixXd& V, const IntrinsicDelaunay& intrinsic);
 
 // The system matrix of the global step, L = sum_e |cells(e)| w_e b_e b_e^T (#V x #V, Eq. 16-17):
-// 2 x cotan Laplacian for original ARAP, 3 x for spokes-and-rims, 2 B^T D_w B for iARAP.
+// 2 x cotan Laplacian for original ARAP, 3 x for spokes-and-rims, 2 B^T D_w B for iARAP. Throws InputError
+// when the arrays were released (ArapElements::arrays_released).
 Eigen::SparseMatrix<double> element_system_matrix(const ArapElements& elements);
 
 } // namespace iarap

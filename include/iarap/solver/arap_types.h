@@ -64,6 +64,11 @@ struct ArapOptions {
   // groups) move as one rigid body, exactly. Empty: none. Solved with every accelerator (each group is one
   // body of 6 degrees of freedom: rigid_group_problem.h); arap_solve refuses rotation smoothing with groups.
   std::vector<std::vector<int>> rigid_groups;
+  // Keep ArapData::elements' per-element arrays (b, s_hat, w, faces, cells and their transpose) after the
+  // precompute. The iterations, energies, gradients and right-hand sides read the streamed layout, which
+  // repeats them cell by cell, so by default they are released once it is built (about 300 bytes per
+  // vertex: issue 44); callers that read data.elements' arrays set this. With rigid groups they are kept.
+  bool keep_elements = false;
 };
 
 // Wall-clock parts of arap_precompute; they add up to its duration.
@@ -112,7 +117,9 @@ struct ArapData {
   ArapElements elements;         // the variant's elements (arap_elements.h)
   double min_weight = 0.0;       // the smallest element weight w_e (negative: a non-Delaunay cotan weight)
   Eigen::SparseMatrix<double> L; // #V x #V system matrix, sum_e |cells(e)| w_e b_e b_e^T
-  Eigen::VectorXi component;     // #V connected component of each vertex
+  // How many elements have w_e < 0 (counted before the element arrays are released).
+  Eigen::Index negative_weights = 0;
+  Eigen::VectorXi component; // #V connected component of each vertex
   int component_count = 0;
   Eigen::VectorXi fixed;     // #fixed user-constrained vertices, in the order of the targets rows
   Eigen::VectorXi pinned;    // vertices pinned by pin_unconstrained_components, and vertices used by no face
