@@ -15,7 +15,6 @@
 #include "iarap/io/read_obj_textured.h"
 #include "iarap/mesh/validate.h"
 #include "iarap/param/arap_parameterize.h"
-#include "iarap/param/atlas_report_fields.h"
 #include "iarap/param/render_uv_picture.h"
 #include "iarap/param/texture_seam_charts.h"
 #include "iarap/param/uv_atlas.h"
@@ -163,23 +162,7 @@ nlohmann::json atlas_json(const ParamArguments& args, const MeshData& mesh, cons
                           const AtlasReport& report) {
   nlohmann::json j = run_json(args, mesh);
   j["charts_mode"] = args.charts;
-  j["energy_kind"] = param_energy_name(options.param.energy);
-  j["allow_flips"] = options.param.allow_flips;
-  j["texture_size"] = options.texture_size;
-  j["padding"] = options.padding;
-  j["max_normal_angle"] = options.max_normal_angle;
-  j["target_distortion"] = options.target_distortion;
-  j["min_chart_faces"] = options.min_chart_faces;
-  j["tolerance"] = options.param.solve.tolerance;
-  j["charts"] = report.charts.size();
-  nlohmann::json charts = nlohmann::json::array();
-  for (const AtlasChart& chart : report.charts) {
-    nlohmann::json c;
-    visit_atlas_chart(chart, [&c](const char* name, const auto& value) { c[name] = value; });
-    charts.push_back(c);
-  }
-  j["chart_list"] = charts;
-  visit_atlas_report(report, [&j](const char* name, const auto& value) { j[name] = value; });
+  cli::add_atlas_report_json(j, options, report);
   return j;
 }
 

@@ -11,7 +11,6 @@
 
 #include "iarap/mesh/validate.h"
 #include "iarap/param/arap_parameterize.h"
-#include "iarap/param/atlas_report_fields.h"
 
 #include <cstdint>
 #include <limits>
@@ -80,23 +79,7 @@ nlohmann::json atlas_header(const MeshSnapshot& rest, const MeshReport& check, c
   j["components"] = check.components;
   j["boundary_loops"] = check.boundary_loops;
   j["genus"] = check.genus ? nlohmann::json(*check.genus) : nlohmann::json(nullptr);
-  j["energy_kind"] = param_energy_name(options.param.energy);
-  j["allow_flips"] = options.param.allow_flips;
-  j["texture_size"] = options.texture_size;
-  j["padding"] = options.padding;
-  j["max_angle"] = options.max_normal_angle;
-  j["target_distortion"] = options.target_distortion;
-  j["min_chart_faces"] = options.min_chart_faces;
-  j["tolerance"] = options.param.solve.tolerance;
-  j["charts"] = report.charts.size();
-  nlohmann::json charts = nlohmann::json::array();
-  for (const AtlasChart& chart : report.charts) {
-    nlohmann::json c;
-    visit_atlas_chart(chart, [&c](const char* name, const auto& value) { c[name] = value; });
-    charts.push_back(c);
-  }
-  j["chart_list"] = charts;
-  visit_atlas_report(report, [&j](const char* name, const auto& value) { j[name] = value; });
+  cli::add_atlas_report_json(j, options, report);
   return j;
 }
 
