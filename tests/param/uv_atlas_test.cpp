@@ -157,6 +157,15 @@ TEST(UvAtlas, BadInputIsRefused) {
   options.param.pins.vertices = Eigen::VectorXi::Constant(1, 0);
   options.param.pins.uv = Eigen::MatrixXd::Zero(1, 2);
   EXPECT_THROW(uv_atlas(torus.V, torus.F, options), InputError);
+  options = {};
+  options.param.boundary = ParamBoundary::Circle;
+  try {
+    uv_atlas(torus.V, torus.F, options);
+    FAIL() << "a circle boundary was accepted for an atlas";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("boundary circle does not apply to an atlas"), std::string::npos)
+        << e.what();
+  }
   EXPECT_THROW(uv_atlas(fin.V, Eigen::MatrixXi(0, 3)), InputError);
 }
 
