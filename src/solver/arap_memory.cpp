@@ -1,5 +1,6 @@
 #include "iarap/solver/arap_memory.h"
 
+#include "free_row_system.h"
 #include "streamed_layout.h"
 
 namespace iarap {
@@ -39,6 +40,12 @@ ArapMemory arap_memory(const ArapData& data) {
   }
   m.system =
       sparse_bytes(data.L) + sparse_bytes(data.L_fc) + sparse_bytes(data.Q) + sparse_bytes(data.rigid.P);
+  if (data.free_rows) { // built by the first solve, kept for the next ones
+    const detail::FreeRowSystem& rows = *data.free_rows;
+    m.system += vector_bytes(rows.position) + vector_bytes(rows.free_position) +
+                vector_bytes(rows.free_index) + vector_bytes(rows.row_start) + vector_bytes(rows.column) +
+                vector_bytes(rows.value);
+  }
   // With rigid groups the reduced system's factor counts beside L_ff's.
   m.factor = data.solver.factor_bytes() + data.rigid.solver.factor_bytes();
   m.kept_matrix = data.solver.kept_matrix_bytes() + data.rigid.solver.kept_matrix_bytes();

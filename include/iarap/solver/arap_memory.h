@@ -13,7 +13,8 @@ struct ArapMemory {
   std::size_t mesh = 0;        // V, F, components, the fixed / pinned / free index arrays
   std::size_t elements = 0;    // ArapElements' arrays (b, s_hat, w, faces, cells and their transpose)
   std::size_t streamed = 0;    // the streamed layout the iterations read (cell entries, rhs terms, order)
-  std::size_t system = 0;      // L, L_fc, the soft constraints' Q and the rigid groups' P
+  std::size_t system = 0;      // L, L_fc, the soft constraints' Q, the rigid groups' P, and L's free rows
+                               // as the solves stream them (kept from the first solve on)
   std::size_t factor = 0;      // the Cholesky factor of L_ff (and of the rigid groups' K), solve plans
   std::size_t kept_matrix = 0; // the factorization's copies of L_ff and of its pattern (refactorization)
   std::size_t rotations = 0;   // R, one 3x3 per cell
