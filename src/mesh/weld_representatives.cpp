@@ -1,5 +1,7 @@
 #include "iarap/mesh/weld_representatives.h"
 
+#include "disjoint_sets.h"
+
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
@@ -12,29 +14,7 @@ namespace iarap {
 
 namespace {
 
-// Union-find whose root is the smallest index of its set: the representative the caller wants.
-class DisjointSets {
-public:
-  explicit DisjointSets(int n) : parent_(static_cast<std::size_t>(n)) {
-    std::iota(parent_.begin(), parent_.end(), 0);
-  }
-  int find(int x) {
-    while (parent_[static_cast<std::size_t>(x)] != x) {
-      int& p = parent_[static_cast<std::size_t>(x)];
-      p = parent_[static_cast<std::size_t>(p)]; // path halving
-      x = p;
-    }
-    return x;
-  }
-  void join(int a, int b) {
-    a = find(a);
-    b = find(b);
-    if (a != b) parent_[static_cast<std::size_t>(std::max(a, b))] = std::min(a, b);
-  }
-
-private:
-  std::vector<int> parent_;
-};
+using detail::DisjointSets;
 
 // The predicate of every pair test. Zero tolerance is exact equality, handled by join_identical.
 bool within(const Eigen::MatrixXd& V, int i, int j, double tolerance) {

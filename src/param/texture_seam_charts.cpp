@@ -2,23 +2,15 @@
 
 #include "iarap/core/errors.h"
 
+#include "../mesh/disjoint_sets.h"
+
 #include <cstdint>
-#include <numeric>
 #include <string>
 #include <unordered_map>
 
 namespace iarap {
 
 namespace {
-
-int find_root(std::vector<int>& parent, int x) {
-  while (parent[static_cast<std::size_t>(x)] != x) {
-    parent[static_cast<std::size_t>(x)] =
-        parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(x)])];
-    x = parent[static_cast<std::size_t>(x)];
-  }
-  return x;
-}
 
 std::uint64_t edge_key(int from, int to) {
   return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(from)) << 32) |
@@ -47,21 +39,20 @@ std::vector<int> texture_seam_charts(const Eigen::MatrixXi& F, const Eigen::Matr
     for (int k = 0; k < 3; ++k)
       half_edges.emplace(edge_key(F(f, k), F(f, (k + 1) % 3)),
                          HalfEdge{static_cast<int>(f), FT(f, k), FT(f, (k + 1) % 3)});
-  std::vector<int> parent(static_cast<std::size_t>(F.rows()));
-  std::iota(parent.begin(), parent.end(), 0);
+  detail::DisjointSets sets(static_cast<int>(F.rows()));
   for (Eigen::Index f = 0; f < F.rows(); ++f)
     for (int k = 0; k < 3; ++k) {
       const auto twin = half_edges.find(edge_key(F(f, (k + 1) % 3), F(f, k)));
       if (twin == half_edges.end()) continue;
       const HalfEdge& other = twin->second;
       if (other.from_texture == FT(f, (k + 1) % 3) && other.to_texture == FT(f, k))
-        parent[static_cast<std::size_t>(find_root(parent, static_cast<int>(f)))] =
-            find_root(parent, other.face);
+        sets.join(static_cast<int>(f), other.face);
     }
-  std::vector<int> chart(parent.size(), -1), id_of_root(parent.size(), -1);
+  const auto faces = static_cast<std::size_t>(F.rows());
+  std::vector<int> chart(faces, -1), id_of_root(faces, -1);
   int charts = 0;
-  for (std::size_t f = 0; f < parent.size(); ++f) {
-    int& id = id_of_root[static_cast<std::size_t>(find_root(parent, static_cast<int>(f)))];
+  for (std::size_t f = 0; f < faces; ++f) {
+    int& id = id_of_root[static_cast<std::size_t>(sets.find(static_cast<int>(f)))];
     if (id < 0) id = charts++;
     chart[f] = id;
   }
