@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <ctime>
 #include <limits>
 
 namespace iarap::cli {
@@ -48,6 +49,14 @@ ArapSolveOptions run_options(const std::string& accelerator, const ConvergeSetti
   options.max_iterations = settings.max_iterations;
   options.tolerance = -1; // only the gap (or the gradient rule of the reference run) stops
   return options;
+}
+
+// The hybrid's wall time to its switch: the end of its last L-BFGS iteration (0: no switch, or at once).
+double newton_from_ms(const ArapReport& report) {
+  const auto lbfgs_iterations = static_cast<size_t>(std::max(0, report.newton_from_iteration - 1));
+  return lbfgs_iterations > 0 && lbfgs_iterations <= report.elapsed_ms.size()
+             ? report.elapsed_ms[lbfgs_iterations - 1]
+             : 0.0;
 }
 
 } // namespace
@@ -96,7 +105,10 @@ nlohmann::json converge_one(const std::string& path, const Eigen::MatrixXd& V, c
     run.gradient_tolerance = settings.reference_gradient;
     run.on_iteration = [target](const ArapReport& report) { return report.energies.back() > target; };
     Eigen::MatrixXd U = V;
+    // Process CPU time (all threads) beside the wall time: on a shared machine it counts the run's own work.
+    const std::clock_t cpu_start = std::clock();
     const ArapReport report = arap_solve(data, constraints.targets, U, run);
+    const double cpu_ms = 1000.0 * static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
     const bool reached = !report.energies.empty() && report.energies.back() <= target;
     const double ms = report.elapsed_ms.empty() ? 0.0 : report.elapsed_ms.back();
     // The first iterate within the early gap (-1: none).
@@ -110,6 +122,7 @@ nlohmann::json converge_one(const std::string& path, const Eigen::MatrixXd& V, c
          {"window", accelerator == "none" ? 0 : run.window},
          {"iterations", report.iterations},
          {"ms", ms},
+         {"cpu_ms", cpu_ms},
          {"ms_per_iteration", report.iterations > 0 ? ms / report.iterations : 0.0},
          {"accelerator_ms", report.accelerator_ms},
          {"rejected", report.rejected},
@@ -119,6 +132,7 @@ nlohmann::json converge_one(const std::string& path, const Eigen::MatrixXd& V, c
          {"early_iterations", early_reached ? static_cast<int>(early_k) + 1 : -1},
          {"early_ms", early_reached ? report.elapsed_ms[static_cast<size_t>(early_k)] : -1.0},
          {"newton_from", report.newton_from_iteration},
+         {"newton_from_ms", newton_from_ms(report)},
          {"stationary", !reached && report.converged},
          {"final_energy", report.energies.empty() ? report.initial_energy : report.energies.back()},
          {"final_gap",

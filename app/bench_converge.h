@@ -33,8 +33,8 @@ struct ConvergeSettings {
 
 // One mesh and method: precompute, a long reference run (the lowest energy of L-BFGS and Anderson run to
 // reference_gradient), then one run per accelerator stopped at the gap. Returns a JSON record with a "runs"
-// array (accelerator, iterations, ms, ms_per_iteration, reached, rejected, early_iterations and early_ms at
-// settings.early_gap, hybrid's newton_from).
+// array (accelerator, iterations, ms, cpu_ms (process CPU time, all threads), ms_per_iteration, reached,
+// rejected, early_iterations and early_ms at settings.early_gap, hybrid's newton_from and newton_from_ms).
 nlohmann::json converge_one(const std::string& path, const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
                             const std::string& method, const ConvergeSettings& settings);
 

@@ -596,7 +596,27 @@ TEST(Cli, BenchConvergeReportsReachedOrStationaryRuns) {
       EXPECT_GT(gap, tolerance * std::abs(reference)) << x;
     }
     EXPECT_GE(x["solves"].get<int>(), x["iterations"].get<int>()) << x; // at least one solve an iteration
+    EXPECT_GT(x["cpu_ms"].get<double>(), 0.0) << x;                     // the process's CPU time over the run
+    EXPECT_EQ(x["newton_from_ms"].get<double>(), 0.0) << x;             // only the hybrid switches
   }
+}
+
+// The hybrid's switch in bench --converge: the wall time at the end of its last L-BFGS iteration, within the
+// run's (bunny, spokes-rims: the switch comes at iteration 47 of 55 to the 1e-6 gap).
+TEST(Cli, BenchConvergeTimesTheHybridsSwitch) {
+  const auto dir = iarap::test::temp_dir("cli_bench_converge_hybrid");
+  const auto report = dir / "converge.json";
+  const CliRun run = iarap_cli(
+      "bench '" + bunny + "' --converge 1e-6 --methods spokes-rims --accels hybrid --threads 1 --report '" +
+      report.string() + "'");
+  ASSERT_EQ(run.code, 0) << run.out;
+  std::ifstream in(report);
+  const json j = json::parse(in);
+  fs::remove_all(dir);
+  const json& x = j["results"][0]["runs"][0];
+  ASSERT_GT(x["newton_from"].get<int>(), 1) << x;
+  EXPECT_GT(x["newton_from_ms"].get<double>(), 0.0) << x;
+  EXPECT_LT(x["newton_from_ms"].get<double>(), x["ms"].get<double>()) << x; // Newton's iterations follow
 }
 
 // A bunny with one zero-area face: original ARAP refuses it (infinite cotangents), iARAP mollifies it.
