@@ -199,13 +199,16 @@ async function solveShown() {
   // The server refines one method, and its frames carry no cell energies.
   const refine = $('refine').checked && methods.length === 1 && !cellEnergy && !converge;
   const refineAccelerator = $('refine-accelerator').value;
+  // Updates start where the drag's motion leads (docs/viewer.md); the server predicts nothing when the
+  // targets did not move, so a repeated solve is unchanged. Not for "solve to convergence".
+  const extrapolate = !converge;
   const weights = handleWeights(handle.length);
   const smoothing = rotationSmoothing();
   refinement.stop();
   $('refine-info').textContent = '';
   const stopWatching = watchProgress();
   const results = await guarded(() =>
-    Promise.all(methods.map((method) => api.solve({ method, ...stopping, accelerator, transform, cell_energy: cellEnergy, refine, refine_accelerator: refineAccelerator, rotation_smoothing: smoothing, ...(weights ? { handle_weights: weights } : {}) }))),
+    Promise.all(methods.map((method) => api.solve({ method, ...stopping, accelerator, transform, cell_energy: cellEnergy, refine, refine_accelerator: refineAccelerator, rotation_smoothing: smoothing, extrapolate, ...(weights ? { handle_weights: weights } : {}) }))),
   ).finally(stopWatching);
   if (!results) return;
   const lines = [];
