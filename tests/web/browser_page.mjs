@@ -4,7 +4,7 @@ import { createRequire } from 'node:module';
 import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
-import { webDir } from './server.mjs';
+import { startServer, stopServer, webDir } from './server.mjs';
 
 const chromiumPath = process.env.IARAP_CHROMIUM ?? '/usr/bin/chromium';
 
@@ -70,4 +70,43 @@ export function viewerPage(page) {
     await settle();
   };
   return { idle, viewer, settle, boxSelect, dragGizmo };
+}
+
+// Starts `iarap serve serverArgs`, opens its page in the browser and waits until the viewer is ready, then
+// runs body({page, server, problems, userDataDir}); problems collects the page's console errors, uncaught
+// errors and (with failedRequests) failed requests. On a throw it prints the error, the problems and the
+// server's log. Stops everything and exits: 0 when body returned, 1 when it threw.
+export async function runBrowserSession(serverArgs, body, { failedRequests = true } = {}) {
+  const { browser, userDataDir } = await launchBrowser();
+  let server;
+  try {
+    server = await startServer(serverArgs);
+  } catch (error) {
+    await browser.close();
+    throw error;
+  }
+  const problems = [];
+  let failed = false;
+  try {
+    const page = browser.pages()[0] ?? (await browser.newPage());
+    page.on('console', (message) => { if (message.type() === 'error') problems.push(`console: ${message.text()}`); });
+    page.on('pageerror', (error) => problems.push(`page error: ${error.message}`));
+    if (failedRequests) page.on('requestfailed', (request) => problems.push(`request failed: ${request.url()}`));
+    // Generous limits: under CTest -j2 on two cores the browser shares them with the other tests.
+    const loadStart = performance.now();
+    await page.goto(server.url, { timeout: 120000 });
+    await page.waitForFunction(() => window.iarapViewer?.ready === true, null, { timeout: 120000 });
+    console.log(`page ready in ${(performance.now() - loadStart).toFixed(0)} ms`);
+    await body({ page, server, problems, userDataDir });
+  } catch (error) {
+    failed = true;
+    console.error(error);
+    console.error(problems.join('\n'));
+    console.error(server.log());
+  } finally {
+    await browser.close();
+    await stopServer(server);
+    fs.rmSync(userDataDir, { recursive: true, force: true });
+  }
+  process.exit(failed ? 1 : 0);
 }

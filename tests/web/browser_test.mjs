@@ -15,33 +15,14 @@ import { execFileSync } from 'node:child_process';
 import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
-import { launchBrowser, viewerPage } from './browser_page.mjs';
-import { cliPath, repoRoot, startServer, stopServer } from './server.mjs';
+import { runBrowserSession, viewerPage } from './browser_page.mjs';
+import { cliPath, repoRoot, stopServer } from './server.mjs';
 
 const args = process.argv.slice(2);
 const screenshotArg = args.includes('--screenshot') ? args[args.indexOf('--screenshot') + 1] : null;
 const artefactDir = process.env.IARAP_WEB_ARTEFACTS ?? path.join(os.tmpdir(), 'iarap-web-artefacts');
 
-const { browser, userDataDir } = await launchBrowser();
-let server;
-try {
-  server = await startServer([path.join(repoRoot, 'data', 'bunny.off')]);
-} catch (error) {
-  await browser.close();
-  throw error;
-}
-const problems = [];
-let failed = false;
-try {
-  const page = browser.pages()[0] ?? (await browser.newPage());
-  page.on('console', (message) => { if (message.type() === 'error') problems.push(`console: ${message.text()}`); });
-  page.on('pageerror', (error) => problems.push(`page error: ${error.message}`));
-  page.on('requestfailed', (request) => problems.push(`request failed: ${request.url()}`));
-  // Generous limits: under CTest -j2 on two cores the browser shares them with the other tests.
-  const loadStart = performance.now();
-  await page.goto(server.url, { timeout: 120000 });
-  await page.waitForFunction(() => window.iarapViewer?.ready === true, null, { timeout: 120000 });
-  console.log(`page ready in ${(performance.now() - loadStart).toFixed(0)} ms`);
+await runBrowserSession([path.join(repoRoot, 'data', 'bunny.off')], async ({ page, server, problems, userDataDir }) => {
 
   const { idle, viewer, settle, boxSelect, dragGizmo } = viewerPage(page);
   const rowsOf = (X, rows) => rows.map((i) => [X[3 * i], X[3 * i + 1], X[3 * i + 2]]);
@@ -551,14 +532,4 @@ try {
   await page.waitForFunction(() => !document.getElementById('banner').hidden, null, { timeout: 10000 });
   assert.match(await page.textContent('#banner-text'), /iarap server does not answer/);
   console.log('browser test: 1 passed, 0 failed');
-} catch (error) {
-  failed = true;
-  console.error(error);
-  console.error(problems.join('\n'));
-  console.error(server.log());
-} finally {
-  await browser.close();
-  await stopServer(server);
-  fs.rmSync(userDataDir, { recursive: true, force: true });
-}
-process.exit(failed ? 1 : 0);
+});

@@ -13,8 +13,8 @@ import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import path from 'node:path';
 import { readObj, subdivideMidpoint, writeObj } from '../../bench/drag_bench_mesh.mjs';
-import { launchBrowser, skip, viewerPage } from './browser_page.mjs';
-import { repoRoot, startServer, stopServer } from './server.mjs';
+import { runBrowserSession, skip, viewerPage } from './browser_page.mjs';
+import { repoRoot } from './server.mjs';
 
 const args = process.argv.slice(2);
 const meshNames = (args.includes('--meshes') ? args[args.indexOf('--meshes') + 1] : 'beetle,armadillo,armadillo173k').split(',');
@@ -26,23 +26,7 @@ for (const file of Object.values(files)) {
   skip(`${file} is not in ${sharedDir} (set IARAP_SHARED_MESHES)`);
 }
 
-const { browser, userDataDir } = await launchBrowser();
-let server;
-try {
-  server = await startServer([...Object.values(files).map((f) => path.join(sharedDir, f)), '--threads', '2', '--max-upload-mb', '256']);
-} catch (error) {
-  await browser.close();
-  throw error;
-}
-const problems = [];
-let failed = false;
-try {
-  const page = browser.pages()[0] ?? (await browser.newPage());
-  page.on('console', (message) => { if (message.type() === 'error') problems.push(`console: ${message.text()}`); });
-  page.on('pageerror', (error) => problems.push(`page error: ${error.message}`));
-  // Generous limits: under CTest -j2 on two cores the browser shares them with the other tests.
-  await page.goto(server.url, { timeout: 120000 });
-  await page.waitForFunction(() => window.iarapViewer?.ready === true, null, { timeout: 120000 });
+await runBrowserSession([...Object.values(files).map((f) => path.join(sharedDir, f)), '--threads', '2', '--max-upload-mb', '256'], async ({ page, server, problems }) => {
   const { idle, viewer, boxSelect } = viewerPage(page);
   const meshInfo = (name) => page.waitForFunction((n) => document.getElementById('mesh-info').textContent.startsWith(`${n}:`), name, { timeout: 120000 });
 
@@ -102,14 +86,4 @@ try {
   }
   assert.deepEqual(problems, []);
   console.log('drag browser test: 1 passed, 0 failed');
-} catch (error) {
-  failed = true;
-  console.error(error);
-  console.error(problems.join('\n'));
-  console.error(server.log());
-} finally {
-  await browser.close();
-  await stopServer(server);
-  fs.rmSync(userDataDir, { recursive: true, force: true });
-}
-process.exit(failed ? 1 : 0);
+}, { failedRequests: false });
