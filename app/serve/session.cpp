@@ -357,7 +357,7 @@ ConstraintTargets Session::constraint_targets(ArapMethod method, const SolveRequ
 // The method's data for the solver's constraints: built on first use, for new soft constraints (the
 // file's, or a handle turned soft or hard), for a change of planar mode, or for new hard or soft sets while
 // soft points exist; refactorized when only the hard set changed, or only a soft handle's weights.
-void Session::prepare_data(MethodState& state, ArapMethod method, bool planar,
+bool Session::prepare_data(MethodState& state, ArapMethod method, bool planar,
                            const SolverConstraints& solver, SolveResult& result) {
   const auto precompute_start = Clock::now();
   const bool soft = solver.soft.size() > 0;
@@ -386,9 +386,11 @@ void Session::prepare_data(MethodState& state, ArapMethod method, bool planar,
     state.data_soft_handle = solver.soft_handle;
     state.data_rigid_version = rigid_version_;
     result.precompute_ms = ms_since(precompute_start);
+    return true;
   } else if (!same_indices(state.data->fixed, solver.hard)) {
     arap_set_fixed(*state.data, solver.hard); // keeps the previous set on a throw
     result.precompute_ms = ms_since(precompute_start);
+    return true;
   } else if (solver.soft_handle && state.data->soft.vertex_weights != solver.soft.vertex_weights) {
     try { // a numeric refactorization; a throw leaves no data, rebuilt next time
       arap_set_soft_weights(*state.data, solver.soft.vertex_weights, solver.soft.face_weights);
@@ -397,7 +399,9 @@ void Session::prepare_data(MethodState& state, ArapMethod method, bool planar,
       throw;
     }
     result.precompute_ms = ms_since(precompute_start);
+    return true;
   }
+  return false;
 }
 
 SolveResult Session::solve(const SolveRequest& request, SolveProgress& progress) {
@@ -425,7 +429,12 @@ SolveResult Session::solve(const SolveRequest& request, SolveProgress& progress)
   // guess is the rest mesh; the session's is the method's U, which must lie in the plane too.
   result.planar = !tets_ && deforms_in_plane(mesh_->V, targets, soft_targets, forces) &&
                   deforms_in_plane(state.U, Eigen::MatrixXd(), Eigen::MatrixXd(), Eigen::MatrixXd());
-  prepare_data(state, request.method, result.planar, solver, result);
+  // New data (another free set, the planar mode, soft terms): the drag's step and history are of another
+  // problem (a history of another size is refused by the solver).
+  if (prepare_data(state, request.method, result.planar, solver, result)) {
+    state.motion.clear();
+    state.drag_history.reset();
+  }
 
   Eigen::MatrixXd U = state.U; // commit only a successful solve
   // Soft points and forces move the minimum without moving the hard targets: no prediction from those.

@@ -198,7 +198,8 @@ private:
   int record_revision();
   MethodState& state_of(ArapMethod method);
   const MethodState& state_of(ArapMethod method) const;
-  void prepare_data(MethodState& state, ArapMethod method, bool planar, const SolverConstraints& solver,
+  // True when it built or refactorized the method's data.
+  bool prepare_data(MethodState& state, ArapMethod method, bool planar, const SolverConstraints& solver,
                     SolveResult& result);
   void new_generation(); // ends the refinement; a new state for frames
   void forget_motion();  // new constraints or positions: no drag to extrapolate

@@ -140,3 +140,34 @@ TEST(ServeDragMotion, NewConstraintsForgetTheMotion) {
   session.solve(drag_update(session, 0.3, false), progress);
   EXPECT_EQ(session.solve(drag_update(session, 0.36, true), progress).extrapolation, 0);
 }
+
+TEST(ServeDragMotion, NewDataForgetsTheHistory) {
+  // A flat strip dragged in its plane (a planar solve: 2 unknowns per free vertex) with L-BFGS updates,
+  // whose pairs are carried, then lifted out of it: the method's data is built again in 3D, and the
+  // carried pairs, of the planar problem's size, must not reach the solver (it refuses a history of
+  // another size).
+  Session session;
+  session.load_mesh("flat strip", grid_mesh(columns, rows, width, 0.0));
+  session.set_constraints(grid_column(columns, rows, 0), grid_column(columns, rows, columns));
+  const Eigen::MatrixXd rest = rows_of(session.snapshot(std::nullopt).V, session.handle());
+  SolveProgress progress;
+  SolveRequest request;
+  request.solve.max_iterations = 3;
+  request.solve.accelerator = iarap::ArapAccelerator::Lbfgs;
+  request.extrapolate = true;
+  for (int k = 1; k <= 3; ++k) {
+    Eigen::MatrixXd targets = rest;
+    targets.col(0).array() += 0.05 * k;
+    request.handle_targets = targets;
+    EXPECT_TRUE(session.solve(request, progress).planar);
+  }
+  Eigen::MatrixXd lifted = rest;
+  lifted.col(0).array() += 0.2;
+  lifted.col(2).array() += 0.1;
+  request.handle_targets = lifted;
+  const iarap::serve::SolveResult result = session.solve(request, progress);
+  EXPECT_FALSE(result.planar);
+  EXPECT_GT(result.precompute_ms, 0);
+  EXPECT_EQ(result.extrapolation, 0);
+  EXPECT_LT(result.report.energies.back(), result.report.initial_energy);
+}
