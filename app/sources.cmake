@@ -10,7 +10,7 @@ list(APPEND IARAP_APP_SOURCES serve_command.cpp serve/api_routes.cpp serve/json_
   serve/binary_frame.cpp serve/static_files.cpp serve/private_temp_dir.cpp serve/scenario_files.cpp
   serve/route_table.cpp serve/frame_board.cpp serve/solve_option_json.cpp)
 # The server's session model, its background refiner, HTTP policy and one file per resource's routes.
-list(APPEND IARAP_APP_SOURCES serve/session.cpp serve/constraint_history.cpp serve/refine_job.cpp
+list(APPEND IARAP_APP_SOURCES serve/session.cpp serve/drag_motion.cpp serve/constraint_history.cpp serve/refine_job.cpp
   serve/shared_session.cpp serve/intrinsic_overlay.cpp serve/client_names.cpp serve/http_reply.cpp
   serve/http_policy.cpp serve/solve_request_json.cpp serve/state_json.cpp serve/mesh_routes.cpp
   serve/constraint_routes.cpp serve/solve_routes.cpp serve/frame_route.cpp serve/scenario_routes.cpp

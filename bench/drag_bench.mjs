@@ -9,25 +9,47 @@
 //
 // Meshes: beetle.off, armadillo.obj and armadillo.obj subdivided 1-to-4 (173K vertices, uploaded as an
 // OBJ) from $IARAP_SHARED_MESHES or ../shared/meshes.
-// Usage: IARAP_CLI=build/iarap node bench/drag_bench.mjs [--meshes beetle,armadillo,armadillo173k]
-//        [--method iarap] [--accel none] [--refine-accel newton] [--budget-ms 20] [--threads 2] [--steps 30]
-//        [--no-refine]      (DRAG_DEBUG=1 also prints each answer [iterations, stop reason, solve_ms,
-//        local_ms, global_ms, wait_ms] and refinement frame; DRAG_PROFILE=FILE writes the server's stderr)
+// Usage: node bench/drag_bench.mjs --help. Each update asks the server to extrapolate (as the page does).
 import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
 import { decodeFrame, repoRoot, startServer, stopServer } from '../tests/web/server.mjs';
+import { defaultBudgetMs } from '../web/src/drag_budget.js';
 import { readObj, subdivideMidpoint, writeObj } from './drag_bench_mesh.mjs';
 
+const usage = `Usage: IARAP_CLI=build/iarap node bench/drag_bench.mjs [options]
+  --meshes LIST        beetle,armadillo,armadillo173k (default: all three; from $IARAP_SHARED_MESHES or
+                       ../shared/meshes; the 173K mesh is armadillo.obj subdivided 1-to-4 here and uploaded)
+  --method M           iarap (default), arap or spokes-rims
+  --accel A            the updates' accelerator: lbfgs (default, the page's), none, anderson, newton, hybrid
+  --refine-accel A     the background refinement's: newton (default, the page's), hybrid, lbfgs, ...
+  --budget-ms MS       each update's time budget (default: the page's for the mesh, web/src/drag_budget.js:
+                       20 ms for the beetle, 43 for the armadillo, 60 for the 173K)
+  --iterations N       N iterations per update and no time budget instead (the lag without the load)
+  --threads N          the server's threads (default 2)
+  --steps N            drag steps to 60 degrees (default 30)
+  --no-refine          no background refinement
+  --no-extrapolate     updates start from the last answer (the page extrapolates; servers before issue 48's
+                       drag3 branch refuse the field, so run them with this flag)
+Environment: DRAG_DEBUG=1 prints each answer [iterations, stop reason, solve_ms, local_ms, global_ms,
+wait_ms, extrapolation] and each refinement frame; DRAG_PROFILE=FILE writes the server's stderr.
+Compare two builds in one run (the machine's load changes between runs):
+  for cli in /path/to/main/build/iarap build/iarap; do IARAP_CLI=$cli node bench/drag_bench.mjs ...; done`;
 const args = process.argv.slice(2);
+if (args.includes('--help') || args.includes('-h')) {
+  console.log(usage);
+  process.exit(0);
+}
 const option = (name, fallback) => (args.includes(name) ? args[args.indexOf(name) + 1] : fallback);
 const method = option('--method', 'iarap');
-const accelerator = option('--accel', 'none'); // of the drag's updates
+const accelerator = option('--accel', 'lbfgs'); // of the drag's updates
 const refineAccelerator = option('--refine-accel', 'newton');
-const budgetMs = Number(option('--budget-ms', '20'));
+const givenBudgetMs = option('--budget-ms', null);
+const fixedIterations = Number(option('--iterations', '0'));
 const threads = option('--threads', '2');
 const steps = Number(option('--steps', '30'));
 const refine = !args.includes('--no-refine');
+const extrapolate = !args.includes('--no-extrapolate');
 const sharedDir = process.env.IARAP_SHARED_MESHES ?? path.join(repoRoot, '..', 'shared', 'meshes');
 const meshSources = {
   beetle: { file: 'beetle.off' },
@@ -105,7 +127,8 @@ async function benchMesh(name) {
     await post(base, '/api/constraints', { fixed, handle });
     const setup = await solve(base, { iterations: 1 }); // precomputation, not timed
     const clock = () => performance.now();
-    const budget = { iterations: 1000, tolerance: 1e-6, time_budget_ms: budgetMs, refine, refine_accelerator: refineAccelerator };
+    const budgetMs = givenBudgetMs === null ? defaultBudgetMs(n) : Number(givenBudgetMs);
+    const budget = { iterations: fixedIterations || 1000, tolerance: 1e-6, time_budget_ms: fixedIterations ? 0 : budgetMs, refine, refine_accelerator: refineAccelerator, ...(extrapolate ? { extrapolate } : {}) };
     const answers = [];
     const start = clock();
     let last = null;
@@ -114,7 +137,7 @@ async function benchMesh(name) {
       answers.push(last.header);
     }
     const dragMs = clock() - start;
-    if (process.env.DRAG_DEBUG) console.log(JSON.stringify(answers.map((h) => [h.iterations, h.stop_reason, h.solve_ms.toFixed(1), h.local_ms.toFixed(1), h.global_ms.toFixed(1), h.wait_ms.toFixed(1)])));
+    if (process.env.DRAG_DEBUG) console.log(JSON.stringify(answers.map((h) => [h.iterations, h.stop_reason, h.solve_ms.toFixed(1), h.local_ms.toFixed(1), h.global_ms.toFixed(1), h.wait_ms.toFixed(1), (h.extrapolation ?? 0).toFixed(2)])));
     const lastAt = clock();
     const frames = last.header.refining ? await collectFrames(base, last.header.sequence, clock) : [];
     if (process.env.DRAG_DEBUG) console.log(JSON.stringify(frames.map((f) => [f.iterations, f.energy.toExponential(6), f.relative_decrease.toExponential(1), f.converged, (f.at - lastAt).toFixed(0)])));
@@ -132,7 +155,7 @@ async function benchMesh(name) {
     const ms = (value) => (value === null ? 'not reached' : `${(value / 1000).toFixed(2)} s`);
     const iterationsPerUpdate = answers.reduce((sum, h) => sum + h.iterations, 0) / answers.length;
     const solveMs = answers.reduce((sum, h) => sum + h.solve_ms, 0) / answers.length;
-    console.log(`${name} (${n} vertices, ${fixed.length} fixed, ${handle.length} handle) ${method} ${accelerator}, ${threads} threads, budget ${budgetMs} ms${refine ? `, refine ${refineAccelerator}` : ''}: ` +
+    console.log(`${name} (${n} vertices, ${fixed.length} fixed, ${handle.length} handle) ${method} ${accelerator}, ${threads} threads, ${fixedIterations ? `${fixedIterations} iterations per update` : `budget ${budgetMs} ms`}${extrapolate ? ', extrapolated' : ''}${refine ? `, refine ${refineAccelerator}` : ''}: ` +
       `setup ${setup.header.precompute_ms.toFixed(0)} ms; ${(steps / (dragMs / 1000)).toFixed(1)} updates/s ` +
       `(${(dragMs / steps).toFixed(1)} ms per update, ${solveMs.toFixed(1)} ms solving, ${iterationsPerUpdate.toFixed(1)} iterations); ` +
       `last frame gap ${gap(lastEnergy).toExponential(2)}; after the last update: 1e-2 at ${ms(reach(1e-2))}, 1e-6 at ${ms(reach(1e-6))}, ` +

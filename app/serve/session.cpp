@@ -79,7 +79,8 @@ Eigen::MatrixXd soft_points_at(const SoftConstraintSet& soft, const Eigen::Matri
 // iteration cost half as much; ArapSolveOptions::warm_start_rotations).
 ArapReport solve_with_progress(ArapData& data, const Eigen::MatrixXd& targets,
                                const Eigen::MatrixXd& soft_targets, const Eigen::MatrixXd& forces,
-                               Eigen::MatrixXd& U, const SolveRequest& request, SolveProgress& progress) {
+                               Eigen::MatrixXd& U, const SolveRequest& request, SolveProgress& progress,
+                               std::shared_ptr<ArapAcceleratorHistory> history) {
   progress.cancel_requested = false;
   progress.method = static_cast<int>(request.method);
   progress.iteration = 0;
@@ -91,6 +92,7 @@ ArapReport solve_with_progress(ArapData& data, const Eigen::MatrixXd& targets,
   } done{progress};
   ArapSolveOptions options = request.solve;
   options.warm_start_rotations = true;
+  options.accelerator_history = std::move(history);
   options.on_iteration = [&progress](const ArapReport& report) {
     progress.iteration = report.iterations;
     progress.energy = last_energy(report);
@@ -106,6 +108,13 @@ ArapReport solve_with_progress(ArapData& data, const Eigen::MatrixXd& targets,
 void Session::new_generation() {
   ++generation_;
   refine_job_.reset();
+}
+
+void Session::forget_motion() {
+  for (MethodState& state : methods_) {
+    state.motion.clear();
+    state.drag_history.reset();
+  }
 }
 
 void Session::load_mesh(const std::string& name, MeshData mesh) {
@@ -147,6 +156,7 @@ void Session::load_tet_mesh(const std::string& name, TetMesh tets) {
 }
 
 void Session::use_mesh(MeshData mesh, std::optional<Eigen::MatrixXi> tets) {
+  forget_motion();
   for (MethodState& state : methods_) {
     state.data.reset();
     state.U = mesh.V;
@@ -263,6 +273,7 @@ int Session::set_constraints(const Eigen::VectorXi& fixed, const Eigen::VectorXi
   check_rigid_group_lists(rigid_groups, static_cast<int>(mesh_->V.rows()));
   use_sets(fixed, handle, rigid_groups);
   new_generation();
+  forget_motion();
   // The dragged soft vertices are re-anchored where the shape put them, like the handle; the other soft
   // points keep their targets (soft: the shape does not reach them exactly).
   for (MethodState& state : methods_) {
@@ -285,6 +296,7 @@ void Session::restore_constraints(int revision) {
   soft_ = restored->soft;
   soft_version_ = restored->soft_version;
   new_generation();
+  forget_motion();
   for (std::size_t m = 0; m < methods_.size(); ++m) {
     methods_[m].anchor = restored->anchors[m];
     methods_[m].soft_anchor = restored->soft_anchors[m];
@@ -307,6 +319,7 @@ int Session::load_constraints(const Eigen::VectorXi& fixed, const Eigen::VectorX
   if (soft_.soft.size() > 0 || soft.soft.size() > 0) ++soft_version_; // rebuilt at the next solve
   soft_ = soft;
   new_generation();
+  forget_motion();
   const Eigen::MatrixXd soft_targets = soft_targets_of(soft.soft);
   for (MethodState& state : methods_) {
     state.U = mesh_->V;
@@ -344,7 +357,7 @@ ConstraintTargets Session::constraint_targets(ArapMethod method, const SolveRequ
 // The method's data for the solver's constraints: built on first use, for new soft constraints (the
 // file's, or a handle turned soft or hard), for a change of planar mode, or for new hard or soft sets while
 // soft points exist; refactorized when only the hard set changed, or only a soft handle's weights.
-void Session::prepare_data(MethodState& state, ArapMethod method, bool planar,
+bool Session::prepare_data(MethodState& state, ArapMethod method, bool planar,
                            const SolverConstraints& solver, SolveResult& result) {
   const auto precompute_start = Clock::now();
   const bool soft = solver.soft.size() > 0;
@@ -373,9 +386,11 @@ void Session::prepare_data(MethodState& state, ArapMethod method, bool planar,
     state.data_soft_handle = solver.soft_handle;
     state.data_rigid_version = rigid_version_;
     result.precompute_ms = ms_since(precompute_start);
+    return true;
   } else if (!same_indices(state.data->fixed, solver.hard)) {
     arap_set_fixed(*state.data, solver.hard); // keeps the previous set on a throw
     result.precompute_ms = ms_since(precompute_start);
+    return true;
   } else if (solver.soft_handle && state.data->soft.vertex_weights != solver.soft.vertex_weights) {
     try { // a numeric refactorization; a throw leaves no data, rebuilt next time
       arap_set_soft_weights(*state.data, solver.soft.vertex_weights, solver.soft.face_weights);
@@ -384,7 +399,9 @@ void Session::prepare_data(MethodState& state, ArapMethod method, bool planar,
       throw;
     }
     result.precompute_ms = ms_since(precompute_start);
+    return true;
   }
+  return false;
 }
 
 SolveResult Session::solve(const SolveRequest& request, SolveProgress& progress) {
@@ -412,13 +429,24 @@ SolveResult Session::solve(const SolveRequest& request, SolveProgress& progress)
   // guess is the rest mesh; the session's is the method's U, which must lie in the plane too.
   result.planar = !tets_ && deforms_in_plane(mesh_->V, targets, soft_targets, forces) &&
                   deforms_in_plane(state.U, Eigen::MatrixXd(), Eigen::MatrixXd(), Eigen::MatrixXd());
-  prepare_data(state, request.method, result.planar, solver, result);
+  // New data (another free set, the planar mode, soft terms): the drag's step and history are of another
+  // problem (a history of another size is refused by the solver).
+  if (prepare_data(state, request.method, result.planar, solver, result)) {
+    state.motion.clear();
+    state.drag_history.reset();
+  }
 
   Eigen::MatrixXd U = state.U; // commit only a successful solve
+  // Soft points and forces move the minimum without moving the hard targets: no prediction from those.
+  const bool predict = request.extrapolate && solver.soft.size() == 0 && forces.size() == 0;
+  if (predict) {
+    result.extrapolation = state.motion.scale(solver.hard_targets);
+    state.motion.extrapolate(result.extrapolation, U);
+  }
   const auto solve_start = Clock::now();
   try {
-    result.report =
-        solve_with_progress(*state.data, solver.hard_targets, soft_targets, forces, U, request, progress);
+    result.report = solve_with_progress(*state.data, solver.hard_targets, soft_targets, forces, U, request,
+                                        progress, predict ? state.drag_history : nullptr);
   } catch (const HardPointConflict& e) {
     throw InputError(hard_point_conflict_message(e, solver.soft));
   }
@@ -430,6 +458,13 @@ SolveResult Session::solve(const SolveRequest& request, SolveProgress& progress)
     const Eigen::VectorXd energy = arap_cell_energy(*state.data, U);
     // iARAP with refine_boundary adds cells for inserted boundary points after the #V vertex cells.
     result.cell_energy.assign(energy.data(), energy.data() + std::min<Eigen::Index>(energy.size(), U.rows()));
+  }
+  if (predict && !result.cancelled) {
+    state.motion.record(U, solver.hard_targets);
+    state.drag_history = result.report.accelerator_history;
+  } else {
+    state.motion.clear();
+    state.drag_history.reset();
   }
   state.U = std::move(U);
   result.generation = generation_;
@@ -478,6 +513,7 @@ FitStart Session::begin_fit() {
 
 bool Session::finish_fit(std::uint64_t generation, ArapMethod method, const Eigen::MatrixXd& U) {
   if (!mesh_ || generation != generation_ || U.rows() != mesh_->V.rows()) return false;
+  forget_motion();
   MethodState& state = state_of(method);
   state.U = U;
   state.anchor = gather_rows(U, constrained_);
@@ -488,6 +524,7 @@ bool Session::finish_fit(std::uint64_t generation, ArapMethod method, const Eige
 void Session::reset() {
   require_mesh();
   new_generation();
+  forget_motion();
   for (MethodState& state : methods_) {
     state.U = mesh_->V;
     state.anchor = gather_rows(state.U, constrained_);

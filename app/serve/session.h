@@ -13,6 +13,7 @@
 // shapes or mesh starts a new one, and ends the refinement of the previous one.
 #pragma once
 #include "constraint_history.h"
+#include "drag_motion.h"
 #include "frame_board.h"
 #include "intrinsic_overlay.h"
 #include "refine_job.h"
@@ -181,6 +182,11 @@ private:
     int data_soft_version = 0;     // soft_version_ of the soft constraints data was built with
     bool data_soft_handle = false; // data was built with the handle as soft vertices
     int data_rigid_version = 0;    // rigid_version_ of the rigid groups data was built with
+    DragMotion motion;             // the last answers' step, for SolveRequest::extrapolate
+    // The accelerator's history (L-BFGS pairs, Anderson differences) from the drag's last update, carried
+    // to the next: the targets moved by one step, the curvature the pairs hold stays that of a nearby
+    // energy (ArapSolveOptions::accelerator_history). Kept and forgotten with `motion`.
+    std::shared_ptr<ArapAcceleratorHistory> drag_history;
   };
 
   void require_mesh() const;
@@ -192,9 +198,11 @@ private:
   int record_revision();
   MethodState& state_of(ArapMethod method);
   const MethodState& state_of(ArapMethod method) const;
-  void prepare_data(MethodState& state, ArapMethod method, bool planar, const SolverConstraints& solver,
+  // True when it built or refactorized the method's data.
+  bool prepare_data(MethodState& state, ArapMethod method, bool planar, const SolverConstraints& solver,
                     SolveResult& result);
   void new_generation(); // ends the refinement; a new state for frames
+  void forget_motion();  // new constraints or positions: no drag to extrapolate
 
   // A tetrahedral mesh's volume energy (only iarap), or none; mesh_ then holds its boundary faces.
   void require_surface(const char* what) const;

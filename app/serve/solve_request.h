@@ -42,6 +42,9 @@ struct SolveRequest {
   // last answer: 31 iterations to a 3e-7 gap, where L-BFGS stopped at 5e-5 and Anderson at 6e-4), while
   // the drag's own updates are cheapest with plain iterations (bench/drag_bench.mjs).
   ArapAccelerator refine_accelerator = ArapAccelerator::Newton;
+  // Start from the last answer moved on along the drag's motion (drag_motion.h) rather than from the last
+  // answer: the viewer's updates while the handle is dragged. Not with soft points or forces.
+  bool extrapolate = false;
 };
 
 struct SolveResult {
@@ -58,6 +61,7 @@ struct SolveResult {
   std::uint64_t generation = 0;   // the session generation this solve started
   std::uint64_t sequence = 0;     // its frame's number on the FrameBoard
   bool refining = false;          // the background refinement continues from it
+  double extrapolation = 0;       // the scale s the initial guess moved on by (DragMotion; 0: none)
 };
 
 } // namespace iarap::serve

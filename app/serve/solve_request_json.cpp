@@ -76,7 +76,7 @@ void read_target_fields(const json& body, SolveRequest& request) {
 SolveRequest parse_solve_request(const json& body, int max_iterations) {
   std::vector<std::string> known = solve_option_names();
   known.insert(known.end(), {"method", "transform", "handle_targets", "handle_weights", "cell_energy",
-                             "refine", "refine_accelerator", "gravity", "density", "forces"});
+                             "refine", "refine_accelerator", "gravity", "density", "forces", "extrapolate"});
   require_known_fields(body, known);
   SolveRequest request;
   request.method = parse_arap_method(string_field(body, "method", "iarap"));
@@ -88,6 +88,7 @@ SolveRequest parse_solve_request(const json& body, int max_iterations) {
   request.cell_energy = bool_field(body, "cell_energy", false);
   request.refine_iterations = bool_field(body, "refine", false) ? max_iterations : 0;
   request.refine_accelerator = accelerator_field(body, "refine_accelerator", request.refine_accelerator);
+  request.extrapolate = bool_field(body, "extrapolate", false);
   read_target_fields(body, request);
   read_statics_fields(body, request);
   return request;

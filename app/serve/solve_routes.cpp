@@ -37,6 +37,7 @@ std::string solve_frame(const SolveRequest& request, const SolveResult& result) 
                        {"generation", result.generation},
                        {"sequence", result.sequence},
                        {"refining", result.refining},
+                       {"extrapolation", result.extrapolation},
                        {"vertices", result.positions.size() / 3}});
 }
 

@@ -4,7 +4,7 @@ if(IARAP_BUILD_APP)
   list(APPEND IARAP_TEST_SOURCES serve/session_test.cpp serve/shared_session_test.cpp
     serve/planar_session_test.cpp serve/static_files_test.cpp serve/json_input_test.cpp
     serve/serve_test_meshes.cpp serve/soft_handle_test.cpp serve/fit_runner_test.cpp serve/tet_session_test.cpp
-    serve/refine_job_test.cpp
+    serve/refine_job_test.cpp serve/drag_motion_test.cpp ../app/serve/drag_motion.cpp
     ../app/serve/session.cpp ../app/serve/request_targets.cpp ../app/serve/solver_constraints.cpp ../app/serve/fit_runner.cpp ../app/serve/constraint_history.cpp
     ../app/serve/refine_job.cpp ../app/serve/shared_session.cpp ../app/serve/intrinsic_overlay.cpp
     ../app/serve/frame_board.cpp ../app/serve/json_input.cpp ../app/serve/static_files.cpp

@@ -13,90 +13,18 @@
 import assert from 'node:assert/strict';
 import { execFileSync } from 'node:child_process';
 import fs from 'node:fs';
-import { createRequire } from 'node:module';
 import os from 'node:os';
 import path from 'node:path';
-import { cliPath, repoRoot, startServer, stopServer, webDir } from './server.mjs';
+import { runBrowserSession, viewerPage } from './browser_page.mjs';
+import { cliPath, repoRoot, stopServer } from './server.mjs';
 
-const chromiumPath = process.env.IARAP_CHROMIUM ?? '/usr/bin/chromium';
 const args = process.argv.slice(2);
 const screenshotArg = args.includes('--screenshot') ? args[args.indexOf('--screenshot') + 1] : null;
 const artefactDir = process.env.IARAP_WEB_ARTEFACTS ?? path.join(os.tmpdir(), 'iarap-web-artefacts');
 
-function skip(reason) {
-  console.log(`SKIP: ${reason}`);
-  process.exit(77);
-}
+await runBrowserSession([path.join(repoRoot, 'data', 'bunny.off')], async ({ page, server, problems, userDataDir }) => {
 
-if (!fs.existsSync(chromiumPath)) skip(`no ${chromiumPath} (apt-get install chromium)`);
-let chromium;
-try {
-  ({ chromium } = createRequire(path.join(webDir, 'package.json'))('playwright-core'));
-} catch {
-  skip('playwright-core is not installed (npm ci --prefix web)');
-}
-if (!fs.existsSync(path.join(webDir, 'node_modules/three/build/three.module.js'))) skip('three is not installed (npm ci --prefix web)');
-
-const userDataDir = fs.mkdtempSync(path.join(os.tmpdir(), 'iarap-chromium-'));
-// A fresh profile (playwright passes it as --user-data-dir); WebGL through SwiftShader, no GPU.
-const browser = await chromium.launchPersistentContext(userDataDir, {
-  executablePath: chromiumPath,
-  headless: true,
-  viewport: { width: 1280, height: 800 },
-  args: ['--headless', '--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run', '--disable-background-networking',
-    '--disable-component-update', '--disable-sync', '--use-angle=swiftshader', '--enable-unsafe-swiftshader'],
-});
-let server;
-try {
-  server = await startServer([path.join(repoRoot, 'data', 'bunny.off')]);
-} catch (error) {
-  await browser.close();
-  throw error;
-}
-const problems = [];
-let failed = false;
-try {
-  const page = browser.pages()[0] ?? (await browser.newPage());
-  page.on('console', (message) => { if (message.type() === 'error') problems.push(`console: ${message.text()}`); });
-  page.on('pageerror', (error) => problems.push(`page error: ${error.message}`));
-  page.on('requestfailed', (request) => problems.push(`request failed: ${request.url()}`));
-  // Generous limits: under CTest -j2 on two cores the browser shares them with the other tests.
-  const loadStart = performance.now();
-  await page.goto(server.url, { timeout: 120000 });
-  await page.waitForFunction(() => window.iarapViewer?.ready === true, null, { timeout: 120000 });
-  console.log(`page ready in ${(performance.now() - loadStart).toFixed(0)} ms`);
-
-  const idle = () => page.evaluate(() => window.iarapViewer.idle());
-  const viewer = (name, ...rest) => page.evaluate(([n, r]) => window.iarapViewer[n](...r), [name, rest]);
-  const settle = async () => {
-    await page.waitForTimeout(100);
-    await idle();
-  };
-  const boxSelect = async (paint, fromFraction, toFraction, view = 0) => {
-    await page.check('input[name=tool][value=box]');
-    await page.check(`input[name=paint][value=${paint}]`);
-    const b = await viewer('meshScreenBox', view);
-    const y0 = b.y0 + fromFraction * (b.y1 - b.y0);
-    const y1 = b.y0 + toFraction * (b.y1 - b.y0);
-    await page.mouse.move(b.x0 - 5, y0);
-    await page.mouse.down();
-    await page.mouse.move((b.x0 + b.x1) / 2, (y0 + y1) / 2, { steps: 4 });
-    await page.mouse.move(b.x1 + 5, y1, { steps: 4 });
-    await page.mouse.up();
-    await settle();
-  };
-  const dragGizmo = async (view, dx, steps = 12) => {
-    await page.check('input[name=tool][value=orbit]');
-    const g = await viewer('gizmoXArrowScreenPoint', view);
-    await page.mouse.move(g.x, g.y);
-    await page.mouse.down();
-    for (let k = 1; k <= steps; ++k) {
-      await page.mouse.move(g.x + (dx * k) / steps, g.y);
-      await page.waitForTimeout(30);
-    }
-    await page.mouse.up();
-    await settle();
-  };
+  const { idle, viewer, settle, boxSelect, dragGizmo } = viewerPage(page);
   const rowsOf = (X, rows) => rows.map((i) => [X[3 * i], X[3 * i + 1], X[3 * i + 2]]);
   const maxDistance = (A, B) => Math.max(...A.map((a, r) => Math.hypot(a[0] - B[r][0], a[1] - B[r][1], a[2] - B[r][2])));
 
@@ -604,14 +532,4 @@ try {
   await page.waitForFunction(() => !document.getElementById('banner').hidden, null, { timeout: 10000 });
   assert.match(await page.textContent('#banner-text'), /iarap server does not answer/);
   console.log('browser test: 1 passed, 0 failed');
-} catch (error) {
-  failed = true;
-  console.error(error);
-  console.error(problems.join('\n'));
-  console.error(server.log());
-} finally {
-  await browser.close();
-  await stopServer(server);
-  fs.rmSync(userDataDir, { recursive: true, force: true });
-}
-process.exit(failed ? 1 : 0);
+});

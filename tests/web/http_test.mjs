@@ -148,6 +148,26 @@ describe('api', () => {
       /^time_budget_ms must be a finite number >= 0; got an array of 1 elements$/);
   });
 
+  test('extrapolate: updates of equal steps start where the drag leads; a non-boolean is a 400', async () => {
+    const { fixed, handle, height } = await bottomAndTop();
+    await postJson('/api/constraints', { fixed, handle });
+    const step = (k) => [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0.05 * k * height, 0, 0, 1];
+    const scales = [];
+    for (let k = 1; k <= 4; ++k) {
+      const response = await postJson('/api/solve', { iterations: 2, accelerator: 'lbfgs', extrapolate: true, transform: step(k) });
+      assert.equal(response.status, 200, await response.clone().text());
+      scales.push(decodeFrame(await response.arrayBuffer()).header.extrapolation);
+    }
+    // New constraints forget the motion: the first update has no answer before it, the second one only.
+    // Then equal steps of the handle: s = 1 to the rounding of the targets' sums (far below 1e-9).
+    assert.deepEqual(scales.slice(0, 2), [0, 0]);
+    for (const s of scales.slice(2)) assert.ok(Math.abs(s - 1) < 1e-9, `${scales}`);
+    // A solve without the field predicts nothing.
+    const plain = decodeFrame(await (await postJson('/api/solve', { iterations: 1, transform: step(5) })).arrayBuffer());
+    assert.equal(plain.header.extrapolation, 0);
+    await expectError(postJson('/api/solve', { extrapolate: 'yes', transform: step(5) }), 400, /extrapolate/);
+  });
+
   test('intrinsic edges come as a consistent frame', async () => {
     const response = await fetch(base + '/api/intrinsic_edges');
     assert.equal(response.status, 200);

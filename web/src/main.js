@@ -2,6 +2,7 @@
 // the iarap serve API.
 import { api } from './api.js';
 import { drawColorBar, energyColors, energyScale } from './colormap.js';
+import { defaultBudgetMs } from './drag_budget.js';
 import { drawEnergyPlot, methodColors } from './energy_plot.js';
 import { FitPanel } from './fit_panel.js';
 import { UndoHistory } from './history.js';
@@ -22,6 +23,7 @@ const app = {
   cellEnergy: {}, energyColors: {}, scale: null, curves: {},
   history: new UndoHistory(), cancelling: false, converge: false, solves: 0, errors: 0,
   answers: [], frames: [], // the last solve answers' and refinement frames' headers, for tests/web
+  budgetChosen: false, // the user typed a time per update: loading a mesh keeps it
 };
 
 function setStatus(text) {
@@ -199,13 +201,16 @@ async function solveShown() {
   // The server refines one method, and its frames carry no cell energies.
   const refine = $('refine').checked && methods.length === 1 && !cellEnergy && !converge;
   const refineAccelerator = $('refine-accelerator').value;
+  // Updates start where the drag's motion leads (docs/viewer.md); the server predicts nothing when the
+  // targets did not move, so a repeated solve is unchanged. Not for "solve to convergence".
+  const extrapolate = !converge;
   const weights = handleWeights(handle.length);
   const smoothing = rotationSmoothing();
   refinement.stop();
   $('refine-info').textContent = '';
   const stopWatching = watchProgress();
   const results = await guarded(() =>
-    Promise.all(methods.map((method) => api.solve({ method, ...stopping, accelerator, transform, cell_energy: cellEnergy, refine, refine_accelerator: refineAccelerator, rotation_smoothing: smoothing, ...(weights ? { handle_weights: weights } : {}) }))),
+    Promise.all(methods.map((method) => api.solve({ method, ...stopping, accelerator, transform, cell_energy: cellEnergy, refine, refine_accelerator: refineAccelerator, rotation_smoothing: smoothing, extrapolate, ...(weights ? { handle_weights: weights } : {}) }))),
   ).finally(stopWatching);
   if (!results) return;
   const lines = [];
@@ -348,6 +353,8 @@ async function loadMesh(state) {
   allowSurfaceChoices(state.mesh);
   $('mesh-info').textContent = describeMesh(state.mesh);
   if (!state.mesh) return;
+  // The budget follows the mesh's size until the user sets one.
+  if (!app.budgetChosen) $('budget').value = String(defaultBudgetMs(state.mesh.vertices));
   const [faces, rest] = await Promise.all([api.faces(), api.positions('rest')]);
   viewer.setMesh(faces, rest, shownMethods());
   uvPanel.setMesh(faces);
@@ -503,6 +510,7 @@ function setupPanel(state) {
   $('iterations').max = String(state.limits.max_iterations);
   $('iterations-limit').textContent = `(1 to ${state.limits.max_iterations})`;
   $('iterations').addEventListener('change', () => guarded(async () => iterations()));
+  $('budget').addEventListener('input', () => { app.budgetChosen = true; });
   const select = $('mesh-select');
   select.replaceChildren(...state.meshes.map((name) => Object.assign(document.createElement('option'), { value: name, textContent: name })));
   select.addEventListener('change', () => guarded(async () => {
