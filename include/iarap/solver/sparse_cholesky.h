@@ -14,9 +14,10 @@ enum class FactorizationKind {
   Empty,                // a 0 x 0 matrix (e.g. every vertex constrained): solves return 0 rows
   CholmodSupernodalLLT, // CHOLMOD supernodal Cholesky: the matrix is positive definite
   SimplicialLDLT,       // Eigen's LDL^T: the fallback for symmetric matrices that are not positive definite
+  SimplicialLLT, // Eigen's simplicial Cholesky (AMD ordering): positive definite, below simplicial_below()
 };
 
-// "none", "empty", "cholmod-supernodal-llt", "simplicial-ldlt".
+// "none", "empty", "cholmod-supernodal-llt", "simplicial-ldlt", "simplicial-llt".
 std::string factorization_name(FactorizationKind kind);
 
 // CHOLMOD's fill-reducing ordering (the symbolic analysis), one ordering per analysis. Amd: the faster
@@ -54,6 +55,13 @@ public:
   void set_ordering(FillOrdering ordering);
   FillOrdering ordering() const;
   FillOrdering used_ordering() const;
+
+  // Matrices of fewer rows than this are factorized by Eigen's simplicial LLT (its own AMD ordering, no
+  // supernodes) instead of CHOLMOD, whose analysis (ordering, transposes, elimination tree, supernodal
+  // symbolic) costs more than the whole factorization of a system of a few hundred rows: an atlas
+  // factorizes two per chart. Default 0 (always CHOLMOD); kept by copies.
+  void set_simplicial_below(Eigen::Index rows);
+  Eigen::Index simplicial_below() const;
 
   // The symbolic half of factorize (CHOLMOD's fill-reducing ordering and supernodal analysis) on the
   // pattern of the square, compressed matrix `pattern` (values ignored). Forgets any factorization.
