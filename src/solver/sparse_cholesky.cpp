@@ -294,9 +294,8 @@ void SparseCholesky::factorize(const Eigen::SparseMatrix<double>& A) {
       *impl_ = std::move(next);
       return;
     }
-    next.simplicial.reset(); // not positive definite: the LDL^T below
-  }
-  if (next.A.rows() >= simplicial_below) {
+    next.simplicial.reset(); // not positive definite (CHOLMOD's LLT would fail as well): LDL^T below
+  } else {
     const CholmodTeams teams;
     limit_blas_threads(loop_thread_count());
     if (analyzed) {

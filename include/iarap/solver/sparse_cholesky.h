@@ -68,10 +68,10 @@ public:
   // Independent of the values, so it may run (on another thread) while they are being computed.
   void analyze(const Eigen::SparseMatrix<double>& pattern);
 
-  // Factorizes the n x n symmetric A: CHOLMOD supernodal LLT first, reusing the symbolic analysis when A is
-  // compressed with exactly the analyzed pattern (analyze()'s, or that of the matrix of the last successful
-  // LLT: a refactorization with new values is numeric only); if A is not positive definite, Eigen's
-  // SimplicialLDLT.
+  // Factorizes the n x n symmetric A: below simplicial_below() rows Eigen's simplicial LLT; else CHOLMOD's
+  // supernodal LLT, reusing the symbolic analysis when A is compressed with exactly the analyzed pattern
+  // (analyze()'s, or the last successful LLT's matrix's: a refactorization is numeric only); if A is not
+  // positive definite, Eigen's SimplicialLDLT.
   // Throws SolverError when A is not square, has non-finite entries, or both factorizations fail (a zero
   // or numerically zero pivot: A is singular); the object is then empty.
   void factorize(const Eigen::SparseMatrix<double>& A);
