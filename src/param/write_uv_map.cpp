@@ -7,8 +7,6 @@
 #include "iarap/core/errors.h"
 
 #include <cstdint>
-#include <map>
-#include <tuple>
 #include <vector>
 
 namespace iarap {
@@ -102,14 +100,29 @@ void write_corner_faces(const std::string& path, const std::string& extension, c
   out.reserve(static_cast<std::size_t>(V.rows() * 110 + corners * 45));
   out += "# UV atlas written by iarap\n";
   io_detail::append_vertex_lines(out, V, "v ");
-  std::map<std::tuple<int, double, double>, int> texture_index; // (vertex, u, v) -> vt index from 0
+  // (vertex, u, v) -> vt index from 0: per vertex the chain of its distinct UVs (one, or one per chart at
+  // a seam), compared with == as a key would be.
+  struct TextureCoordinate {
+    double u, v;
+    int next; // the vertex's next vt, -1 at the end
+  };
+  std::vector<TextureCoordinate> texture;
+  texture.reserve(static_cast<std::size_t>(V.rows()) + static_cast<std::size_t>(corners) / 8);
+  std::vector<int> first_texture(static_cast<std::size_t>(V.rows()), -1);
   std::vector<int> corner_vt(static_cast<std::size_t>(corners));
   for (Eigen::Index c = 0; c < corners; ++c) {
-    const auto key =
-        std::make_tuple(faces.vertex[static_cast<std::size_t>(c)], faces.uv(c, 0), faces.uv(c, 1));
-    auto [it, added] = texture_index.emplace(key, static_cast<int>(texture_index.size()));
-    if (added) append_uv("vt ", faces.uv(c, 0), faces.uv(c, 1));
-    corner_vt[static_cast<std::size_t>(c)] = it->second;
+    const double u = faces.uv(c, 0), v = faces.uv(c, 1);
+    int* link = &first_texture[static_cast<std::size_t>(faces.vertex[static_cast<std::size_t>(c)])];
+    while (*link >= 0 && !(texture[static_cast<std::size_t>(*link)].u == u &&
+                           texture[static_cast<std::size_t>(*link)].v == v))
+      link = &texture[static_cast<std::size_t>(*link)].next;
+    int index = *link;
+    if (index < 0) {
+      index = *link = static_cast<int>(texture.size()); // before push_back, which may move `link`'s target
+      texture.push_back({u, v, -1});
+      append_uv("vt ", u, v);
+    }
+    corner_vt[static_cast<std::size_t>(c)] = index;
   }
   for (std::size_t p = 0; p + 1 < faces.first.size(); ++p) {
     out += 'f';

@@ -19,6 +19,7 @@ void split(const Eigen::SparseMatrix<double>& A, const ConstraintLayout& layout,
 
 SparseCholesky factorize_named(const Eigen::SparseMatrix<double>& A_ff, const char* what) {
   SparseCholesky cholesky;
+  cholesky.set_simplicial_below(simplicial_free_rows);
   try {
     cholesky.factorize(A_ff);
   } catch (const SolverError& e) {

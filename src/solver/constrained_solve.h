@@ -13,6 +13,11 @@
 
 namespace iarap::detail {
 
+// Below this many free unknowns the systems here are factorized by a simplicial LLT instead of CHOLMOD's
+// supernodal one (SparseCholesky::set_simplicial_below): an atlas's charts, most of tens to hundreds of
+// vertices, each factorize an LSCM and a UV system, and CHOLMOD's analysis was most of their cost.
+constexpr Eigen::Index simplicial_free_rows = 4000;
+
 // The factorization of A_ff (A n x n, symmetric) for `layout`. Throws SolverError when A_ff is singular,
 // naming the system by `what` ("the LSCM system") and its number of free unknowns.
 SparseCholesky factorize_free(const Eigen::SparseMatrix<double>& A, const ConstraintLayout& layout,

@@ -71,5 +71,29 @@ TEST(WriteUvMap, RefusesOtherExtensionsAndWrongShapes) {
   std::filesystem::remove_all(dir);
 }
 
+TEST(WriteUvAtlas, OneTextureCoordinatePerDistinctVertexUvInOrderOfFirstUse) {
+  // Two triangles on the square's diagonal (0, 2): vertex 0 keeps one UV in both, vertex 2 has one per
+  // triangle (a seam), vertex 0's second corner writes its u as -0.0, which is the same UV (== equal).
+  const auto dir = test::temp_dir("uv_atlas_vt");
+  Eigen::MatrixXd V(4, 3);
+  V << 0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0;
+  Eigen::MatrixXi F(2, 3);
+  F << 0, 1, 2, 0, 2, 3;
+  Eigen::MatrixXd corner_uv(6, 2);
+  corner_uv << 0.0, 0.0, 0.5, 0.0, 0.5, 0.5, //
+      -0.0, 0.0, 0.75, 0.5, 0.25, 0.5;
+  const auto path = dir / "atlas.obj";
+  write_uv_atlas(path.string(), V, F, corner_uv);
+  const std::vector<std::vector<double>> vt = lines_with(path, "vt ");
+  const std::vector<std::vector<double>> expected{{0, 0}, {0.5, 0}, {0.5, 0.5}, {0.75, 0.5}, {0.25, 0.5}};
+  EXPECT_EQ(vt, expected);
+  std::ifstream in(path);
+  std::vector<std::string> faces;
+  for (std::string line; std::getline(in, line);)
+    if (line.rfind("f ", 0) == 0) faces.push_back(line);
+  EXPECT_EQ(faces, (std::vector<std::string>{"f 1/1 2/2 3/3", "f 1/1 3/4 4/5"}));
+  std::filesystem::remove_all(dir);
+}
+
 } // namespace
 } // namespace iarap

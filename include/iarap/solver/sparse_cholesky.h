@@ -14,9 +14,10 @@ enum class FactorizationKind {
   Empty,                // a 0 x 0 matrix (e.g. every vertex constrained): solves return 0 rows
   CholmodSupernodalLLT, // CHOLMOD supernodal Cholesky: the matrix is positive definite
   SimplicialLDLT,       // Eigen's LDL^T: the fallback for symmetric matrices that are not positive definite
+  SimplicialLLT, // Eigen's simplicial Cholesky (AMD ordering): positive definite, below simplicial_below()
 };
 
-// "none", "empty", "cholmod-supernodal-llt", "simplicial-ldlt".
+// "none", "empty", "cholmod-supernodal-llt", "simplicial-ldlt", "simplicial-llt".
 std::string factorization_name(FactorizationKind kind);
 
 // CHOLMOD's fill-reducing ordering (the symbolic analysis), one ordering per analysis. Amd: the faster
@@ -55,15 +56,22 @@ public:
   FillOrdering ordering() const;
   FillOrdering used_ordering() const;
 
+  // Matrices of fewer rows than this are factorized by Eigen's simplicial LLT (its own AMD ordering, no
+  // supernodes) instead of CHOLMOD, whose analysis (ordering, transposes, elimination tree, supernodal
+  // symbolic) costs more than the whole factorization of a system of a few hundred rows: an atlas
+  // factorizes two per chart. Default 0 (always CHOLMOD); kept by copies.
+  void set_simplicial_below(Eigen::Index rows);
+  Eigen::Index simplicial_below() const;
+
   // The symbolic half of factorize (CHOLMOD's fill-reducing ordering and supernodal analysis) on the
   // pattern of the square, compressed matrix `pattern` (values ignored). Forgets any factorization.
   // Independent of the values, so it may run (on another thread) while they are being computed.
   void analyze(const Eigen::SparseMatrix<double>& pattern);
 
-  // Factorizes the n x n symmetric A: CHOLMOD supernodal LLT first, reusing the symbolic analysis when A is
-  // compressed with exactly the analyzed pattern (analyze()'s, or that of the matrix of the last successful
-  // LLT: a refactorization with new values is numeric only); if A is not positive definite, Eigen's
-  // SimplicialLDLT.
+  // Factorizes the n x n symmetric A: below simplicial_below() rows Eigen's simplicial LLT; else CHOLMOD's
+  // supernodal LLT, reusing the symbolic analysis when A is compressed with exactly the analyzed pattern
+  // (analyze()'s, or the last successful LLT's matrix's: a refactorization is numeric only); if A is not
+  // positive definite, Eigen's SimplicialLDLT.
   // Throws SolverError when A is not square, has non-finite entries, or both factorizations fail (a zero
   // or numerically zero pivot: A is singular); the object is then empty.
   void factorize(const Eigen::SparseMatrix<double>& A);
