@@ -11,8 +11,8 @@ namespace iarap::detail {
 
 namespace {
 
-// The visit order, the rest positions in it and the cell entries: each cell's elements with their b (vertex
-// positions in the visit order) and w side by side.
+// The visit order and the cell entries: each cell's elements with their b (vertex positions in the visit
+// order), s_hat and w side by side.
 void fill_cell_entries(const Eigen::MatrixXd& V, const ArapElements& el, StreamedLayout& sl) {
   sl.visit_order = breadth_first_cell_order(el.num_vertices, el.num_cells, el.cell_element_start,
                                             el.cell_element, el.b_index.data(), V);
@@ -21,8 +21,6 @@ void fill_cell_entries(const Eigen::MatrixXd& V, const ArapElements& el, Streame
   // file's cell order, each cell's run written where its position puts it: the element arrays are then read
   // about as they lie in memory, and the scattering is one block per cell.
   const std::vector<int> position = inverse_permutation(sl.visit_order);
-  sl.rest_rows.resize(el.num_vertices, 3);
-  for (int p = 0; p < el.num_vertices; ++p) sl.rest_rows.row(p) = V.row(order[static_cast<size_t>(p)]);
   sl.cell_entry_start.assign(static_cast<size_t>(el.num_cells) + 1, 0);
   for (int p = 0; p < el.num_cells; ++p) {
     const auto c = static_cast<size_t>(order[static_cast<size_t>(p)]);
@@ -40,6 +38,7 @@ void fill_cell_entries(const Eigen::MatrixXd& V, const ArapElements& el, Streame
       for (int j = 0; j < 3; ++j) {
         entry->index[j] = position[static_cast<size_t>(el.b_index(e, j))];
         entry->value[j] = el.b_value(e, j);
+        entry->s_hat[j] = el.s_hat(e, j);
       }
       entry->w = el.w(e);
     }
@@ -77,12 +76,9 @@ void fill_rhs_terms(const ArapElements& el, StreamedLayout& sl) {
     auto for_each_contribution = [&](int p, const auto& add) {
       const CellEntry* entry = sl.cell_entry.data() + sl.cell_entry_start[static_cast<size_t>(p)];
       const CellEntry* end = sl.cell_entry.data() + sl.cell_entry_start[static_cast<size_t>(p) + 1];
-      for (; entry != end; ++entry) {
-        double s_hat[3];
-        element_vector(*entry, sl.rest_rows.data(), s_hat);
+      for (; entry != end; ++entry)
         for (int j = 0; j < 3; ++j)
-          if (entry->value[j] != 0.0) add(entry->index[j], entry->w * entry->value[j], s_hat);
-      }
+          if (entry->value[j] != 0.0) add(entry->index[j], entry->w * entry->value[j], entry->s_hat);
     };
     for (int p = first; p < last; ++p) {
       for_each_contribution(p, [&](int v, double, const double*) {

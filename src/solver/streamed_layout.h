@@ -15,16 +15,14 @@
 
 namespace iarap::detail {
 
-// One element of a cell: its b (vertex positions in visit_order) and w side by side, so that the local step
-// reads a cell in one forward sweep. Its rest vector s_hat = V^T b is not stored: rest_vector() sums it from
-// StreamedLayout::rest_rows as ArapElements::s_hat was summed, the same bits (issue 44: 48 bytes an entry
-// instead of 72, some 150 B/vertex of iARAP's layout, for 24 B/vertex of rest positions). Left uninitialized
-// when constructed (the builder writes each one): resizing the vectors then does not zero tens of
-// megabytes that are overwritten at once.
+// One element of a cell: its b (vertex positions in visit_order), s_hat and w side by side, so that the local
+// step reads a cell in one forward sweep. Left uninitialized when constructed (the builder writes each one):
+// resizing the vectors then does not zero tens of megabytes that are overwritten at once.
 struct CellEntry {
   CellEntry() {}
   int index[3];
   double value[3];
+  double s_hat[3];
   double w;
 };
 
@@ -39,9 +37,6 @@ struct RhsTerm {
 
 struct StreamedLayout {
   std::vector<int> visit_order;
-  // The rest positions V (#V x 3) in visit order: row p is V's row visit_order[p] (the rows CellEntry::index
-  // names).
-  ArapElements::ValueRows rest_rows;
   // The elements of the cell at position p: cell_entry[cell_entry_start[p] .. cell_entry_start[p + 1]), in
   // ArapElements::cell_element's order.
   std::vector<int> cell_entry_start;
@@ -57,17 +52,6 @@ struct StreamedLayout {
 // release_arrays: el's per-element arrays are released (release_element_arrays) once the cell entries are
 // filled, before the right-hand side's terms, which read the cell entries only.
 StreamedLayout streamed_layout(const Eigen::MatrixXd& V, ArapElements& el, bool release_arrays);
-
-// U^T b of the entry x from row-major positions u in visit order (#V x 3), summed in slot order: the
-// element's vector s_e of the deformed positions, and with u = rest_rows its rest vector s_hat_e, bit for
-// bit ArapElements::s_hat (set_rest_vector sums the same products in the same order).
-inline void element_vector(const CellEntry& x, const double* u, double (&s)[3]) {
-  for (int d = 0; d < 3; ++d) {
-    double v = 0.0;
-    for (int k = 0; k < 3; ++k) v += x.value[k] * u[3 * x.index[k] + d];
-    s[d] = v;
-  }
-}
 
 // el's layout (finish_elements made it; not checked).
 inline const StreamedLayout& streamed(const ArapElements& el) {
