@@ -27,6 +27,13 @@ void release_free_heap() {
   malloc_trim(0);
 }
 
+void release_free_heap(std::ptrdiff_t vertices) {
+  // From this many vertices the freed transients of a precompute's phase are hundreds of megabytes (issue
+  // 44), and their page faults a small part of a precompute of seconds.
+  constexpr std::ptrdiff_t kReleaseHeapVertices = 100000;
+  if (vertices >= kReleaseHeapVertices) release_free_heap();
+}
+
 void trace_resident(const char* phase) {
   static const bool enabled = std::getenv("IARAP_MEMORY_TRACE") != nullptr;
   if (!enabled) return;

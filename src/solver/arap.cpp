@@ -101,16 +101,12 @@ void factorize(const Eigen::SparseMatrix<double>& L, const detail::ConstraintLay
   system.factorized = true;
 }
 
-// From this many vertices arap_precompute returns the freed heap to the system before and after its work:
-// the freed transients are then hundreds of megabytes (issue 44), and their page faults a small part of a
-// precompute of seconds.
-constexpr Eigen::Index kReleaseHeapVertices = 100000;
-
-// Returns the freed heap to the system on a large mesh (kReleaseHeapVertices): called where a phase of the
-// precompute has freed its transients, so that the other thread's next arrays (each thread allocates from a
-// heap of its own, and arrays of 32 MB and more are mappings of their own) do not add to them.
+// Returns the freed heap to the system on a large mesh (release_free_heap(vertices)): called where a phase
+// of the precompute has freed its transients, so that the other thread's next arrays (each thread
+// allocates from a heap of its own, and arrays of 32 MB and more are mappings of their own) do not add to
+// them.
 void release_freed_transients(Eigen::Index vertices) {
-  if (vertices >= kReleaseHeapVertices) release_free_heap();
+  release_free_heap(static_cast<std::ptrdiff_t>(vertices));
 }
 
 // The rest mesh as the builders take it, #V x 3: a #V x 2 V embedded at z = 0; a planar #V x 3 one must lie

@@ -1,11 +1,15 @@
 #include "local_global_problem.h"
 
+#include "iarap/core/resident_memory.h"
+
 #include "streamed_fit_rotations.h"
 #include "streamed_layout.h"
 #include "streamed_rhs.h"
 #include "visit_order.h"
 
 #include <Eigen/Eigenvalues>
+
+#include <omp.h>
 
 #include <algorithm>
 #include <cmath>
@@ -28,21 +32,24 @@ LocalGlobalProblem::LocalGlobalProblem(ArapData& data, const Eigen::MatrixXd& ta
   const ArapElements& el = data.elements;
   visit_rows(el, U, U_rows_);
   const std::vector<int>& position = position_;
-  R_spare_.resize(static_cast<size_t>(el.num_cells));
   const Eigen::Index nf = data.free.size();
-  const Eigen::MatrixXd Lfc_Uc = data.L_fc * U_c; // rows in data.free's order
-  Lfc_Uc_.resize(nf, 3);
-  for (Eigen::Index r = 0; r < nf; ++r) Lfc_Uc_.row(r) = Lfc_Uc.row(free_index_[static_cast<size_t>(r)]);
-  // The terms' linear parts at the free rows, s_f = sum_t s_t, folded into L_fc U_c (B = rhs_f + s_f -
-  // L_fc U_c) and kept for the gradient.
-  terms_ = quadratic_terms(data, soft_targets, forces, &position_);
-  if (!terms_.empty()) {
-    std::vector<int> unknown(position.size(), -1); // each vertex's row of x
+  {
+    const Eigen::MatrixXd Lfc_Uc_free = data.L_fc * U_c; // rows in data.free's order
+    Eigen::MatrixXd Lfc_Uc(nf, 3);                       // rows of x
     for (Eigen::Index r = 0; r < nf; ++r)
-      unknown[static_cast<size_t>(data.free(free_index_[static_cast<size_t>(r)]))] = static_cast<int>(r);
-    linear_f_.setZero(nf, 3);
-    for (const auto& term : terms_) term->add_linear(unknown, linear_f_);
-    Lfc_Uc_ -= linear_f_;
+      Lfc_Uc.row(r) = Lfc_Uc_free.row(free_index_[static_cast<size_t>(r)]);
+    // The terms' linear parts at the free rows, s_f = sum_t s_t, folded into L_fc U_c (B = rhs_f + s_f -
+    // L_fc U_c) and kept for the gradient.
+    terms_ = quadratic_terms(data, soft_targets, forces, &position_);
+    if (!terms_.empty()) {
+      std::vector<int> unknown(position.size(), -1); // each vertex's row of x
+      for (Eigen::Index r = 0; r < nf; ++r)
+        unknown[static_cast<size_t>(data.free(free_index_[static_cast<size_t>(r)]))] = static_cast<int>(r);
+      linear_f_.setZero(nf, 3);
+      for (const auto& term : terms_) term->add_linear(unknown, linear_f_);
+      Lfc_Uc -= linear_f_;
+    }
+    keep_nonzero_rows(Lfc_Uc);
   }
   if (data.soft.hard_faces.size() > 0) set_up_hard_points(soft_targets);
   if (rotation_smoothing > 0) {
@@ -53,13 +60,11 @@ LocalGlobalProblem::LocalGlobalProblem(ArapData& data, const Eigen::MatrixXd& ta
         std::make_unique<RotationSmoothing>(el, position_, rotation_smoothing, rest_area(data.V, data.F));
   }
   B_.resize(nf, 3);
-  X_.resize(nf, 3);
   // The first fit starts cold (fit_rotations warm-starts from rotations it is given): a solve's result then
   // depends on its inputs only, bit for bit, not on what earlier solves left in data.R. Warm, it starts
   // from those, in visit order as the fits keep them.
-  if (warm_start_rotations && !smoothing_ && data.R.size() == R_spare_.size()) {
-    to_visit_order(streamed(el).visit_order, data.R, R_spare_);
-    data.R.swap(R_spare_);
+  if (warm_start_rotations && !smoothing_ && data.R.size() == static_cast<size_t>(el.num_cells)) {
+    to_visit_order_in_place(streamed(el).visit_order, data.R);
   } else {
     data.R.clear();
   }
@@ -117,12 +122,26 @@ void LocalGlobalProblem::set_up_hard_points(const Eigen::MatrixXd& soft_targets)
   set_positions(x);
 }
 
+// Lfc_Uc_ and Lfc_Uc_row_ from the dense rows: those with an entry other than +0.0 (a -0.0 is kept, as
+// rhs - (-0.0) and rhs - 0.0 differ for rhs = -0.0). Without terms they are the rows beside constrained
+// vertices, a small part of all.
+void LocalGlobalProblem::keep_nonzero_rows(const Eigen::MatrixXd& Lfc_Uc) {
+  const auto is_plus_zero = [](double v) { return v == 0.0 && !std::signbit(v); };
+  Lfc_Uc_row_.clear();
+  for (Eigen::Index r = 0; r < Lfc_Uc.rows(); ++r)
+    if (!is_plus_zero(Lfc_Uc(r, 0)) || !is_plus_zero(Lfc_Uc(r, 1)) || !is_plus_zero(Lfc_Uc(r, 2)))
+      Lfc_Uc_row_.push_back(static_cast<int>(r));
+  Lfc_Uc_.resize(static_cast<Eigen::Index>(Lfc_Uc_row_.size()), 3);
+  for (size_t k = 0; k < Lfc_Uc_row_.size(); ++k)
+    Lfc_Uc_.row(static_cast<Eigen::Index>(k)) = Lfc_Uc.row(Lfc_Uc_row_[k]);
+}
+
 LocalGlobalProblem::~LocalGlobalProblem() {
+  trace_resident("solve's workspaces"); // the solve's high-water mark, before they go
   for (size_t r = 0; r < free_index_.size(); ++r)
     U_.row(data_.free(free_index_[r])) = U_rows_.row(free_position_[r]);
-  if (data_.R.size() != R_spare_.size()) return; // no local step ran
-  from_visit_order(streamed(data_.elements).visit_order, data_.R, R_spare_);
-  data_.R.swap(R_spare_);
+  if (data_.R.size() != static_cast<size_t>(data_.elements.num_cells)) return; // no local step ran
+  from_visit_order_in_place(streamed(data_.elements).visit_order, data_.R);
 }
 
 Eigen::MatrixXd LocalGlobalProblem::positions() const {
@@ -178,27 +197,46 @@ void LocalGlobalProblem::assemble_rhs() {
   const auto rows = static_cast<int>(free_position_.size());
   B_.resize(free_count(), 3);
   g_.resize(free_count(), 3);
+  B_holds_step_ = false;
   const double* u = U_rows_.data();
   const StreamedLayout& sl = streamed(data_.elements);
   const bool linear = !terms_.empty();
-#pragma omp parallel for schedule(static)
-  for (int r = 0; r < rows; ++r) {
-    double rhs[3], LU[3];
-    arap_rhs_row(sl, data_.R, free_position_[static_cast<size_t>(r)], rhs);
-    L_row_times(L_row_start_.data(), L_column_.data(), L_value_.data(), r, u, LU);
-    for (int d = 0; d < 3; ++d) {
-      B_(r, d) = rhs[d] - Lfc_Uc_(r, d);
-      g_(r, d) = LU[d] - Lfc_Uc_(r, d) - B_(r, d);
+  const auto kept_rows = static_cast<std::ptrdiff_t>(Lfc_Uc_row_.size());
+#pragma omp parallel
+  {
+    // Each thread a range of rows, walking the kept rows of L_fc U_c beside it (0 elsewhere).
+    const int threads = omp_get_num_threads(), thread = omp_get_thread_num();
+    const int first = static_cast<int>(static_cast<long long>(rows) * thread / threads);
+    const int last = static_cast<int>(static_cast<long long>(rows) * (thread + 1) / threads);
+    std::ptrdiff_t slot =
+        std::lower_bound(Lfc_Uc_row_.begin(), Lfc_Uc_row_.end(), first) - Lfc_Uc_row_.begin();
+    for (int r = first; r < last; ++r) {
+      double rhs[3], LU[3], Lfc_Uc[3] = {0.0, 0.0, 0.0};
+      if (slot < kept_rows && Lfc_Uc_row_[static_cast<size_t>(slot)] == r) {
+        for (int d = 0; d < 3; ++d) Lfc_Uc[d] = Lfc_Uc_(slot, d);
+        ++slot;
+      }
+      arap_rhs_row(sl, data_.R, free_position_[static_cast<size_t>(r)], rhs);
+      L_row_times(L_row_start_.data(), L_column_.data(), L_value_.data(), r, u, LU);
+      for (int d = 0; d < 3; ++d) {
+        B_(r, d) = rhs[d] - Lfc_Uc[d];
+        g_(r, d) = LU[d] - Lfc_Uc[d] - B_(r, d);
+      }
+      if (linear) g_.row(r) -= linear_f_.row(r);
     }
-    if (linear) g_.row(r) -= linear_f_.row(r);
   }
   hard_.project_gradient(g_);
 }
 
 const Eigen::MatrixXd& LocalGlobalProblem::plain_step() {
-  solve_into(B_, X_);
-  hard_.correct(X_, hard_d_);
-  return X_;
+  // G overwrites B (B's rows are gathered into the factor's order before any of G's is written): one
+  // #free x 3 array fewer at a solve's peak (issue 44). Asked again, the same G.
+  if (!B_holds_step_) {
+    solve_into(B_, B_);
+    hard_.correct(B_, hard_d_);
+    B_holds_step_ = true;
+  }
+  return B_;
 }
 
 Eigen::MatrixXd LocalGlobalProblem::solve(const Eigen::MatrixXd& r) const {
@@ -214,7 +252,8 @@ Eigen::MatrixXd LocalGlobalProblem::solve_unconstrained(const Eigen::MatrixXd& r
   return x;
 }
 
-// The factor's rows follow data.free; x's follow the visit order: rows are permuted on the way in and out.
+// The factor's rows follow data.free; x's follow the visit order: rows are permuted on the way in and out
+// (x may be b: all of b is read before x is written).
 void LocalGlobalProblem::solve_into(const Eigen::MatrixXd& b, Eigen::MatrixXd& x) const {
   ++solves_;
   const Eigen::Index nf = free_count();
@@ -223,11 +262,11 @@ void LocalGlobalProblem::solve_into(const Eigen::MatrixXd& b, Eigen::MatrixXd& x
 #pragma omp parallel for schedule(static)
   for (Eigen::Index r = 0; r < nf; ++r)
     for (Eigen::Index d = 0; d < columns; ++d) b_free_(free_index_[static_cast<size_t>(r)], d) = b(r, d);
-  data_.solver.solve(b_free_, x_free_); // all columns at once
+  data_.solver.solve(b_free_, b_free_); // all columns at once, in place
   x.resize(nf, columns);
 #pragma omp parallel for schedule(static)
   for (Eigen::Index r = 0; r < nf; ++r)
-    for (Eigen::Index d = 0; d < columns; ++d) x(r, d) = x_free_(free_index_[static_cast<size_t>(r)], d);
+    for (Eigen::Index d = 0; d < columns; ++d) x(r, d) = b_free_(free_index_[static_cast<size_t>(r)], d);
 }
 
 // Differentiating R^T S = P (symmetric) along dS with dR = R [omega]_x gives

@@ -62,7 +62,8 @@ public:
   // (gradient()), in one pass over the free vertices.
   void assemble_rhs() override;
   // G = L_ff^{-1} B: the plain local/global iterate from the point assemble_rhs last saw (kept in this
-  // object until the next call: the solve reuses its workspaces and allocates nothing).
+  // object until the next assemble_rhs, in B's place: the solve reuses its workspaces and allocates
+  // nothing).
   const Eigen::MatrixXd& plain_step() override;
   // g = L_ff x - B at the point assemble_rhs last saw, computed there (kept until its next call).
   const Eigen::MatrixXd& gradient() const override { return g_; }
@@ -85,10 +86,14 @@ private:
   void solve_into(const Eigen::MatrixXd& b, Eigen::MatrixXd& x) const;
   Eigen::MatrixXd solve_unconstrained(const Eigen::MatrixXd& r) const;
   void set_up_hard_points(const Eigen::MatrixXd& soft_targets);
+  void keep_nonzero_rows(const Eigen::MatrixXd& Lfc_Uc);
 
   ArapData& data_;
   Eigen::MatrixXd& U_;
-  Eigen::MatrixXd Lfc_Uc_; // #free x 3
+  // L_fc U_c (less the terms' linear parts) at the free rows, only where a row is not zero: Lfc_Uc_ row k
+  // is the row Lfc_Uc_row_[k] (ascending) of x, the others are +0 (issue 44: 24 bytes a free vertex).
+  std::vector<int> Lfc_Uc_row_;
+  Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> Lfc_Uc_;
   // The free rows of the symmetric L in visit order, as flat CSR (free_row_system.h, kept in data between
   // solves): row r belongs to the free vertex at position free_position_[r] (increasing) with free index
   // free_index_[r]; its columns are visit positions. The fused right-hand-side and gradient pass and the
@@ -97,12 +102,12 @@ private:
   std::shared_ptr<const FreeRowSystem> rows_;
   const std::vector<int>&free_position_, &free_index_, &L_row_start_, &L_column_, &position_;
   const std::vector<double>& L_value_;
-  ArapElements::ValueRows U_rows_;       // the positions in visit order (U's are written back at the end)
-  std::vector<Eigen::Matrix3d> R_spare_; // num_cells: where data.R goes back to the file's order
+  ArapElements::ValueRows U_rows_; // the positions in visit order (U's are written back at the end)
   Eigen::VectorXd cell_energy_;
-  Eigen::MatrixXd B_, X_, g_;
-  mutable Eigen::MatrixXd b_free_,
-      x_free_; // a solve's right-hand side and solution in the factor's row order
+  Eigen::MatrixXd B_, g_;
+  bool B_holds_step_ = false; // plain_step has replaced B_ by G (until the next assemble_rhs)
+  // A solve's right-hand side and then, solved in place, its solution in the factor's row order.
+  mutable Eigen::MatrixXd b_free_;
   std::vector<Eigen::Matrix3d> S_, dS_, M_inverse_, dR_; // Hessian workspaces (per cell)
   bool keep_covariances_ = false;
   bool covariances_current_ = false; // S_ holds the last local step's covariances (kept, or smoothing's)

@@ -106,7 +106,9 @@ using SimplicialLlt =
 } // namespace
 
 struct SparseCholesky::Impl {
-  Eigen::SparseMatrix<double> A; // kept so that copies can refactorize
+  // The lower triangle of the factorized matrix (all that is read of it), kept so that copies can
+  // refactorize and a refactorization can tell its pattern: half the bytes of the whole (issue 44).
+  Eigen::SparseMatrix<double> A;
   FactorizationKind kind = FactorizationKind::None;
   FillOrdering ordering = FillOrdering::Auto;
   FillOrdering used = FillOrdering::Amd; // what the last analysis ran
@@ -209,11 +211,22 @@ SparseCholesky& SparseCholesky::operator=(SparseCholesky&&) noexcept = default;
 SparseCholesky::~SparseCholesky() = default;
 
 namespace {
-bool same_pattern(const Eigen::SparseMatrix<double>& a, const Eigen::SparseMatrix<double>& b) {
-  return a.isCompressed() && b.isCompressed() && a.rows() == b.rows() && a.cols() == b.cols() &&
-         a.nonZeros() == b.nonZeros() &&
-         std::equal(a.outerIndexPtr(), a.outerIndexPtr() + a.outerSize() + 1, b.outerIndexPtr()) &&
-         std::equal(a.innerIndexPtr(), a.innerIndexPtr() + a.nonZeros(), b.innerIndexPtr());
+// True when the compressed a and b have the same entries on and below the diagonal (where the
+// factorization reads them; either may hold its upper triangle too).
+bool same_lower_pattern(const Eigen::SparseMatrix<double>& a, const Eigen::SparseMatrix<double>& b) {
+  if (!a.isCompressed() || !b.isCompressed() || a.rows() != b.rows() || a.cols() != b.cols()) return false;
+  // Column j's rows from j on: its inner indices are ascending in a compressed matrix.
+  const auto lower_part = [](const Eigen::SparseMatrix<double>& m, int j) {
+    const int* first = m.innerIndexPtr() + m.outerIndexPtr()[j];
+    const int* last = m.innerIndexPtr() + m.outerIndexPtr()[j + 1];
+    return std::make_pair(std::lower_bound(first, last, j), last);
+  };
+  for (int j = 0; j < a.outerSize(); ++j) {
+    const auto [a_first, a_last] = lower_part(a, j);
+    const auto [b_first, b_last] = lower_part(b, j);
+    if (!std::equal(a_first, a_last, b_first, b_last)) return false;
+  }
+  return true;
 }
 } // namespace
 
@@ -265,7 +278,7 @@ void SparseCholesky::factorize(const Eigen::SparseMatrix<double>& A) {
   // the last LLT factorized (a numeric refactorization, e.g. new soft weights).
   std::unique_ptr<CholmodLlt> analyzed;
   const FillOrdering analyzed_with = impl_->used;
-  if (impl_->llt && same_pattern(impl_->analyzed.nonZeros() > 0 ? impl_->analyzed : impl_->A, A))
+  if (impl_->llt && same_lower_pattern(impl_->analyzed.nonZeros() > 0 ? impl_->analyzed : impl_->A, A))
     analyzed = std::move(impl_->llt);
   *impl_ = Impl{};
   if (A.rows() != A.cols())
@@ -279,7 +292,7 @@ void SparseCholesky::factorize(const Eigen::SparseMatrix<double>& A) {
   Impl next;
   next.ordering = ordering;
   next.simplicial_below = simplicial_below;
-  next.A = A;
+  next.A = A.triangularView<Eigen::Lower>();
   next.A.makeCompressed();
   if (A.rows() == 0) {
     next.kind = FactorizationKind::Empty;

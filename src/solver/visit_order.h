@@ -43,4 +43,38 @@ void from_visit_order(const std::vector<int>& order, const std::vector<T>& in, s
   for (size_t p = 0; p < out.size(); ++p) out[static_cast<size_t>(order[p])] = in[p];
 }
 
+// The same permutations in place (values.size() == order.size()), by following each cycle of order; marks
+// the visited positions in one bit each instead of a second array of the values: a solve's rotations go
+// to the visit order and back without a spare copy (72 bytes a cell, issue 44).
+// to_visit_order_in_place: values[p] becomes values[order[p]]; from_visit_order_in_place:
+// values[order[p]] becomes values[p].
+template <class T> void to_visit_order_in_place(const std::vector<int>& order, std::vector<T>& values) {
+  std::vector<bool> done(order.size(), false);
+  for (size_t start = 0; start < order.size(); ++start) {
+    if (done[start]) continue;
+    T first = values[start];
+    size_t p = start;
+    for (auto next = static_cast<size_t>(order[p]); next != start; next = static_cast<size_t>(order[p])) {
+      values[p] = values[next];
+      done[p] = true;
+      p = next;
+    }
+    values[p] = first;
+    done[p] = true;
+  }
+}
+template <class T> void from_visit_order_in_place(const std::vector<int>& order, std::vector<T>& values) {
+  std::vector<bool> done(order.size(), false);
+  for (size_t start = 0; start < order.size(); ++start) {
+    if (done[start]) continue;
+    T carried = values[start]; // the value that goes to order[p], p the last position placed
+    done[start] = true;
+    for (auto p = static_cast<size_t>(order[start]); p != start; p = static_cast<size_t>(order[p])) {
+      std::swap(carried, values[p]);
+      done[p] = true;
+    }
+    values[start] = carried;
+  }
+}
+
 } // namespace iarap::detail

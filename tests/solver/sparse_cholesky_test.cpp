@@ -57,6 +57,22 @@ TEST(SparseCholesky, WorkspaceSolveEqualsTheAllocatingSolve) {
   }
 }
 
+// X may be B: the in-place solve (and CHOLMOD's, through its own workspace) gives the bits of a solve into
+// another array, for both factorizations.
+TEST(SparseCholesky, InPlaceSolveEqualsTheOutOfPlaceOne) {
+  for (const double shift : {0.0, -1.0 + 1e-3}) {
+    SparseCholesky chol(path_laplacian(120, shift));
+    const Eigen::MatrixXd B = Eigen::MatrixXd::Random(120, 3);
+    Eigen::MatrixXd X, in_place = B, cholmod_in_place = B;
+    chol.solve(B, X);
+    chol.solve(in_place, in_place);
+    EXPECT_EQ(in_place, X) << iarap::factorization_name(chol.kind());
+    chol.solve_with_cholmod(B, X);
+    chol.solve_with_cholmod(cholmod_in_place, cholmod_in_place);
+    EXPECT_EQ(cholmod_in_place, X) << iarap::factorization_name(chol.kind());
+  }
+}
+
 TEST(SparseCholesky, IndefiniteFallsBackToLdlt) {
   // Eigenvalues of the path Laplacian lie in (0, 4); shifting by -1 makes it indefinite but nonsingular.
   const auto A = path_laplacian(50, -1.0 + 1e-3);

@@ -140,6 +140,25 @@ TEST(SupernodalSolve, GridSplitsIntoSubtreesAndAgreesAcrossThreadCounts) {
   }
 }
 
+// X may be B itself (LocalGlobalProblem solves in place): every row is gathered before any is scattered,
+// and a group of columns scatters only its own columns, so the bits are those of a solve into another
+// array, on one thread and on the split schedules, for one group of columns (3) and two (6 > 4).
+TEST(SupernodalSolve, InPlaceGivesTheSameBits) {
+  const Eigen::SparseMatrix<double> A = test::grid_laplacian(30, 1.0);
+  const Factor factor(A);
+  ASSERT_EQ(factor.info(), Eigen::Success);
+  for (const int threads : {1, 2, 3})
+    for (const int k : {3, 6}) {
+      detail::SupernodalSolve solve(factor.view(), threads, 0.0);
+      detail::SupernodalWorkspace ws;
+      const Eigen::MatrixXd B = Eigen::MatrixXd::Random(A.rows(), k);
+      Eigen::MatrixXd X, in_place = B;
+      solve.solve(B, X, threads, ws);
+      solve.solve(in_place, in_place, threads, ws);
+      EXPECT_EQ(in_place, X) << threads << " threads, " << k << " columns";
+    }
+}
+
 // Inside another parallel region the solve's team has one thread, which then does every part in turn:
 // the same schedule, so the same bits as the solve on its own threads.
 TEST(SupernodalSolve, InsideAParallelRegionGivesTheSameBits) {

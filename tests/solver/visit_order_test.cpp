@@ -7,6 +7,7 @@
 #include "solver_fixtures.h"
 
 #include "solver/streamed_layout.h" // the layout the iterations stream
+#include "solver/visit_order.h"
 
 #include <gtest/gtest.h>
 
@@ -58,6 +59,28 @@ std::vector<int> shuffled_indices(int n, unsigned seed) {
 }
 
 class VisitOrder : public test::SingleThreadTest {}; // the bunny, ~3500 vertices
+
+// The in-place permutations (a solve's rotations) equal the copying ones, element for element, on a random
+// permutation (cycles of every length) and on the identity and a single swap.
+TEST(VisitOrderPermutation, InPlaceEqualsTheCopy) {
+  const int n = 1000;
+  std::vector<std::vector<int>> orders = {shuffled_indices(n, 7), shuffled_indices(n, 0), {}};
+  std::sort(orders[1].begin(), orders[1].end()); // the identity
+  orders[2] = orders[1];
+  std::swap(orders[2][3], orders[2][900]);
+  std::vector<double> values(static_cast<size_t>(n));
+  for (int i = 0; i < n; ++i) values[static_cast<size_t>(i)] = 0.5 * i * i - 3.0;
+  for (const std::vector<int>& order : orders) {
+    std::vector<double> copy, in_place = values;
+    detail::to_visit_order(order, values, copy);
+    detail::to_visit_order_in_place(order, in_place);
+    EXPECT_EQ(in_place, copy);
+    detail::from_visit_order(order, values, copy);
+    in_place = values;
+    detail::from_visit_order_in_place(order, in_place);
+    EXPECT_EQ(in_place, copy);
+  }
+}
 
 TEST_F(VisitOrder, PermutesTheCellsWithTheVerticesFirst) {
   const SolverMesh m = test::bunny();

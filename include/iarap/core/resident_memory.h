@@ -14,6 +14,9 @@ std::size_t current_resident_bytes();
 // freed its transient structures, what stays resident is what is held, not the high-water mark of a
 // heap that keeps freed memory for reuse (app/malloc_settings.cpp sets a 128 MB trim threshold).
 void release_free_heap();
+// release_free_heap() on a mesh of at least 100K vertices, where the heap a phase freed is worth returning
+// (each call walks every arena: milliseconds); nothing below.
+void release_free_heap(std::ptrdiff_t vertices);
 
 // With IARAP_MEMORY_TRACE set in the environment, writes "memory: PHASE resident R MB peak P MB (malloc in
 // use M MB)" to stderr: where the precompute's peak happens, phase by phase, and how much of the resident

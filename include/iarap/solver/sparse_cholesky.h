@@ -79,7 +79,8 @@ public:
   // X with A X = B for B n x k (all columns in one call). Throws SolverError when nothing is factorized
   // or B has the wrong number of rows.
   Eigen::MatrixXd solve(const Eigen::MatrixXd& B) const;
-  // The same X, written into X (resized only when its shape changes). For the CHOLMOD factorization the
+  // The same X, written into X (resized only when its shape changes; X may be B itself, solved in place
+  // without a second n x k array). For the CHOLMOD factorization the
   // solve's workspaces live in this object and are reused from call to call: repeated solves of one shape
   // allocate nothing. Not for concurrent use on one object (hence non-const).
   //
