@@ -169,20 +169,21 @@ double median_paired_ratio(const nlohmann::json& a, const nlohmann::json& b) {
 
 // What each precomputation holds, by part, and the process's resident set (issue 44).
 void print_memory(const nlohmann::json& results) {
-  const auto mb = [](const nlohmann::json& bytes) { return bytes.get<double>() / 1048576.0; };
+  // MiB, as ps and /proc report sizes (the IARAP_MEMORY_TRACE lines print decimal MB).
+  const auto mib = [](const nlohmann::json& bytes) { return bytes.get<double>() / 1048576.0; };
   for (const auto& r : results) {
     if (r.contains("error") || !r.contains("memory")) continue;
     const nlohmann::json& m = r["memory"];
     const double n = r["vertices"].get<double>();
-    std::printf("%s: %s: memory held %.1f MB (%.0f B/vertex: factor %.0f, kept matrix %.0f, system %.0f, "
-                "elements %.0f, streamed %.0f, rotations %.0f, mesh %.0f); resident %.1f MB, process peak "
-                "%.1f MB (%.0f B/vertex)\n",
-                r["mesh"].get<std::string>().c_str(), r["method"].get<std::string>().c_str(), mb(m["total"]),
+    std::printf("%s: %s: memory held %.1f MiB (%.0f B/vertex: factor %.0f, kept matrix %.0f, system %.0f, "
+                "elements %.0f, streamed %.0f, rotations %.0f, mesh %.0f); resident %.1f MiB, process peak "
+                "%.1f MiB (%.0f B/vertex)\n",
+                r["mesh"].get<std::string>().c_str(), r["method"].get<std::string>().c_str(), mib(m["total"]),
                 m["bytes_per_vertex"].get<double>(), m["factor"].get<double>() / n,
                 m["kept_matrix"].get<double>() / n, m["system_matrix"].get<double>() / n,
                 m["elements"].get<double>() / n, m["streamed_layout"].get<double>() / n,
-                m["rotations"].get<double>() / n, m["mesh"].get<double>() / n, mb(m["resident_bytes"]),
-                mb(m["peak_resident_bytes"]), m["peak_resident_bytes"].get<double>() / n);
+                m["rotations"].get<double>() / n, m["mesh"].get<double>() / n, mib(m["resident_bytes"]),
+                mib(m["peak_resident_bytes"]), m["peak_resident_bytes"].get<double>() / n);
   }
 }
 
