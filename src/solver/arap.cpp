@@ -101,14 +101,6 @@ void factorize(const Eigen::SparseMatrix<double>& L, const detail::ConstraintLay
   system.factorized = true;
 }
 
-// Returns the freed heap to the system on a large mesh (release_free_heap(vertices)): called where a phase
-// of the precompute has freed its transients, so that the other thread's next arrays (each thread
-// allocates from a heap of its own, and arrays of 32 MB and more are mappings of their own) do not add to
-// them.
-void release_freed_transients(Eigen::Index vertices) {
-  release_free_heap(static_cast<std::ptrdiff_t>(vertices));
-}
-
 // The rest mesh as the builders take it, #V x 3: a #V x 2 V embedded at z = 0; a planar #V x 3 one must lie
 // in that plane (InputError naming the first vertex off it).
 Eigen::MatrixXd rest_positions(const Eigen::MatrixXd& V, bool planar) {
@@ -248,7 +240,7 @@ void build_intrinsic_elements(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F
         system.pattern = system_pattern(F, static_cast<int>(V.rows()), *topology);
         topology.reset();
         analyze(layout, system);
-        release_freed_transients(V.rows()); // the ordering's workspaces
+        release_free_heap(V.rows()); // the ordering's workspaces
         trace_resident("analyzed");
         // Degenerate faces (mollified lengths) or stiffness: the identity does not hold.
         if (!cotan_identity || !C->allFinite()) return;
@@ -258,7 +250,7 @@ void build_intrinsic_elements(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F
         // build mollified lengths; factorize_element_system rebuilds it then.
         free_pattern(system.pattern);
         factorize(data.L, layout, system);
-        release_freed_transients(V.rows()); // CHOLMOD's permuted copies and update matrices
+        release_free_heap(V.rows()); // CHOLMOD's permuted copies and update matrices
         trace_resident("factorized");
       },
       [&] {
@@ -267,12 +259,12 @@ void build_intrinsic_elements(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F
         trace_resident("traced");
         timed(elements_ms, [&] {
           take_traced_elements(V, traced, data);
-          release_freed_transients(V.rows()); // the intrinsic triangulation and its traces
+          release_free_heap(V.rows()); // the intrinsic triangulation and its traces
           trace_resident("elements");
           summarize_weights(data);
           detail::finish_elements(V, data.elements, true,
                                   release_elements && cotan_identity && data.intrinsic.mollify_delta == 0.0);
-          release_freed_transients(V.rows()); // the element arrays and the layout's workspaces
+          release_free_heap(V.rows()); // the element arrays and the layout's workspaces
         });
       },
       detail::Beside::CallerOutsideOpenMP);
@@ -316,7 +308,7 @@ ArapData arap_precompute(const Eigen::MatrixXd& V_in, const Eigen::MatrixXi& F, 
   // What the caller freed before (a subdivision's transients, say) goes back to the system first: the
   // precompute's threads allocate from heaps of their own, which could not reuse it. Small meshes skip
   // it: there the freed heap is what the next precompute reuses without page faults (malloc_settings.cpp).
-  release_freed_transients(V_in.rows());
+  release_free_heap(V_in.rows());
   trace_resident("precompute start");
   const Eigen::MatrixXd V = rest_positions(V_in, options.planar);
   check_arap_mesh(V, F);
@@ -354,7 +346,7 @@ ArapData arap_precompute(const Eigen::MatrixXd& V_in, const Eigen::MatrixXi& F, 
   free_pattern(system.pattern);
   free_sparse(system.L_fc);
   // What the precompute freed goes back to the system: the resident set is then what data holds.
-  release_freed_transients(V.rows());
+  release_free_heap(V.rows());
   trace_resident("precomputed");
   return data;
 }

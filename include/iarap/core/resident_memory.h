@@ -15,7 +15,10 @@ std::size_t current_resident_bytes();
 // heap that keeps freed memory for reuse (app/malloc_settings.cpp sets a 128 MB trim threshold).
 void release_free_heap();
 // release_free_heap() on a mesh of at least 100K vertices, where the heap a phase freed is worth returning
-// (each call walks every arena: milliseconds); nothing below.
+// (each call walks every arena: milliseconds); nothing below. The precompute calls it after each phase
+// that frees transients: its two threads allocate from heaps of their own (and arrays of 32 MB and more
+// are mappings of their own), so one thread's freed memory would otherwise stay resident beside the other's
+// new arrays.
 void release_free_heap(std::ptrdiff_t vertices);
 
 // With IARAP_MEMORY_TRACE set in the environment, writes "memory: PHASE resident R MB peak P MB (malloc in
