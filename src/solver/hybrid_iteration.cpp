@@ -27,9 +27,7 @@ void run_hybrid(Problem& problem, const ArapSolveOptions& options, double energy
     problem.keep_covariances(); // Newton prepares the Hessian after nearly every local step
   }
   report.newton_from_iteration = report.iterations + 1;
-  const double reference = options.newton_reference_gradient > 0 ? options.newton_reference_gradient
-                                                                 : report.initial_gradient_norm;
-  run_newton(problem, options, energy, std::move(g), reference, report, progress);
+  run_newton(problem, options, energy, std::move(g), report, progress);
 }
 
 } // namespace iarap::detail

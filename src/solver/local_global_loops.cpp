@@ -56,12 +56,9 @@ ArapReport run_local_global(Problem& problem, const ArapSolveOptions& options,
     run_lbfgs(problem, options, e, g, *history->lbfgs, report, progress);
     break;
   }
-  case ArapAccelerator::Newton: {
-    const double reference = options.newton_reference_gradient > 0 ? options.newton_reference_gradient
-                                                                   : report.initial_gradient_norm;
-    run_newton(problem, options, energy, std::move(g), reference, report, progress);
+  case ArapAccelerator::Newton:
+    run_newton(problem, options, energy, std::move(g), report, progress);
     break;
-  }
   case ArapAccelerator::Hybrid:
     run_hybrid(problem, options, energy, std::move(g), *history, report, progress);
     break;

@@ -101,10 +101,11 @@ bool shorten_to_feasible(const Problem& problem, const Eigen::MatrixXd& x, const
 // regions at a growing pace. A step that achieves less than kAccept of the predicted decrease is replaced by
 // the plain local/global step (never an energy increase), and the radius shrinks.
 void run_newton(Problem& problem, const ArapSolveOptions& options, double energy, Eigen::MatrixXd g,
-                double reference_gradient, ArapReport& report, Progress& progress) {
+                ArapReport& report, Progress& progress) {
   constexpr double kAccept = 0.1;                // rho above this: the step is taken
   constexpr double kShrink = 0.25, kGrow = 0.75; // rho below / above: radius shrinks / grows (N&W Alg. 4.1)
-  const double g0 = reference_gradient;
+  const double g0 = options.newton_reference_gradient > 0 ? options.newton_reference_gradient
+                                                          : report.initial_gradient_norm;
   Eigen::MatrixXd x = problem.positions();
   // In the L_ff norm; 0: set from the first plain step's length.
   double radius = options.newton_trust_radius > 0 ? options.newton_trust_radius : 0;

@@ -13,9 +13,9 @@ namespace iarap::detail {
 
 // Newton steps (at most options.window CG steps each) from the problem's current point, whose energy is
 // `energy` and gradient g, until report.iterations reaches options.max_iterations or a stopping rule holds.
-// reference_gradient: the ||g_0|| of CG's forcing term (ArapSolveOptions::newton_reference_gradient, or the
-// gradient where the solve began).
+// The ||g_0|| of CG's forcing term is ArapSolveOptions::newton_reference_gradient when set (a continued
+// solve), else the gradient where the solve began (report.initial_gradient_norm).
 void run_newton(Problem& problem, const ArapSolveOptions& options, double energy, Eigen::MatrixXd g,
-                double reference_gradient, ArapReport& report, Progress& progress);
+                ArapReport& report, Progress& progress);
 
 } // namespace iarap::detail
