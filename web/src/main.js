@@ -38,12 +38,24 @@ function showError(message) {
 }
 
 // Runs an async UI action, showing the server's message on failure instead of throwing.
+// The guarded actions still running (a layout change fetching positions, a scenario loading): the test
+// hook idle() waits for them as well as for the solver.
+const pendingActions = new Set();
+
 async function guarded(action) {
+  const run = (async () => {
+    try {
+      return await action();
+    } catch (error) {
+      showError(error.message);
+      return undefined;
+    }
+  })();
+  pendingActions.add(run);
   try {
-    return await action();
-  } catch (error) {
-    showError(error.message);
-    return undefined;
+    return await run;
+  } finally {
+    pendingActions.delete(run);
   }
 }
 
@@ -632,7 +644,11 @@ window.iarapViewer = {
   fitFrames: () => fitPanel.frames,
   fitResiduals: () => fitPanel.residuals.slice(),
   errors: () => app.errors,
-  idle: () => solver.idle(),
+  // No guarded action in flight and the solver idle (an action may start solves, a solve's answer none).
+  idle: async () => {
+    while (pendingActions.size > 0) await Promise.all([...pendingActions]);
+    await solver.idle();
+  },
   displayedPositions: (method) => Array.from(viewer.view(method ?? shownMethods()[0]).positions()),
   labels: () => Array.from(app.labels),
   rigidGroups: () => Array.from(app.groups),
