@@ -1,5 +1,7 @@
 #include "chart_packing.h"
 
+#include "packing_bitmap.h"
+
 #include "iarap/core/errors.h"
 
 #include <algorithm>
@@ -106,12 +108,6 @@ bool shelves_fit(const std::vector<Rectangle>& rects, const std::vector<std::siz
   return true;
 }
 
-// A chart's cells on the packing bitmap: per row, runs [begin, end) of occupied cells.
-struct CellMask {
-  int width = 0, height = 0;
-  std::vector<std::vector<std::pair<int, int>>> runs;
-};
-
 CellMask runs_of(const std::vector<char>& cells, int width, int height) {
   CellMask mask;
   mask.width = width;
@@ -178,126 +174,13 @@ RasterChart raster_chart(const Eigen::MatrixXd& uv, const Eigen::MatrixXi& faces
   return chart;
 }
 
-// The packing bitmap: one bit per cell, rows of 64-bit words, and per row its longest run of free cells
-// (so that a search skips the rows a chart's row cannot fit in).
-class CellBitmap {
-public:
-  explicit CellBitmap(int size)
-      : size_(size), words_((size + 63) / 64), bits_(static_cast<std::size_t>(size * words_), 0),
-        longest_free_(static_cast<std::size_t>(size), size) {}
-  int size() const { return size_; }
-
-  // The first occupied cell of row y in [begin, end), or -1.
-  int first_set(int y, int begin, int end) const {
-    for (int x = begin; x < end;) {
-      const std::uint64_t word = row(y)[x / 64] >> (x % 64);
-      if (word == 0) {
-        x = (x / 64 + 1) * 64;
-        continue;
-      }
-      const int found = x + __builtin_ctzll(word);
-      return found < end ? found : -1;
-    }
-    return -1;
-  }
-  // The first free cell of row y at or after x (size() if none).
-  int first_clear(int y, int x) const {
-    while (x < size_) {
-      const std::uint64_t word = ~row(y)[x / 64] >> (x % 64);
-      if (word == 0) {
-        x = (x / 64 + 1) * 64;
-        continue;
-      }
-      return std::min(size_, x + __builtin_ctzll(word));
-    }
-    return size_;
-  }
-  // The first p >= from with cells [p, p + length) of row y all free (size() if none).
-  int first_fit(int y, int from, int length) const {
-    for (int p = first_clear(y, from); p + length <= size_; p = first_clear(y, p)) {
-      const int occupied = first_set(y, p, p + length);
-      if (occupied < 0) return p;
-      p = occupied;
-    }
-    return size_;
-  }
-  void set(int y, int begin, int end) {
-    for (int x = begin; x < end; ++x) row(y)[x / 64] |= std::uint64_t{1} << (x % 64);
-    int longest = 0;
-    for (int x = first_clear(y, 0); x < size_;) {
-      const int set_at = first_set(y, x, size_);
-      const int end_of_run = set_at < 0 ? size_ : set_at;
-      longest = std::max(longest, end_of_run - x);
-      x = first_clear(y, end_of_run);
-    }
-    longest_free_[static_cast<std::size_t>(y)] = longest;
-  }
-  int longest_free(int y) const { return longest_free_[static_cast<std::size_t>(y)]; }
-
-private:
-  std::uint64_t* row(int y) { return &bits_[static_cast<std::size_t>(y * words_)]; }
-  const std::uint64_t* row(int y) const { return &bits_[static_cast<std::size_t>(y * words_)]; }
-  int size_, words_;
-  std::vector<std::uint64_t> bits_;
-  std::vector<int> longest_free_;
-};
-
-// The lowest (then leftmost) place where the mask meets no occupied cell with its top row at most max_top
-// (y + height <= max_top): (x, y), or x = -1. A conflict in a row moves x to the next gap of that row wide
-// enough for the mask's run there; a y that puts a mask row on a bitmap row whose longest free run is
-// shorter than that mask row's widest run is skipped without looking at x.
-Eigen::Vector2i lowest_place(const CellBitmap& bitmap, const CellMask& mask, int max_top) {
-  const int n = bitmap.size();
-  std::vector<int> widest(static_cast<std::size_t>(mask.height), 0);
-  for (int r = 0; r < mask.height; ++r)
-    for (const auto& [begin, end] : mask.runs[static_cast<std::size_t>(r)])
-      widest[static_cast<std::size_t>(r)] = std::max(widest[static_cast<std::size_t>(r)], end - begin);
-  // Rows are tested widest first (the likeliest to fail). When bitmap row y + r is too narrow for mask row
-  // r, every later y' that puts a mask row at least as wide on it fails too: the search jumps to the first
-  // y' that puts a narrower one there, or past it.
-  const auto widest_row = static_cast<int>(std::max_element(widest.begin(), widest.end()) - widest.begin());
-  int last_conflict = 0;
-  for (int y = 0; y + mask.height <= std::min(n, max_top);) {
-    int blocked = -1; // a mask row that does not fit its bitmap row
-    for (int i = 0; i < mask.height && blocked < 0; ++i) {
-      const int r = (widest_row + i) % mask.height;
-      if (bitmap.longest_free(y + r) < widest[static_cast<std::size_t>(r)]) blocked = r;
-    }
-    if (blocked >= 0) {
-      const int free_run = bitmap.longest_free(y + blocked);
-      int shift = 1;
-      while (shift <= blocked && widest[static_cast<std::size_t>(blocked - shift)] > free_run) ++shift;
-      y += shift;
-      continue;
-    }
-    for (int x = 0; x + mask.width <= n;) {
-      int next = -1;
-      for (int i = 0; i < mask.height && next < 0; ++i) {
-        const int r = (last_conflict + i) % mask.height;
-        for (const auto& [begin, end] : mask.runs[static_cast<std::size_t>(r)]) {
-          const int hit = bitmap.first_set(y + r, x + begin, x + end);
-          if (hit >= 0) {
-            // The run needs end - begin free cells in this row: past every shorter gap at once.
-            next = std::max(x + 1, bitmap.first_fit(y + r, hit, end - begin) - begin);
-            last_conflict = r;
-            break;
-          }
-        }
-      }
-      if (next < 0) return Eigen::Vector2i(x, y);
-      x = next;
-    }
-    ++y;
-  }
-  return Eigen::Vector2i(-1, -1);
-}
-
 // Places every chart (largest first) at the given scale: returns the rows the placed cells reach (their
 // highest top), or -1 when a chart finds no place.
 int raster_fit(const std::vector<Eigen::MatrixXd>& chart_uv, const std::vector<Eigen::MatrixXi>& chart_faces,
                const std::vector<Rectangle>& rects, const std::vector<std::size_t>& order, double scale,
-               int cells, int dilation, std::vector<ChartPlacement>& placements) {
-  CellBitmap bitmap(cells);
+               int dilation, CellBitmap& bitmap, std::vector<ChartPlacement>& placements) {
+  bitmap.clear();
+  const int cells = bitmap.size();
   int used_rows = 0;
   Eigen::Matrix2d quarter;
   quarter << 0, -1, 1, 0;
@@ -393,10 +276,11 @@ ChartPacking pack_charts(const std::vector<Eigen::MatrixXd>& chart_uv,
     return rects[a].width * rects[a].height > rects[b].width * rects[b].height;
   });
   std::vector<ChartPlacement> trial(rects.size());
+  CellBitmap bitmap(cells); // cleared by each trial
   const double limit = 1.5 / std::sqrt(area);
   double failed = 0; // the smallest scale seen not to fit (0: none yet)
   for (double scale = packing.scale * 1.03; scale < limit;) {
-    const int used = raster_fit(chart_uv, chart_faces, rects, by_area, scale, cells, dilation, trial);
+    const int used = raster_fit(chart_uv, chart_faces, rects, by_area, scale, dilation, bitmap, trial);
     if (used < 0) {
       failed = scale;
       break;
@@ -409,7 +293,7 @@ ChartPacking pack_charts(const std::vector<Eigen::MatrixXd>& chart_uv,
   }
   while (failed > 0 && failed > 1.01 * packing.scale) {
     const double scale = (packing.scale + failed) / 2;
-    if (raster_fit(chart_uv, chart_faces, rects, by_area, scale, cells, dilation, trial) >= 0) {
+    if (raster_fit(chart_uv, chart_faces, rects, by_area, scale, dilation, bitmap, trial) >= 0) {
       packing.scale = scale;
       packing.placements = trial;
     } else {

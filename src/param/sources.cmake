@@ -5,5 +5,5 @@ list(APPEND IARAP_SOURCES
   param/map_distortion.cpp param/planar_cells.cpp param/param_options.cpp param/arap_parameterize.cpp
   param/uv_elastic_energy.cpp param/injectivity_barrier.cpp param/uv_problem.cpp
   param/write_uv_map.cpp param/render_uv_picture.cpp
-  param/chart_segmentation.cpp param/chart_packing.cpp param/uv_overlap.cpp param/uv_atlas.cpp
+  param/chart_segmentation.cpp param/chart_packing.cpp param/packing_bitmap.cpp param/uv_overlap.cpp param/uv_atlas.cpp
   param/texture_seam_charts.cpp)
