@@ -295,14 +295,32 @@ int segment_charts(const ChartMesh& mesh, double max_normal_angle, int min_faces
 }
 
 int split_chart(const ChartMesh& mesh, int id, const std::vector<int>& faces, int next_id,
-                std::vector<int>& label) {
+                std::vector<int>& label, int parts) {
   constexpr int splitting = -3;
   for (int f : faces) label[static_cast<std::size_t>(f)] = splitting;
-  const int a = farthest_face(mesh, faces, faces.front(), -1);
-  const int b = farthest_face(mesh, faces, a, mesh.polygon[static_cast<std::size_t>(a)]);
+  // Seeds by farthest-point sampling: the face farthest from the first, then each next the face farthest
+  // from every seed so far (for two parts: the farthest from the first seed), each in a polygon of its own.
+  std::vector<int> seeds{farthest_face(mesh, faces, faces.front(), -1)};
+  std::vector<double> nearest(faces.size(), INFINITY);
+  std::vector<char> seed_polygon(static_cast<std::size_t>(mesh.polygon_first.size()), 0);
+  while (static_cast<int>(seeds.size()) < parts) {
+    const int last = seeds.back();
+    seed_polygon[static_cast<std::size_t>(mesh.polygon[static_cast<std::size_t>(last)])] = 1;
+    int best = -1;
+    double best_distance = -1;
+    for (std::size_t i = 0; i < faces.size(); ++i) {
+      const int f = faces[i];
+      nearest[i] = std::min(nearest[i], (mesh.centroid.row(f) - mesh.centroid.row(last)).squaredNorm());
+      if (nearest[i] > best_distance &&
+          !seed_polygon[static_cast<std::size_t>(mesh.polygon[static_cast<std::size_t>(f)])])
+        best_distance = nearest[i], best = f;
+    }
+    if (best < 0) break;
+    seeds.push_back(best);
+  }
   ChartGrowth growth(mesh, label, splitting, GrowthCost::Distance, -2);
-  growth.add_face(id, a);
-  if (b >= 0) growth.add_face(next_id++, b);
+  growth.add_face(id, seeds.front());
+  for (std::size_t i = 1; i < seeds.size(); ++i) growth.add_face(next_id++, seeds[i]);
   growth.run();
   return grow_remaining(mesh, label, splitting, GrowthCost::Distance, -2, next_id);
 }

@@ -51,11 +51,11 @@ enum class GrowthCost {
 int segment_charts(const ChartMesh& mesh, double max_normal_angle, int min_faces, std::vector<int>& label,
                    int& merged);
 
-// Splits chart `id` (its faces `faces`, of at least two polygons) into two disks grown from its two faces
-// farthest apart in different polygons, ranked by distance; faces neither can take (the disk rule) become
-// charts of their own. The first part keeps `id`,
-// the others get next_id, next_id + 1, ...; returns the new next_id.
+// Splits chart `id` (its faces `faces`, of at least two polygons) into `parts` disks grown at once from
+// seeds far apart (farthest-point sampling over the face centroids, each seed in a polygon of its own),
+// ranked by distance; faces none can take (the disk rule) become charts of their own. The first part keeps
+// `id`, the others get next_id, next_id + 1, ...; returns the new next_id.
 int split_chart(const ChartMesh& mesh, int id, const std::vector<int>& faces, int next_id,
-                std::vector<int>& label);
+                std::vector<int>& label, int parts = 2);
 
 } // namespace iarap::param_detail

@@ -27,6 +27,12 @@ namespace {
 
 using param_detail::ChartMesh;
 
+// A chart whose boundary crosses itself is split into one part per overlap_split_faces faces, 2 to
+// max_overlap_split_parts (the ogre: 343K faces flattened over 15 rounds with halves, 227K over 10 with
+// these; 588 charts to 627, packing 0.662 to 0.651).
+constexpr int overlap_split_faces = 300;
+constexpr int max_overlap_split_parts = 16;
+
 void check_atlas_options(const AtlasOptions& options) {
   if (!(options.max_normal_angle > 0 && options.max_normal_angle <= 180))
     throw InputError("max_normal_angle must lie in (0, 180] degrees; got " +
@@ -275,7 +281,14 @@ std::vector<ChartMap> flatten_charts(const Eigen::MatrixXd& V, const Eigen::Matr
     if (split.empty()) break;
     std::fill(dirty.begin(), dirty.end(), 0);
     for (int c : split) {
-      charts = param_detail::split_chart(mesh, c, faces[static_cast<std::size_t>(c)], charts, label);
+      const auto& chart_faces = faces[static_cast<std::size_t>(c)];
+      // A chart that crosses itself is cut into parts of about overlap_split_faces faces at once (two
+      // halves kept crossing for up to 14 rounds on the ogre, each part's LSCM solved again each round).
+      const int parts = maps[static_cast<std::size_t>(c)].boundary_crosses
+                            ? std::clamp(static_cast<int>(chart_faces.size()) / overlap_split_faces, 2,
+                                         max_overlap_split_parts)
+                            : 2;
+      charts = param_detail::split_chart(mesh, c, chart_faces, charts, label, parts);
       dirty[static_cast<std::size_t>(c)] = 1;
       dirty.resize(static_cast<std::size_t>(charts), 1);
       // The parts of a split chart start as the atlas's own charts (the given layout was the whole's).
