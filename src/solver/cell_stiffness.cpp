@@ -53,7 +53,7 @@ void apply_cell_stiffness(ArapElements& el, Eigen::VectorXd cell_stiffness) {
   for (Eigen::Index t = 0; t < terms; ++t) {
     RhsTerm& term = sl->rhs_term[static_cast<size_t>(t)];
     const double s = cell_stiffness(sl->visit_order[static_cast<size_t>(term.cell)]);
-    for (double& p : term.p) p *= s;
+    for (int d = 0; d < 3; ++d) term.p[d] *= s; // a packed field: no double& to it
   }
   el.streamed = std::move(sl);
   el.cell_stiffness = std::move(cell_stiffness);

@@ -72,16 +72,17 @@ void fill_rhs_terms(const ArapElements& el, StreamedLayout& sl) {
     std::vector<CellTerm> terms;
     const int first = static_cast<int>(static_cast<long long>(el.num_cells) * thread / threads);
     const int last = static_cast<int>(static_cast<long long>(el.num_cells) * (thread + 1) / threads);
-    // Calls add(v, w_e (b_e)_v, s_hat_e) for every non-zero of every element of the cell at position p.
+    // Calls add(v, w_e (b_e)_v, entry) for every non-zero of every element (entry, with s_hat_e) of the cell
+    // at position p.
     auto for_each_contribution = [&](int p, const auto& add) {
       const CellEntry* entry = sl.cell_entry.data() + sl.cell_entry_start[static_cast<size_t>(p)];
       const CellEntry* end = sl.cell_entry.data() + sl.cell_entry_start[static_cast<size_t>(p) + 1];
       for (; entry != end; ++entry)
         for (int j = 0; j < 3; ++j)
-          if (entry->value[j] != 0.0) add(entry->index[j], entry->w * entry->value[j], entry->s_hat);
+          if (entry->value[j] != 0.0) add(entry->index[j], entry->w * entry->value[j], *entry);
     };
     for (int p = first; p < last; ++p) {
-      for_each_contribution(p, [&](int v, double, const double*) {
+      for_each_contribution(p, [&](int v, double, const CellEntry&) {
         if (where[static_cast<size_t>(v)] < 0) {
           where[static_cast<size_t>(v)] = 0;
           terms.push_back({{0.0, 0.0, 0.0}, v});
@@ -106,13 +107,13 @@ void fill_rhs_terms(const ArapElements& el, StreamedLayout& sl) {
       sl.rhs_term.resize(static_cast<size_t>(sl.rhs_term_start[static_cast<size_t>(n)]));
     }
     for (int p = first; p < last; ++p) {
-      for_each_contribution(p, [&](int v, double wb, const double* s_hat) {
+      for_each_contribution(p, [&](int v, double wb, const CellEntry& e) {
         int& at = where[static_cast<size_t>(v)];
         if (at < 0) {
           at = static_cast<int>(terms.size());
           terms.push_back({{0.0, 0.0, 0.0}, v});
         }
-        for (int d = 0; d < 3; ++d) terms[static_cast<size_t>(at)].p[d] += wb * s_hat[d];
+        for (int d = 0; d < 3; ++d) terms[static_cast<size_t>(at)].p[d] += wb * e.s_hat[d];
       });
       for (const CellTerm& t : terms) {
         where[static_cast<size_t>(t.vertex)] = -1;
