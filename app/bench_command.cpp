@@ -44,6 +44,8 @@ struct BenchArguments {
   std::vector<std::string> accelerators = ConvergeSettings{}.accelerators;
   int window = 0;
   int max_iterations = ConvergeSettings{}.max_iterations;
+  int drag_steps = 0;
+  std::vector<std::string> reference_accelerators = ConvergeSettings{}.reference_accelerators;
 };
 
 // The fixed benchmark scene (documented in README.md): the bottom 10% of the bounding box along y is
@@ -302,7 +304,9 @@ void load_bench_mesh(const std::string& path, int subdivide, MeshData& mesh) {
 // The convergence bench of one mesh, a result per method appended to results; returns the failed runs.
 int converge_mesh(const BenchArguments& args, const std::string& path, const MeshData& mesh,
                   nlohmann::json& results) {
-  const ConvergeSettings settings{args.converge, args.accelerators, args.window, args.max_iterations};
+  ConvergeSettings settings{args.converge, args.accelerators, args.window, args.max_iterations};
+  settings.drag_steps = args.drag_steps;
+  settings.reference_accelerators = args.reference_accelerators;
   int failed = 0;
   for (const std::string& method : args.methods) {
     if (!args.json)
@@ -467,6 +471,18 @@ const bool registered = register_command(
        sub->add_option("--max-iterations", args->max_iterations,
                        "With --converge: iteration limit of each run")
            ->check(CLI::Range(1, 10000000))
+           ->capture_default_str();
+       sub->add_option(
+              "--drag-steps", args->drag_steps,
+              "With --converge: start every run where a drag ends, the handle brought to its place in "
+              "N steps of one plain iteration each (0: from the rest shape)")
+           ->check(CLI::Range(0, 100000))
+           ->capture_default_str();
+       sub->add_option("--reference-accels", args->reference_accelerators,
+                       "With --converge: comma-separated accelerators of the reference run (the lowest "
+                       "energy wins)")
+           ->delimiter(',')
+           ->check(CLI::IsMember({"none", "anderson", "lbfgs", "newton", "hybrid"}))
            ->capture_default_str();
        sub->add_flag("--json", args->json, "Print the results as one JSON object instead of a table");
        sub->add_option("--report", args->report, "Also write the JSON results to this file (atomically)");
