@@ -63,7 +63,8 @@ void expect_consistent(const ArapElements& el, const Eigen::MatrixXd& V) {
       if (t > sl.rhs_term_start[static_cast<size_t>(v)]) {
         EXPECT_LT(sl.rhs_term[static_cast<size_t>(t) - 1].cell, term.cell) << "vertex at position " << v;
       }
-      regrouped.row(v) += Eigen::RowVector3d(term.p[0], term.p[1], term.p[2]);
+      const double p0 = term.p[0], p1 = term.p[1], p2 = term.p[2]; // packed fields: copies, no const&
+      regrouped.row(v) += Eigen::RowVector3d(p0, p1, p2);
     }
   EXPECT_TRUE(((direct - regrouped).cwiseAbs().array() <= 1e-14 * magnitude.array()).all())
       << "largest difference " << (direct - regrouped).cwiseAbs().maxCoeff();
@@ -174,7 +175,10 @@ void expect_same_elements(const ArapElements& a, const ArapElements& b, const st
   EXPECT_EQ(sa.rhs_term_start, sb.rhs_term_start) << name;
   for (size_t t = 0; t < std::min(sa.rhs_term.size(), sb.rhs_term.size()); ++t) {
     EXPECT_EQ(sa.rhs_term[t].cell, sb.rhs_term[t].cell) << name << " term " << t;
-    for (int d = 0; d < 3; ++d) EXPECT_EQ(sa.rhs_term[t].p[d], sb.rhs_term[t].p[d]) << name << " term " << t;
+    for (int d = 0; d < 3; ++d) { // packed fields: compared as copies (EXPECT_EQ takes const&)
+      const double pa = sa.rhs_term[t].p[d], pb = sb.rhs_term[t].p[d];
+      EXPECT_EQ(pa, pb) << name << " term " << t;
+    }
   }
 }
 
