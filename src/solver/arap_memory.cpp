@@ -35,8 +35,9 @@ ArapMemory arap_memory(const ArapData& data) {
                vector_bytes(el.cell_neighbour);
   if (el.streamed) {
     const detail::StreamedLayout& sl = *el.streamed;
-    m.streamed = vector_bytes(sl.visit_order) + vector_bytes(sl.cell_entry_start) +
-                 vector_bytes(sl.cell_entry) + vector_bytes(sl.rhs_term_start) + vector_bytes(sl.rhs_term);
+    m.streamed = vector_bytes(sl.visit_order) + dense_bytes(sl.rest_rows) +
+                 vector_bytes(sl.cell_entry_start) + vector_bytes(sl.cell_entry) +
+                 vector_bytes(sl.rhs_term_start) + vector_bytes(sl.rhs_term);
   }
   m.system =
       sparse_bytes(data.L) + sparse_bytes(data.L_fc) + sparse_bytes(data.Q) + sparse_bytes(data.rigid.P);

@@ -11,26 +11,21 @@
 namespace iarap {
 
 namespace {
-// s_e = U^T b_e from row-major positions u, summed in slot order exactly like s_hat (zero energy at rest).
-inline void element_vector(const detail::CellEntry& x, const double* u, double (&s)[3]) {
-  for (int d = 0; d < 3; ++d) {
-    double v = 0.0;
-    for (int k = 0; k < 3; ++k) v += x.value[k] * u[3 * x.index[k] + d];
-    s[d] = v;
-  }
-}
+using detail::element_vectors;
 
 // S += w (s s_hat^T), as w (s_i s_hat_j) rather than (w s_i) s_hat_j: at rest S is then bitwise symmetric,
 // which polar_rotation turns into exactly R = I when S is positive definite.
-inline void add_covariance(const detail::CellEntry& x, const double (&s)[3], Eigen::Matrix3d& S) {
+inline void add_covariance(const detail::CellEntry& x, const double (&s)[3], const double (&s_hat)[3],
+                           Eigen::Matrix3d& S) {
   for (int j = 0; j < 3; ++j)
-    for (int i = 0; i < 3; ++i) S(i, j) += x.w * (s[i] * x.s_hat[j]);
+    for (int i = 0; i < 3; ++i) S(i, j) += x.w * (s[i] * s_hat[j]);
 }
 // The element's term of its cell's energy, (w / 2) |s - R s_hat|^2 (Eq. 1), from the residual itself.
-inline double element_energy(const detail::CellEntry& x, const double (&s)[3], const Eigen::Matrix3d& R) {
+inline double element_energy(const detail::CellEntry& x, const double (&s)[3], const double (&s_hat)[3],
+                             const Eigen::Matrix3d& R) {
   double r2 = 0.0;
   for (int i = 0; i < 3; ++i) {
-    const double r = s[i] - (R(i, 0) * x.s_hat[0] + R(i, 1) * x.s_hat[1] + R(i, 2) * x.s_hat[2]);
+    const double r = s[i] - (R(i, 0) * s_hat[0] + R(i, 1) * s_hat[1] + R(i, 2) * s_hat[2]);
     r2 += r * r;
   }
   return 0.5 * x.w * r2;
@@ -44,14 +39,15 @@ void cell_covariances(const ArapElements& el, const ArapElements::ValueRows& U_r
   const StreamedLayout& sl = streamed(el);
   S.resize(static_cast<size_t>(el.num_cells));
   const double* u = U_rows.data();
+  const double* v = sl.rest_rows.data();
 #pragma omp parallel for schedule(dynamic, 256)
   for (int c = 0; c < el.num_cells; ++c) {
     Eigen::Matrix3d Sc = Eigen::Matrix3d::Zero();
     for (int k = sl.cell_entry_start[static_cast<size_t>(c)];
          k < sl.cell_entry_start[static_cast<size_t>(c) + 1]; ++k) {
-      double s[3];
-      element_vector(sl.cell_entry[static_cast<size_t>(k)], u, s);
-      add_covariance(sl.cell_entry[static_cast<size_t>(k)], s, Sc);
+      double s[3], s_hat[3];
+      element_vectors(sl.cell_entry[static_cast<size_t>(k)], u, v, s, s_hat);
+      add_covariance(sl.cell_entry[static_cast<size_t>(k)], s, s_hat, Sc);
     }
     S[static_cast<size_t>(c)] = Sc;
   }
@@ -79,6 +75,7 @@ double fit_rotations_in_visit_order(const ArapElements& el, const ArapElements::
   cell_energy.resize(n);
   if (covariances) covariances->resize(static_cast<size_t>(n));
   const double* u = U_rows.data();
+  const double* v = sl.rest_rows.data();
   const CellEntry* entry = sl.cell_entry.data();
 
   // Cells go in blocks of kBlock: their covariances first, then their rotations in one batched call
@@ -88,10 +85,10 @@ double fit_rotations_in_visit_order(const ArapElements& el, const ArapElements::
 #pragma omp parallel for schedule(dynamic, 64)
   for (int block = 0; block < blocks; ++block) {
     const int first = block * kBlock, count = std::min(kBlock, n - first);
-    // The first kKeep element vectors of each cell are kept for the energy sweep; longer cells recompute
-    // the rest.
+    // The first kKeep element vectors (current and rest) of each cell are kept for the energy sweep; longer
+    // cells recompute the rest.
     constexpr int kKeep = 32;
-    double kept[kBlock][kKeep][3];
+    double kept[kBlock][kKeep][3], kept_hat[kBlock][kKeep][3];
     Eigen::Matrix3d S[kBlock], Rc[kBlock];
     for (int l = 0; l < count; ++l) {
       const auto c = static_cast<size_t>(first + l); // the cell at position c (ArapElements::visit_order)
@@ -100,11 +97,11 @@ double fit_rotations_in_visit_order(const ArapElements& el, const ArapElements::
       S[l].setZero(); // Eq. 15
       for (int k = begin; k < end; ++k) {
         const CellEntry& x = entry[k];
-        double s[3];
-        element_vector(x, u, s);
-        add_covariance(x, s, S[l]);
+        double s[3], s_hat[3];
+        element_vectors(x, u, v, s, s_hat);
+        add_covariance(x, s, s_hat, S[l]);
         if (k - begin < kKeep)
-          for (int d = 0; d < 3; ++d) kept[l][k - begin][d] = s[d];
+          for (int d = 0; d < 3; ++d) kept[l][k - begin][d] = s[d], kept_hat[l][k - begin][d] = s_hat[d];
       }
     }
     if (el.planar)
@@ -122,12 +119,13 @@ double fit_rotations_in_visit_order(const ArapElements& el, const ArapElements::
       double energy = 0.0;
       for (int k = begin; k < end; ++k) {
         const CellEntry& x = entry[k];
-        double s[3];
-        if (k - begin < kKeep)
-          for (int d = 0; d < 3; ++d) s[d] = kept[l][k - begin][d];
-        else
-          element_vector(x, u, s);
-        energy += element_energy(x, s, Rc[l]);
+        double s[3], s_hat[3];
+        if (k - begin < kKeep) {
+          for (int d = 0; d < 3; ++d) s[d] = kept[l][k - begin][d], s_hat[d] = kept_hat[l][k - begin][d];
+        } else {
+          element_vectors(x, u, v, s, s_hat);
+        }
+        energy += element_energy(x, s, s_hat, Rc[l]);
       }
       R[c] = Rc[l];
       if (covariances) (*covariances)[c] = S[l];
@@ -142,14 +140,16 @@ double cell_energies_in_visit_order(const ArapElements& el, const ArapElements::
   const StreamedLayout& sl = streamed(el);
   cell_energy.resize(el.num_cells);
   const double* u = U_rows.data();
+  const double* v = sl.rest_rows.data();
 #pragma omp parallel for schedule(dynamic, 256)
   for (int c = 0; c < el.num_cells; ++c) {
     double energy = 0.0;
     for (int k = sl.cell_entry_start[static_cast<size_t>(c)];
          k < sl.cell_entry_start[static_cast<size_t>(c) + 1]; ++k) {
-      double s[3];
-      element_vector(sl.cell_entry[static_cast<size_t>(k)], u, s);
-      energy += element_energy(sl.cell_entry[static_cast<size_t>(k)], s, R[static_cast<size_t>(c)]);
+      const CellEntry& x = sl.cell_entry[static_cast<size_t>(k)];
+      double s[3], s_hat[3];
+      element_vectors(x, u, v, s, s_hat);
+      energy += element_energy(x, s, s_hat, R[static_cast<size_t>(c)]);
     }
     cell_energy(sl.visit_order[static_cast<size_t>(c)]) = energy;
   }

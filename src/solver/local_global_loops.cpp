@@ -39,11 +39,17 @@ ArapReport run_local_global(Problem& problem, const ArapSolveOptions& options,
     problem.keep_covariances();
   double local_ms = 0, global_ms = 0;
   const double energy = timed(local_ms, [&] { return problem.local_step(); });
-  Eigen::MatrixXd g = timed(global_ms, [&]() -> Eigen::MatrixXd {
+  // The gradient itself only for the loops that step along it; plain and Anderson read its norm.
+  const bool steps_along_gradient =
+      report.accelerator != ArapAccelerator::None && report.accelerator != ArapAccelerator::Anderson;
+  Eigen::MatrixXd g;
+  const double gradient_norm = timed(global_ms, [&] {
+    if (!steps_along_gradient) return rhs_and_gradient_norm(problem);
     problem.assemble_rhs();
-    return problem.gradient();
+    g = problem.gradient();
+    return g.norm();
   });
-  if (progress.begin(energy, g.norm(), local_ms, global_ms)) return report;
+  if (progress.begin(energy, gradient_norm, local_ms, global_ms)) return report;
   switch (report.accelerator) {
   case ArapAccelerator::None:
     run_plain(problem, options, progress);

@@ -22,7 +22,7 @@ LocalGlobalProblem::LocalGlobalProblem(ArapData& data, const Eigen::MatrixXd& ta
                                        double rotation_smoothing, bool warm_start_rotations)
     : data_(data), U_(U), rows_(free_row_system(data)), free_position_(rows_->free_position),
       free_index_(rows_->free_index), L_row_start_(rows_->row_start), L_column_(rows_->column),
-      position_(rows_->position), L_value_(rows_->value) {
+      position_(rows_->position), L_value_(rows_->value), gather_(data.solver.gather_rows(free_index_)) {
   // Constrained positions in L_fc's column order: targets, then pinned vertices where the guess has them.
   Eigen::MatrixXd U_c(data.fixed.size() + data.pinned.size(), 3);
   U_c.topRows(data.fixed.size()) = targets;
@@ -190,26 +190,44 @@ inline void L_row_times(const int* start, const int* column, const double* value
 } // namespace
 
 void LocalGlobalProblem::assemble_rhs() {
-  // B = rhs_f - L_fc U_c (Eq. 16) and g = (L U)_f - rhs_f = L_ff x - B (Eq. 14 at the free rows), streamed
-  // over the free vertices in visit order: the rotations' terms and L's rows are read once, in order. With
-  // soft constraints and forces Lfc_Uc_ holds L_fc U_c - s_f - f_f and L is L + Q: g = (L + Q) U - rhs - s -
-  // f at the free rows.
+  assemble(true);
+}
+
+double LocalGlobalProblem::assemble_rhs_gradient_norm() {
+  if (!hard_.empty()) { // the norm of the projected gradient
+    assemble(true);
+    return g_.norm();
+  }
+  return std::sqrt(assemble(false));
+}
+
+// B = rhs_f - L_fc U_c (Eq. 16) and g = (L U)_f - rhs_f = L_ff x - B (Eq. 14 at the free rows), streamed
+// over the free vertices in visit order: the rotations' terms and L's rows are read once, in order. With
+// soft constraints and forces Lfc_Uc_ holds L_fc U_c - s_f - f_f and L is L + Q: g = (L + Q) U - rhs - s -
+// f at the free rows. Without store_gradient g_ is left empty and |g|^2 returned, summed in blocks of rows
+// whatever the thread count (the same bits at every count); with it, 0.
+double LocalGlobalProblem::assemble(bool store_gradient) {
+  constexpr int kBlock = 4096;
   const auto rows = static_cast<int>(free_position_.size());
+  const int blocks = (rows + kBlock - 1) / kBlock;
   B_.resize(free_count(), 3);
-  g_.resize(free_count(), 3);
+  if (store_gradient)
+    g_.resize(free_count(), 3);
+  else
+    g_.resize(0, 3);
   B_holds_step_ = false;
+  std::vector<double> block_squares(store_gradient ? 0 : static_cast<size_t>(blocks));
   const double* u = U_rows_.data();
   const StreamedLayout& sl = streamed(data_.elements);
   const bool linear = !terms_.empty();
   const auto kept_rows = static_cast<std::ptrdiff_t>(Lfc_Uc_row_.size());
-#pragma omp parallel
-  {
-    // Each thread a range of rows, walking the kept rows of L_fc U_c beside it (0 elsewhere).
-    const int threads = omp_get_num_threads(), thread = omp_get_thread_num();
-    const int first = static_cast<int>(static_cast<long long>(rows) * thread / threads);
-    const int last = static_cast<int>(static_cast<long long>(rows) * (thread + 1) / threads);
+#pragma omp parallel for schedule(static)
+  for (int block = 0; block < blocks; ++block) {
+    // The rows of a block, walking the kept rows of L_fc U_c beside them (0 elsewhere).
+    const int first = block * kBlock, last = std::min(rows, first + kBlock);
     std::ptrdiff_t slot =
         std::lower_bound(Lfc_Uc_row_.begin(), Lfc_Uc_row_.end(), first) - Lfc_Uc_row_.begin();
+    double squares = 0.0;
     for (int r = first; r < last; ++r) {
       double rhs[3], LU[3], Lfc_Uc[3] = {0.0, 0.0, 0.0};
       if (slot < kept_rows && Lfc_Uc_row_[static_cast<size_t>(slot)] == r) {
@@ -220,12 +238,23 @@ void LocalGlobalProblem::assemble_rhs() {
       L_row_times(L_row_start_.data(), L_column_.data(), L_value_.data(), r, u, LU);
       for (int d = 0; d < 3; ++d) {
         B_(r, d) = rhs[d] - Lfc_Uc[d];
-        g_(r, d) = LU[d] - Lfc_Uc[d] - B_(r, d);
+        double g = LU[d] - Lfc_Uc[d] - B_(r, d);
+        if (linear) g -= linear_f_(r, d);
+        if (store_gradient)
+          g_(r, d) = g;
+        else
+          squares += g * g;
       }
-      if (linear) g_.row(r) -= linear_f_.row(r);
     }
+    if (!store_gradient) block_squares[static_cast<size_t>(block)] = squares;
   }
-  hard_.project_gradient(g_);
+  if (store_gradient) {
+    hard_.project_gradient(g_);
+    return 0.0;
+  }
+  double total = 0.0;
+  for (const double s : block_squares) total += s;
+  return total;
 }
 
 const Eigen::MatrixXd& LocalGlobalProblem::plain_step() {
@@ -252,10 +281,15 @@ Eigen::MatrixXd LocalGlobalProblem::solve_unconstrained(const Eigen::MatrixXd& r
   return x;
 }
 
-// The factor's rows follow data.free; x's follow the visit order: rows are permuted on the way in and out
-// (x may be b: all of b is read before x is written).
+// The factor's rows follow data.free; x's follow the visit order: the supernodal solve gathers them
+// through gather_ (x may be b); other factorizations get rows permuted on the way in and out (all of b is
+// read before x is written).
 void LocalGlobalProblem::solve_into(const Eigen::MatrixXd& b, Eigen::MatrixXd& x) const {
   ++solves_;
+  if (!gather_.empty()) {
+    data_.solver.solve_gathered(b, x, gather_);
+    return;
+  }
   const Eigen::Index nf = free_count();
   const Eigen::Index columns = b.cols();
   b_free_.resize(nf, columns);

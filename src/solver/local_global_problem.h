@@ -61,6 +61,7 @@ public:
   // B(U) from data.R (the rotations of the last local step), kept for plain_step, and the gradient there
   // (gradient()), in one pass over the free vertices.
   void assemble_rhs() override;
+  double assemble_rhs_gradient_norm() override;
   // G = L_ff^{-1} B: the plain local/global iterate from the point assemble_rhs last saw (kept in this
   // object until the next assemble_rhs, in B's place: the solve reuses its workspaces and allocates
   // nothing).
@@ -84,6 +85,7 @@ public:
 
 private:
   void solve_into(const Eigen::MatrixXd& b, Eigen::MatrixXd& x) const;
+  double assemble(bool store_gradient);
   Eigen::MatrixXd solve_unconstrained(const Eigen::MatrixXd& r) const;
   void set_up_hard_points(const Eigen::MatrixXd& soft_targets);
   void keep_nonzero_rows(const Eigen::MatrixXd& Lfc_Uc);
@@ -102,11 +104,15 @@ private:
   std::shared_ptr<const FreeRowSystem> rows_;
   const std::vector<int>&free_position_, &free_index_, &L_row_start_, &L_column_, &position_;
   const std::vector<double>& L_value_;
+  // The supernodal factor's rows in x's row order (SparseCholesky::gather_rows); empty for the other
+  // factorizations, which solve through b_free_.
+  std::vector<int> gather_;
   ArapElements::ValueRows U_rows_; // the positions in visit order (U's are written back at the end)
   Eigen::VectorXd cell_energy_;
   Eigen::MatrixXd B_, g_;
   bool B_holds_step_ = false; // plain_step has replaced B_ by G (until the next assemble_rhs)
-  // A solve's right-hand side and then, solved in place, its solution in the factor's row order.
+  // Without gather_: a solve's right-hand side and then, solved in place, its solution in the factor's row
+  // order.
   mutable Eigen::MatrixXd b_free_;
   std::vector<Eigen::Matrix3d> S_, dS_, M_inverse_, dR_; // Hessian workspaces (per cell)
   bool keep_covariances_ = false;

@@ -28,6 +28,13 @@ public:
   virtual double local_step() = 0;
   // The right-hand side and the gradient at the point of the last local step.
   virtual void assemble_rhs() = 0;
+  // The same right-hand side and the gradient's norm only, for the loops that read no more of g (plain,
+  // Anderson): a problem may then leave g unstored (LocalGlobalProblem: one #free x 3 array less at a
+  // solve's peak, issue 44); gradient() is then not to be read until the next assemble_rhs.
+  virtual double assemble_rhs_gradient_norm() {
+    assemble_rhs();
+    return gradient().norm();
+  }
   // The plain iterate from the point assemble_rhs last saw (never an energy increase); kept until the next
   // call.
   virtual const Eigen::MatrixXd& plain_step() = 0;

@@ -26,12 +26,6 @@ Eigen::MatrixXd rows_of(const Eigen::MatrixXd& X, const std::vector<int>& rows) 
   return out;
 }
 
-Eigen::Matrix3d cross_matrix(const Eigen::Vector3d& w) {
-  Eigen::Matrix3d W;
-  W << 0, -w.z(), w.y(), w.z(), 0, -w.x(), -w.y(), w.x(), 0;
-  return W;
-}
-
 // The cell covariances S_c = sum_{e in c} w_e (X^T b_e) s_hat_e^T of positions (or a direction) X, in the
 // file's order. Each cell's stiffness factor is left out: it scales S_c and dS_c alike, which neither the
 // rotation nor its derivative sees.

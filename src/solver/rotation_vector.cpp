@@ -6,15 +6,15 @@
 
 namespace iarap::detail {
 
-namespace {
-
-constexpr double kSeries = 1e-2; // below this theta the Taylor series (error ~theta^4 / 5040 relative)
-
 Eigen::Matrix3d cross_matrix(const Eigen::Vector3d& w) {
   Eigen::Matrix3d W;
   W << 0, -w.z(), w.y(), w.z(), 0, -w.x(), -w.y(), w.x(), 0;
   return W;
 }
+
+namespace {
+
+constexpr double kSeries = 1e-2; // below this theta the Taylor series (error ~theta^4 / 5040 relative)
 
 // sin theta / theta, a = (1 - cos theta) / theta^2, b = (theta - sin theta) / theta^3 and the derivatives
 // a' / theta, b' / theta (the gradients of a and b in w are a' w / theta, b' w / theta).

@@ -9,6 +9,8 @@
 
 namespace iarap::detail {
 
+// [w]x, the cross-product matrix: [w]x v = w x v.
+Eigen::Matrix3d cross_matrix(const Eigen::Vector3d& w);
 // exp([w]x).
 Eigen::Matrix3d rotation_of_vector(const Eigen::Vector3d& w);
 // The rotation vector of R with |w| <= pi (the principal logarithm).

@@ -416,6 +416,37 @@ void SparseCholesky::solve(const Eigen::MatrixXd& B, Eigen::MatrixXd& X) {
   solve_with_cholmod(B, X);
 }
 
+std::vector<int> SparseCholesky::gather_rows(const std::vector<int>& a_row) const {
+  if (kind() != FactorizationKind::CholmodSupernodalLLT || !impl_->supernodal) return {};
+  const auto n = static_cast<size_t>(rows());
+  if (a_row.size() != n)
+    throw SolverError("gather_rows: " + std::to_string(a_row.size()) + " rows for a factor of " +
+                      std::to_string(n));
+  std::vector<int> b_row(n, -1); // A's row -> B's row
+  for (size_t r = 0; r < n; ++r) {
+    const int a = a_row[r];
+    if (a < 0 || static_cast<size_t>(a) >= n || b_row[static_cast<size_t>(a)] >= 0)
+      throw SolverError("gather_rows: row " + std::to_string(r) + " names A's row " + std::to_string(a) +
+                        ", out of range or named twice");
+    b_row[static_cast<size_t>(a)] = static_cast<int>(r);
+  }
+  const auto* perm = static_cast<const int*>(impl_->llt->factor()->Perm);
+  std::vector<int> gather(n);
+  for (size_t i = 0; i < n; ++i) gather[i] = b_row[static_cast<size_t>(perm[i])];
+  return gather;
+}
+
+void SparseCholesky::solve_gathered(const Eigen::MatrixXd& B, Eigen::MatrixXd& X,
+                                    const std::vector<int>& gather) {
+  const FactorizationKind k = kind();
+  check_solve(k, rows(), B);
+  if (k != FactorizationKind::CholmodSupernodalLLT || !impl_->supernodal ||
+      gather.size() != static_cast<size_t>(rows()))
+    throw SolverError("solve_gathered: needs CHOLMOD's supernodal factorization and a gather of its " +
+                      std::to_string(rows()) + " rows (gather_rows)");
+  impl_->supernodal->solve(B, X, thread_count(), impl_->supernodal_workspace, gather.data());
+}
+
 void SparseCholesky::solve_with_cholmod(const Eigen::MatrixXd& B, Eigen::MatrixXd& X) {
   const FactorizationKind k = kind();
   check_solve(k, rows(), B);
@@ -445,6 +476,12 @@ Eigen::MatrixXd SparseCholesky::solve(const Eigen::MatrixXd& B) const {
   detail::SupernodalWorkspace ws; // a workspace of its own: const solves may run concurrently
   std::as_const(*impl_->supernodal).solve(B, X, thread_count(), ws);
   return X;
+}
+
+void SparseCholesky::release_solve_workspaces() {
+  if (!impl_) return;
+  impl_->workspace.release();
+  impl_->supernodal_workspace = detail::SupernodalWorkspace();
 }
 
 FactorizationKind SparseCholesky::kind() const {

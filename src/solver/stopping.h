@@ -34,8 +34,7 @@ private:
 // The global step's tail shared by all loops: the right-hand side at the new iterate and the norm of the
 // gradient there (Problem::assemble_rhs).
 inline double rhs_and_gradient_norm(Problem& problem) {
-  problem.assemble_rhs();
-  return problem.gradient().norm();
+  return problem.assemble_rhs_gradient_norm();
 }
 
 } // namespace iarap::detail

@@ -11,8 +11,8 @@ namespace iarap::detail {
 
 namespace {
 
-// The visit order and the cell entries: each cell's elements with their b (vertex positions in the visit
-// order), s_hat and w side by side.
+// The visit order, the rest positions in it and the cell entries: each cell's elements with their b (vertex
+// positions in the visit order) and w side by side.
 void fill_cell_entries(const Eigen::MatrixXd& V, const ArapElements& el, StreamedLayout& sl) {
   sl.visit_order = breadth_first_cell_order(el.num_vertices, el.num_cells, el.cell_element_start,
                                             el.cell_element, el.b_index.data(), V);
@@ -21,6 +21,11 @@ void fill_cell_entries(const Eigen::MatrixXd& V, const ArapElements& el, Streame
   // file's cell order, each cell's run written where its position puts it: the element arrays are then read
   // about as they lie in memory, and the scattering is one block per cell.
   const std::vector<int> position = inverse_permutation(sl.visit_order);
+  const int n = el.num_vertices;
+  sl.rest_rows.resize(n, 3);
+#pragma omp parallel for num_threads(loop_thread_count()) schedule(static)
+  for (int p = 0; p < n; ++p)
+    for (int d = 0; d < 3; ++d) sl.rest_rows(p, d) = V(order[static_cast<size_t>(p)], d);
   sl.cell_entry_start.assign(static_cast<size_t>(el.num_cells) + 1, 0);
   for (int p = 0; p < el.num_cells; ++p) {
     const auto c = static_cast<size_t>(order[static_cast<size_t>(p)]);
@@ -38,7 +43,6 @@ void fill_cell_entries(const Eigen::MatrixXd& V, const ArapElements& el, Streame
       for (int j = 0; j < 3; ++j) {
         entry->index[j] = position[static_cast<size_t>(el.b_index(e, j))];
         entry->value[j] = el.b_value(e, j);
-        entry->s_hat[j] = el.s_hat(e, j);
       }
       entry->w = el.w(e);
     }
@@ -72,17 +76,20 @@ void fill_rhs_terms(const ArapElements& el, StreamedLayout& sl) {
     std::vector<CellTerm> terms;
     const int first = static_cast<int>(static_cast<long long>(el.num_cells) * thread / threads);
     const int last = static_cast<int>(static_cast<long long>(el.num_cells) * (thread + 1) / threads);
-    // Calls add(v, w_e (b_e)_v, entry) for every non-zero of every element (entry, with s_hat_e) of the cell
-    // at position p.
+    // Calls add(v, w_e (b_e)_v, s_hat_e) for every non-zero of every element of the cell at position p.
+    const double* rest = sl.rest_rows.data();
     auto for_each_contribution = [&](int p, const auto& add) {
       const CellEntry* entry = sl.cell_entry.data() + sl.cell_entry_start[static_cast<size_t>(p)];
       const CellEntry* end = sl.cell_entry.data() + sl.cell_entry_start[static_cast<size_t>(p) + 1];
-      for (; entry != end; ++entry)
+      for (; entry != end; ++entry) {
+        double s_hat[3];
+        element_vector(*entry, rest, s_hat);
         for (int j = 0; j < 3; ++j)
-          if (entry->value[j] != 0.0) add(entry->index[j], entry->w * entry->value[j], *entry);
+          if (entry->value[j] != 0.0) add(entry->index[j], entry->w * entry->value[j], s_hat);
+      }
     };
     for (int p = first; p < last; ++p) {
-      for_each_contribution(p, [&](int v, double, const CellEntry&) {
+      for_each_contribution(p, [&](int v, double, const double(&)[3]) {
         if (where[static_cast<size_t>(v)] < 0) {
           where[static_cast<size_t>(v)] = 0;
           terms.push_back({{0.0, 0.0, 0.0}, v});
@@ -107,13 +114,13 @@ void fill_rhs_terms(const ArapElements& el, StreamedLayout& sl) {
       sl.rhs_term.resize(static_cast<size_t>(sl.rhs_term_start[static_cast<size_t>(n)]));
     }
     for (int p = first; p < last; ++p) {
-      for_each_contribution(p, [&](int v, double wb, const CellEntry& e) {
+      for_each_contribution(p, [&](int v, double wb, const double(&s_hat)[3]) {
         int& at = where[static_cast<size_t>(v)];
         if (at < 0) {
           at = static_cast<int>(terms.size());
           terms.push_back({{0.0, 0.0, 0.0}, v});
         }
-        for (int d = 0; d < 3; ++d) terms[static_cast<size_t>(at)].p[d] += wb * e.s_hat[d];
+        for (int d = 0; d < 3; ++d) terms[static_cast<size_t>(at)].p[d] += wb * s_hat[d];
       });
       for (const CellTerm& t : terms) {
         where[static_cast<size_t>(t.vertex)] = -1;

@@ -15,19 +15,20 @@
 
 namespace iarap::detail {
 
-// The two records below are packed to 4-byte alignment: 68 bytes instead of 72 and 28 instead of 32, some
+// The two records below are packed to 4-byte alignment: 44 bytes instead of 48 and 28 instead of 32, some
 // 55 bytes a vertex less (issue 44; x86 loads a double at any address, and the passes stream the records,
 // so fewer bytes also means less memory traffic). Their doubles are read as fields, never through a double*.
 #pragma pack(push, 4)
 
-// One element of a cell: its b (vertex positions in visit_order), s_hat and w side by side, so that the local
-// step reads a cell in one forward sweep. Left uninitialized when constructed (the builder writes each one):
-// resizing the vectors then does not zero tens of megabytes that are overwritten at once.
+// One element of a cell: its b (vertex positions in visit_order) and w side by side, so that the local step
+// reads a cell in one forward sweep. s_hat = V^T b is not stored: the passes recompute it from rest_rows
+// with the same sum (rest_vector), bit for bit the value ArapElements::s_hat holds, for 24 bytes less an
+// entry (some 150 bytes a vertex: issue 44). Left uninitialized when constructed (the builder writes each
+// one): resizing the vectors then does not zero tens of megabytes that are overwritten at once.
 struct CellEntry {
   CellEntry() {}
   int index[3];
   double value[3];
-  double s_hat[3];
   double w;
 };
 
@@ -41,11 +42,14 @@ struct RhsTerm {
 };
 
 #pragma pack(pop)
-static_assert(sizeof(CellEntry) == 3 * sizeof(int) + 7 * sizeof(double), "CellEntry is packed");
+static_assert(sizeof(CellEntry) == 3 * sizeof(int) + 4 * sizeof(double), "CellEntry is packed");
 static_assert(sizeof(RhsTerm) == 3 * sizeof(double) + sizeof(int), "RhsTerm is packed");
 
 struct StreamedLayout {
   std::vector<int> visit_order;
+  // The rest positions V in visit order (#V x 3, row p: V's row visit_order[p]), the cell entries' b read
+  // them for s_hat.
+  ArapElements::ValueRows rest_rows;
   // The elements of the cell at position p: cell_entry[cell_entry_start[p] .. cell_entry_start[p + 1]), in
   // ArapElements::cell_element's order.
   std::vector<int> cell_entry_start;
@@ -61,6 +65,32 @@ struct StreamedLayout {
 // release_arrays: el's per-element arrays are released (release_element_arrays) once the cell entries are
 // filled, before the right-hand side's terms, which read the cell entries only.
 StreamedLayout streamed_layout(const Eigen::MatrixXd& V, ArapElements& el, bool release_arrays);
+
+// s = X^T b of entry x from row-major positions x_rows (#V x 3, visit order), summed in slot order: with
+// rest_rows, s_hat exactly as ArapElements::s_hat sums it (arap_elements.cpp, set_rest_vector); with the
+// current positions, the element vector of the local step (zero energy at rest, bit for bit).
+inline void element_vector(const CellEntry& x, const double* x_rows, double (&s)[3]) {
+  for (int d = 0; d < 3; ++d) {
+    double v = 0.0;
+    for (int k = 0; k < 3; ++k) v += x.value[k] * x_rows[3 * x.index[k] + d];
+    s[d] = v;
+  }
+}
+
+// element_vector from x_rows and from rest_rows in one pass over b: the same sums, each b_k read once.
+inline void element_vectors(const CellEntry& x, const double* x_rows, const double* rest_rows, double (&s)[3],
+                            double (&s_hat)[3]) {
+  s[0] = s[1] = s[2] = s_hat[0] = s_hat[1] = s_hat[2] = 0.0;
+  for (int k = 0; k < 3; ++k) {
+    const double b = x.value[k];
+    const double* p = x_rows + 3 * x.index[k];
+    const double* q = rest_rows + 3 * x.index[k];
+    for (int d = 0; d < 3; ++d) {
+      s[d] += b * p[d];
+      s_hat[d] += b * q[d];
+    }
+  }
+}
 
 // el's layout (finish_elements made it; not checked).
 inline const StreamedLayout& streamed(const ArapElements& el) {

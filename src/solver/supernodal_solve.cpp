@@ -515,12 +515,14 @@ SupernodalSchedule SupernodalSolve::make_schedule(int threads) const {
 }
 
 void SupernodalSolve::solve(const Eigen::MatrixXd& B, Eigen::MatrixXd& X, int threads,
-                            SupernodalWorkspace& ws) {
+                            SupernodalWorkspace& ws, const int* gather) {
   if (threads != schedule_threads_) {
     schedule_ = make_schedule(threads);
     schedule_threads_ = threads;
   }
-  supernodal_solve(L_, schedule_, B, X, ws);
+  SupernodalFactorView L = L_;
+  if (gather) L.perm = gather;
+  supernodal_solve(L, schedule_, B, X, ws);
 }
 
 void SupernodalSolve::solve(const Eigen::MatrixXd& B, Eigen::MatrixXd& X, int threads,

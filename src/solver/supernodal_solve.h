@@ -76,8 +76,10 @@ public:
   SupernodalSolve(const SupernodalFactorView& L, int threads, double parallel_overhead = kParallelOverhead);
 
   // X (n x k, resized) with A X = B, k >= 1, on the schedule for `threads` threads; rebuilds the stored
-  // schedule when `threads` differs from the one it was built for.
-  void solve(const Eigen::MatrixXd& B, Eigen::MatrixXd& X, int threads, SupernodalWorkspace& ws);
+  // schedule when `threads` differs from the one it was built for. With `gather`, row i of L is row
+  // gather[i] of B and X instead of perm[i] (B in another row order: SparseCholesky::gather_rows).
+  void solve(const Eigen::MatrixXd& B, Eigen::MatrixXd& X, int threads, SupernodalWorkspace& ws,
+             const int* gather = nullptr);
   // The same on a schedule for `threads` threads made for this call if the stored one is for another
   // count (so the two calls agree bit for bit at one thread count). Safe to call concurrently.
   void solve(const Eigen::MatrixXd& B, Eigen::MatrixXd& X, int threads, SupernodalWorkspace& ws) const;

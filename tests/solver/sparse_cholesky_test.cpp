@@ -29,6 +29,27 @@ Eigen::SparseMatrix<double> path_laplacian(int n, double shift) {
   return A;
 }
 
+// The 5-point Laplacian of an n x n grid plus `shift` on the diagonal (positive definite for shift > 0).
+Eigen::SparseMatrix<double> grid_laplacian(int n, double shift) {
+  std::vector<Eigen::Triplet<double>> t;
+  const auto id = [n](int i, int j) { return i * n + j; };
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      t.emplace_back(id(i, j), id(i, j), 4.0 + shift);
+      if (i + 1 < n) {
+        t.emplace_back(id(i, j), id(i + 1, j), -1.0);
+        t.emplace_back(id(i + 1, j), id(i, j), -1.0);
+      }
+      if (j + 1 < n) {
+        t.emplace_back(id(i, j), id(i, j + 1), -1.0);
+        t.emplace_back(id(i, j + 1), id(i, j), -1.0);
+      }
+    }
+  Eigen::SparseMatrix<double> A(n * n, n * n);
+  A.setFromTriplets(t.begin(), t.end());
+  return A;
+}
+
 double residual(const Eigen::SparseMatrix<double>& A, const Eigen::MatrixXd& X, const Eigen::MatrixXd& B) {
   return (A * X - B).norm() / B.norm();
 }
@@ -71,6 +92,52 @@ TEST(SparseCholesky, InPlaceSolveEqualsTheOutOfPlaceOne) {
     chol.solve_with_cholmod(cholmod_in_place, cholmod_in_place);
     EXPECT_EQ(cholmod_in_place, X) << iarap::factorization_name(chol.kind());
   }
+}
+
+// B and X in another row order than A's (row r is A's row a_row[r]): the gathered solve gives the bits of
+// reordering B by hand, solving and reordering X back, also in place, at one and at two threads (a grid
+// big enough for a parallel schedule); a gather of the wrong size, a bad a_row or a non-supernodal factor
+// is refused.
+TEST(SparseCholesky, GatheredSolveEqualsTheReorderedOne) {
+  const auto A = grid_laplacian(40, 1e-2);
+  const Eigen::Index n = A.rows();
+  std::vector<int> a_row(static_cast<size_t>(n));
+  for (Eigen::Index r = 0; r < n; ++r) a_row[static_cast<size_t>(r)] = static_cast<int>((r * 7 + 3) % n);
+  const Eigen::MatrixXd B = Eigen::MatrixXd::Random(n, 3);
+  for (const int threads : {1, 2}) {
+    iarap::set_thread_count(threads);
+    SparseCholesky chol(A);
+    ASSERT_EQ(chol.kind(), FactorizationKind::CholmodSupernodalLLT);
+    Eigen::MatrixXd B_a(n, 3), X_a, expected(n, 3);
+    for (Eigen::Index r = 0; r < n; ++r) B_a.row(a_row[static_cast<size_t>(r)]) = B.row(r);
+    chol.solve(B_a, X_a);
+    for (Eigen::Index r = 0; r < n; ++r) expected.row(r) = X_a.row(a_row[static_cast<size_t>(r)]);
+    const std::vector<int> gather = chol.gather_rows(a_row);
+    ASSERT_EQ(gather.size(), static_cast<size_t>(n));
+    Eigen::MatrixXd X, in_place = B;
+    chol.solve_gathered(B, X, gather);
+    EXPECT_EQ(X, expected) << threads << " threads";
+    chol.solve_gathered(in_place, in_place, gather);
+    EXPECT_EQ(in_place, expected) << threads << " threads";
+    EXPECT_THROW(chol.solve_gathered(B, X, std::vector<int>(5, 0)), iarap::SolverError);
+    std::vector<int> twice = a_row;
+    twice[1] = twice[0];
+    EXPECT_THROW(chol.gather_rows(twice), iarap::SolverError);
+    EXPECT_THROW(chol.gather_rows(std::vector<int>(3, 0)), iarap::SolverError);
+    // Freed workspaces are made again by the next solve: the same bits.
+    chol.release_solve_workspaces();
+    chol.solve_gathered(B, X, gather);
+    EXPECT_EQ(X, expected) << threads << " threads";
+  }
+  iarap::set_thread_count(0);
+  // The LDL^T fallback has no supernodal gather: empty, and solve_gathered refuses.
+  SparseCholesky ldlt(path_laplacian(30, -1.0 + 1e-3));
+  ASSERT_EQ(ldlt.kind(), FactorizationKind::SimplicialLDLT);
+  std::vector<int> identity(30);
+  for (int r = 0; r < 30; ++r) identity[static_cast<size_t>(r)] = r;
+  EXPECT_TRUE(ldlt.gather_rows(identity).empty());
+  Eigen::MatrixXd X;
+  EXPECT_THROW(ldlt.solve_gathered(Eigen::MatrixXd::Ones(30, 3), X, identity), iarap::SolverError);
 }
 
 TEST(SparseCholesky, IndefiniteFallsBackToLdlt) {
@@ -204,29 +271,6 @@ TEST(SparseCholesky, CholmodTeamsLeaveTheCallersSettingsAlone) {
   iarap::set_thread_count(threads);
 }
 
-} // namespace
-
-namespace {
-// The 5-point Laplacian of an n x n grid plus `shift` on the diagonal (positive definite for shift > 0).
-Eigen::SparseMatrix<double> grid_laplacian(int n, double shift) {
-  std::vector<Eigen::Triplet<double>> t;
-  const auto id = [n](int i, int j) { return i * n + j; };
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j) {
-      t.emplace_back(id(i, j), id(i, j), 4.0 + shift);
-      if (i + 1 < n) {
-        t.emplace_back(id(i, j), id(i + 1, j), -1.0);
-        t.emplace_back(id(i + 1, j), id(i, j), -1.0);
-      }
-      if (j + 1 < n) {
-        t.emplace_back(id(i, j), id(i, j + 1), -1.0);
-        t.emplace_back(id(i, j + 1), id(i, j), -1.0);
-      }
-    }
-  Eigen::SparseMatrix<double> A(n * n, n * n);
-  A.setFromTriplets(t.begin(), t.end());
-  return A;
-}
 } // namespace
 
 // Both orderings reach CHOLMOD (their factors differ in size) and solve to rounding; copies, analyze() and a

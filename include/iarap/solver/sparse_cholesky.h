@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace iarap {
 
@@ -90,9 +91,23 @@ public:
   // between thread counts by rounding only; the two solves agree bit for bit at one thread count (also
   // when called inside a parallel region, where the calling thread does all the work).
   void solve(const Eigen::MatrixXd& B, Eigen::MatrixXd& X);
+  // For B and X whose row r is A's row a_row[r] (a permutation of A's rows), the supernodal solve can gather
+  // B's rows straight into the factor's order instead of through a reordered copy of B: one n x k array
+  // less at a solve's peak (issue 44). gather_rows(a_row) is that order (for each row of the factor, its
+  // row of B), valid until the next analysis; empty when the factorization is not CHOLMOD's supernodal one
+  // (then reorder B by hand and call solve). solve_gathered(B, X, gather) is solve() for B and X in
+  // a_row's order, bit for bit the reordered solve's X; X may be B. Throws SolverError on a gather of the
+  // wrong size or without a supernodal factorization.
+  std::vector<int> gather_rows(const std::vector<int>& a_row) const;
+  void solve_gathered(const Eigen::MatrixXd& B, Eigen::MatrixXd& X, const std::vector<int>& gather);
   // The same X by CHOLMOD's own solve (cholmod_solve2, serial, workspaces reused like solve's): the
   // reference the hand-written solve is measured and tested against. The LDL^T fallback solves as solve().
   void solve_with_cholmod(const Eigen::MatrixXd& B, Eigen::MatrixXd& X);
+
+  // Frees the workspaces the solves keep between calls (CHOLMOD's and the supernodal solve's; the next
+  // solve makes them again): a caller done with one kind of solve, such as `iarap bench` after timing
+  // cholmod_solve2 beside its own, does not hold them through the rest of its run.
+  void release_solve_workspaces();
 
   FactorizationKind kind() const;
   Eigen::Index rows() const;
