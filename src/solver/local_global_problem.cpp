@@ -31,42 +31,54 @@ LocalGlobalProblem::LocalGlobalProblem(ArapData& data, const Eigen::MatrixXd& ta
   for (Eigen::Index k = 0; k < data.fixed.size(); ++k) U.row(data.fixed(k)) = targets.row(k);
   const ArapElements& el = data.elements;
   visit_rows(el, U, U_rows_);
-  const std::vector<int>& position = position_;
-  const Eigen::Index nf = data.free.size();
-  {
-    const Eigen::MatrixXd Lfc_Uc_free = data.L_fc * U_c; // rows in data.free's order
-    Eigen::MatrixXd Lfc_Uc(nf, 3);                       // rows of x
-    for (Eigen::Index r = 0; r < nf; ++r)
-      Lfc_Uc.row(r) = Lfc_Uc_free.row(free_index_[static_cast<size_t>(r)]);
-    // The terms' linear parts at the free rows, s_f = sum_t s_t, folded into L_fc U_c (B = rhs_f + s_f -
-    // L_fc U_c) and kept for the gradient.
-    terms_ = quadratic_terms(data, soft_targets, forces, &position_);
-    if (!terms_.empty()) {
-      std::vector<int> unknown(position.size(), -1); // each vertex's row of x
-      for (Eigen::Index r = 0; r < nf; ++r)
-        unknown[static_cast<size_t>(data.free(free_index_[static_cast<size_t>(r)]))] = static_cast<int>(r);
-      linear_f_.setZero(nf, 3);
-      for (const auto& term : terms_) term->add_linear(unknown, linear_f_);
-      Lfc_Uc -= linear_f_;
+  // U_rows_ holds all of U (its constrained rows too): the caller's copy is released until the destructor
+  // writes the result back, one #V x 3 array less at the solve's peak (issue 44). Nothing the iterations
+  // call reads U (arap_solve: an on_iteration callback should not read it); a constructor that throws runs
+  // no destructor, so the rest writes U back itself then.
+  U_ = Eigen::MatrixXd();
+  try {
+    const std::vector<int>& position = position_;
+    const Eigen::Index nf = data.free.size();
+    {
+      const Eigen::MatrixXd Lfc_Uc_free = data.L_fc * U_c; // rows in data.free's order
+      // The terms' linear parts at the free rows, s_f = sum_t s_t, folded into L_fc U_c (B = rhs_f + s_f -
+      // L_fc U_c) and kept for the gradient.
+      terms_ = quadratic_terms(data, soft_targets, forces, &position_);
+      if (terms_.empty()) {
+        keep_nonzero_rows(Lfc_Uc_free, &free_index_);
+      } else {
+        Eigen::MatrixXd Lfc_Uc(nf, 3); // rows of x
+        for (Eigen::Index r = 0; r < nf; ++r)
+          Lfc_Uc.row(r) = Lfc_Uc_free.row(free_index_[static_cast<size_t>(r)]);
+        std::vector<int> unknown(position.size(), -1); // each vertex's row of x
+        for (Eigen::Index r = 0; r < nf; ++r)
+          unknown[static_cast<size_t>(data.free(free_index_[static_cast<size_t>(r)]))] = static_cast<int>(r);
+        linear_f_.setZero(nf, 3);
+        for (const auto& term : terms_) term->add_linear(unknown, linear_f_);
+        Lfc_Uc -= linear_f_;
+        keep_nonzero_rows(Lfc_Uc, nullptr);
+      }
     }
-    keep_nonzero_rows(Lfc_Uc);
-  }
-  if (data.soft.hard_faces.size() > 0) set_up_hard_points(soft_targets);
-  if (rotation_smoothing > 0) {
-    if (data.planar)
-      throw InputError("ARAP: rotation_smoothing is not supported on planar data (rotations about z only); "
-                       "solve the mesh in 3D or use rotation_smoothing 0");
-    smoothing_ =
-        std::make_unique<RotationSmoothing>(el, position_, rotation_smoothing, rest_area(data.V, data.F));
-  }
-  B_.resize(nf, 3);
-  // The first fit starts cold (fit_rotations warm-starts from rotations it is given): a solve's result then
-  // depends on its inputs only, bit for bit, not on what earlier solves left in data.R. Warm, it starts
-  // from those, in visit order as the fits keep them.
-  if (warm_start_rotations && !smoothing_ && data.R.size() == static_cast<size_t>(el.num_cells)) {
-    to_visit_order_in_place(streamed(el).visit_order, data.R);
-  } else {
-    data.R.clear();
+    if (data.soft.hard_faces.size() > 0) set_up_hard_points(soft_targets);
+    if (rotation_smoothing > 0) {
+      if (data.planar)
+        throw InputError("ARAP: rotation_smoothing is not supported on planar data (rotations about z only); "
+                         "solve the mesh in 3D or use rotation_smoothing 0");
+      smoothing_ =
+          std::make_unique<RotationSmoothing>(el, position_, rotation_smoothing, rest_area(data.V, data.F));
+    }
+    B_.resize(nf, 3);
+    // The first fit starts cold (fit_rotations warm-starts from rotations it is given): a solve's result then
+    // depends on its inputs only, bit for bit, not on what earlier solves left in data.R. Warm, it starts
+    // from those, in visit order as the fits keep them.
+    if (warm_start_rotations && !smoothing_ && data.R.size() == static_cast<size_t>(el.num_cells)) {
+      to_visit_order_in_place(streamed(el).visit_order, data.R);
+    } else {
+      data.R.clear();
+    }
+  } catch (...) {
+    write_back_positions();
+    throw;
   }
 }
 
@@ -96,7 +108,7 @@ void LocalGlobalProblem::set_up_hard_points(const Eigen::MatrixXd& soft_targets)
       const int i = data_.free_slot(p.v[j]);
       row.column[j] = i >= 0 ? row_of_free[static_cast<size_t>(i)] : -1;
       row.c[j] = p.c[j];
-      if (i < 0) hard_d_.row(k) -= p.c[j] * U_.row(p.v[j]);
+      if (i < 0) hard_d_.row(k) -= p.c[j] * U_rows_.row(position_[static_cast<size_t>(p.v[j])]);
     }
   }
   hard_ = HardPointProjection(std::move(rows), free_count(),
@@ -122,26 +134,46 @@ void LocalGlobalProblem::set_up_hard_points(const Eigen::MatrixXd& soft_targets)
   set_positions(x);
 }
 
-// Lfc_Uc_ and Lfc_Uc_row_ from the dense rows: those with an entry other than +0.0 (a -0.0 is kept, as
-// rhs - (-0.0) and rhs - 0.0 differ for rhs = -0.0). Without terms they are the rows beside constrained
-// vertices, a small part of all.
-void LocalGlobalProblem::keep_nonzero_rows(const Eigen::MatrixXd& Lfc_Uc) {
+// Lfc_Uc_ and Lfc_Uc_row_ from the dense rows (row r of x is row (*row_of)[r] of Lfc_Uc, or row r without
+// row_of): those with an entry other than +0.0 (a -0.0 is kept, as rhs - (-0.0) and rhs - 0.0 differ for rhs
+// = -0.0). Without terms they are the rows beside constrained vertices, a small part of all.
+void LocalGlobalProblem::keep_nonzero_rows(const Eigen::MatrixXd& Lfc_Uc, const std::vector<int>* row_of) {
   const auto is_plus_zero = [](double v) { return v == 0.0 && !std::signbit(v); };
+  const auto source = [&](Eigen::Index r) {
+    return row_of ? static_cast<Eigen::Index>((*row_of)[static_cast<size_t>(r)]) : r;
+  };
   Lfc_Uc_row_.clear();
-  for (Eigen::Index r = 0; r < Lfc_Uc.rows(); ++r)
-    if (!is_plus_zero(Lfc_Uc(r, 0)) || !is_plus_zero(Lfc_Uc(r, 1)) || !is_plus_zero(Lfc_Uc(r, 2)))
+  for (Eigen::Index r = 0; r < Lfc_Uc.rows(); ++r) {
+    const Eigen::Index q = source(r);
+    if (!is_plus_zero(Lfc_Uc(q, 0)) || !is_plus_zero(Lfc_Uc(q, 1)) || !is_plus_zero(Lfc_Uc(q, 2)))
       Lfc_Uc_row_.push_back(static_cast<int>(r));
+  }
   Lfc_Uc_.resize(static_cast<Eigen::Index>(Lfc_Uc_row_.size()), 3);
   for (size_t k = 0; k < Lfc_Uc_row_.size(); ++k)
-    Lfc_Uc_.row(static_cast<Eigen::Index>(k)) = Lfc_Uc.row(Lfc_Uc_row_[k]);
+    Lfc_Uc_.row(static_cast<Eigen::Index>(k)) = Lfc_Uc.row(source(Lfc_Uc_row_[k]));
 }
 
 LocalGlobalProblem::~LocalGlobalProblem() {
   trace_resident("solve's workspaces"); // the solve's high-water mark, before they go
-  for (size_t r = 0; r < free_index_.size(); ++r)
-    U_.row(data_.free(free_index_[r])) = U_rows_.row(free_position_[r]);
+  // The workspaces go before U comes back, so that its array does not add to their peak.
+  for (Eigen::MatrixXd* m : {&B_, &g_, &b_free_, &linear_f_}) *m = Eigen::MatrixXd();
+  cell_energy_ = Eigen::VectorXd();
+  v_rows_ = ArapElements::ValueRows();
+  for (std::vector<Eigen::Matrix3d>* v : {&S_, &dS_, &M_inverse_, &dR_})
+    std::vector<Eigen::Matrix3d>().swap(*v);
+  write_back_positions();
   if (data_.R.size() != static_cast<size_t>(data_.elements.num_cells)) return; // no local step ran
   from_visit_order_in_place(streamed(data_.elements).visit_order, data_.R);
+}
+
+// U from U_rows_, every row: the free ones the iterations moved, the constrained ones as the constructor set
+// them (targets, pinned guesses).
+void LocalGlobalProblem::write_back_positions() {
+  const std::vector<int>& order = streamed(data_.elements).visit_order;
+  U_.resize(U_rows_.rows(), 3);
+#pragma omp parallel for schedule(static)
+  for (Eigen::Index p = 0; p < U_rows_.rows(); ++p)
+    for (int d = 0; d < 3; ++d) U_(order[static_cast<size_t>(p)], d) = U_rows_(p, d);
 }
 
 Eigen::MatrixXd LocalGlobalProblem::positions() const {
@@ -360,7 +392,7 @@ void LocalGlobalProblem::prepare_hessian() {
 // dS_c = sum_e w_e (v^T b_e) s_hat_e^T (the covariance sweep run on v) through the relation above.
 Eigen::MatrixXd LocalGlobalProblem::hessian_product(const Eigen::MatrixXd& v) {
   // Only the free rows are written, so the constrained ones stay at the zero they got once.
-  if (v_rows_.rows() != U_.rows()) v_rows_.setZero(U_.rows(), 3);
+  if (v_rows_.rows() != U_rows_.rows()) v_rows_.setZero(U_rows_.rows(), 3);
   for (Eigen::Index r = 0; r < free_count(); ++r)
     v_rows_.row(free_position_[static_cast<size_t>(r)]) = v.row(r);
   cell_covariances(data_.elements, v_rows_, dS_); // dS_c

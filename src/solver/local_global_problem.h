@@ -88,7 +88,8 @@ private:
   double assemble(bool store_gradient);
   Eigen::MatrixXd solve_unconstrained(const Eigen::MatrixXd& r) const;
   void set_up_hard_points(const Eigen::MatrixXd& soft_targets);
-  void keep_nonzero_rows(const Eigen::MatrixXd& Lfc_Uc);
+  void keep_nonzero_rows(const Eigen::MatrixXd& Lfc_Uc, const std::vector<int>* row_of);
+  void write_back_positions();
 
   ArapData& data_;
   Eigen::MatrixXd& U_;

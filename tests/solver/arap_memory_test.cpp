@@ -115,6 +115,42 @@ TEST(ArapMemory, ReleasedElementsCountNothingAndSolveTheSame) {
 }
 
 // With rigid groups the elements stay (the groups' covariances read them in the file's order).
+// While the iterations run, the caller's U is released (its rows live in the iterations' order): an
+// on_iteration callback sees it empty; afterwards it has its shape back with the constrained rows at their
+// targets (fixed) and the free ones moved, the same bits as a solve from a copy of the same guess. The hard
+// points' setup reads U before the release.
+TEST(ArapMemory, TheCallersPositionsAreReleasedWhileTheSolveRuns) {
+  const ArapData reference = patch_data(ArapMethod::Iarap, false);
+  const Eigen::MatrixXd V = reference.V;
+  Eigen::MatrixXd targets(reference.fixed.size(), 3);
+  for (Eigen::Index k = 0; k < targets.rows(); ++k)
+    targets.row(k) = V.row(reference.fixed(k)) + Eigen::RowVector3d(0.0, 0.2, 0.1);
+  for (const ArapAccelerator accelerator : {ArapAccelerator::None, ArapAccelerator::Newton}) {
+    ArapData data = reference;
+    ArapSolveOptions options;
+    options.accelerator = accelerator;
+    options.max_iterations = 4;
+    std::vector<Eigen::Index> sizes;
+    Eigen::MatrixXd U = V;
+    options.on_iteration = [&](const ArapReport&) {
+      sizes.push_back(U.size());
+      return true;
+    };
+    arap_solve(data, targets, U, options);
+    ASSERT_FALSE(sizes.empty());
+    for (const Eigen::Index size : sizes) EXPECT_EQ(size, 0);
+    ASSERT_EQ(U.rows(), V.rows());
+    ASSERT_EQ(U.cols(), 3);
+    for (Eigen::Index k = 0; k < targets.rows(); ++k) EXPECT_EQ(U.row(reference.fixed(k)), targets.row(k));
+    EXPECT_GT((U - V).norm(), 0.0);
+    ArapData again = reference;
+    Eigen::MatrixXd U2 = V;
+    options.on_iteration = nullptr;
+    arap_solve(again, targets, U2, options);
+    EXPECT_EQ(U, U2);
+  }
+}
+
 TEST(ArapMemory, RigidGroupsKeepTheElements) {
   test::SolverMesh m = test::bunny();
   ArapOptions options;

@@ -66,8 +66,9 @@ void arap_set_fixed(ArapData& data, const Eigen::VectorXi& fixed);
 // (Eq. 16), U_k,f = L_ff^{-1}(rhs_f - L_fc U_c), then the local step on U_k gives E(U_k) and the rotations
 // for the next iteration. Since L_ff (U_k,f - U_{k-1,f}) = -g_{k-1} this is gradient descent preconditioned
 // by L_ff, which options.accelerator speeds up (ArapSolveOptions). data.R holds the rotations of the
-// returned U (while the solve runs, U and data.R are kept in the iterations' own vertex order,
-// ArapElements::visit_order: an on_iteration callback should not read them). Throws InputError for a wrong
+// returned U (while the solve runs, data.R is kept in the iterations' own vertex order,
+// ArapElements::visit_order, and U is empty, its rows held in that order: an on_iteration callback should
+// not read them). Throws InputError for a wrong
 // targets / U shape or a non-finite entry (naming the row), negative max_iterations or window, a NaN
 // tolerance or a negative or NaN gradient_tolerance, rotation smoothing with rigid groups (and targets
 // that move a group's constrained vertices off a rigid motion); SolverError when the energy becomes
