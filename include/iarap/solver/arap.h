@@ -68,11 +68,10 @@ void arap_set_fixed(ArapData& data, const Eigen::VectorXi& fixed);
 // by L_ff, which options.accelerator speeds up (ArapSolveOptions). data.R holds the rotations of the
 // returned U (while the solve runs, data.R is kept in the iterations' own vertex order,
 // ArapElements::visit_order, and U is empty, its rows held in that order: an on_iteration callback should
-// not read them). Throws InputError for a wrong
-// targets / U shape or a non-finite entry (naming the row), negative max_iterations or window, a NaN
-// tolerance or a negative or NaN gradient_tolerance, rotation smoothing with rigid groups (and targets
-// that move a group's constrained vertices off a rigid motion); SolverError when the energy becomes
-// non-finite.
+// not read them). Throws InputError for a wrong targets / U shape or a non-finite entry (naming the
+// row), negative max_iterations or window, a NaN tolerance or a negative or NaN gradient_tolerance,
+// rotation smoothing with rigid groups (and targets that move a group's constrained vertices off a rigid
+// motion); SolverError when the energy becomes non-finite.
 // (Throws InputError when data has soft constraints: their targets are the next function's.)
 ArapReport arap_solve(ArapData& data, const Eigen::MatrixXd& targets, Eigen::MatrixXd& U,
                       const ArapSolveOptions& options = {});
