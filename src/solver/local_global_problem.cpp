@@ -9,8 +9,6 @@
 
 #include <Eigen/Eigenvalues>
 
-#include <omp.h>
-
 #include <algorithm>
 #include <cmath>
 #include <string>

@@ -77,19 +77,11 @@ inline void element_vector(const CellEntry& x, const double* x_rows, double (&s)
   }
 }
 
-// element_vector from x_rows and from rest_rows in one pass over b: the same sums, each b_k read once.
+// s = X^T b and s_hat = V^T b of entry x (element_vector on x_rows, then on rest_rows).
 inline void element_vectors(const CellEntry& x, const double* x_rows, const double* rest_rows, double (&s)[3],
                             double (&s_hat)[3]) {
-  s[0] = s[1] = s[2] = s_hat[0] = s_hat[1] = s_hat[2] = 0.0;
-  for (int k = 0; k < 3; ++k) {
-    const double b = x.value[k];
-    const double* p = x_rows + 3 * x.index[k];
-    const double* q = rest_rows + 3 * x.index[k];
-    for (int d = 0; d < 3; ++d) {
-      s[d] += b * p[d];
-      s_hat[d] += b * q[d];
-    }
-  }
+  element_vector(x, x_rows, s);
+  element_vector(x, rest_rows, s_hat);
 }
 
 // el's layout (finish_elements made it; not checked).
