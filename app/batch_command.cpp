@@ -51,7 +51,7 @@ void run_batch(const std::vector<std::string>& arguments) {
       std::strerror(errno));
 }
 
-const bool registered =
+const bool batch_command_registered =
     register_command({"batch", [](CLI::App& app) {
                         auto* sub = app.add_subcommand(
                             "batch", "Run a manifest (JSON / CSV) of deform and param jobs on local "

@@ -422,7 +422,7 @@ void run_bench(const BenchArguments& args) {
     throw Error(std::to_string(failed) + " benchmark run(s) failed (see \"error\" in the results)");
 }
 
-const bool registered = register_command(
+const bool bench_command_registered = register_command(
     {"bench", [](CLI::App& app) {
        auto args = std::make_shared<BenchArguments>();
        auto* sub = app.add_subcommand(

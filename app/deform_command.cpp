@@ -301,7 +301,7 @@ void run_deform(const DeformArguments& args) {
   if (!args.quiet) std::cerr << "deform: wrote " << args.out << "\n";
 }
 
-const bool registered = register_command(
+const bool deform_command_registered = register_command(
     {"deform", [](CLI::App& app) {
        auto args = std::make_shared<DeformArguments>();
        auto* sub = app.add_subcommand(

@@ -124,7 +124,7 @@ void run_info(const InfoArguments& args) {
   if (!ok) throw InputError(args.mesh + ": not usable for ARAP (see the report above)");
 }
 
-const bool registered = register_command(
+const bool info_command_registered = register_command(
     {"info", [](CLI::App& app) {
        auto args = std::make_shared<InfoArguments>();
        auto* sub = app.add_subcommand(

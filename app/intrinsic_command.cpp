@@ -225,7 +225,7 @@ void run(const IntrinsicArgs& args) {
   if (!args.out_edges.empty()) std::printf("traced edges written to %s\n", args.out_edges.c_str());
 }
 
-const bool registered = register_command(
+const bool intrinsic_command_registered = register_command(
     {"intrinsic", [](CLI::App& app) {
        auto args = std::make_shared<IntrinsicArgs>();
        auto* sub =

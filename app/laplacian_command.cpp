@@ -154,7 +154,7 @@ void run(const LaplacianArgs& args) {
   }
 }
 
-const bool registered = iarap::cli::register_command(
+const bool laplacian_command_registered = iarap::cli::register_command(
     {"laplacian", [](CLI::App& app) {
        auto args = std::make_shared<LaplacianArgs>();
        auto* sub =

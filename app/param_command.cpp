@@ -319,7 +319,7 @@ void run_param(const ParamArguments& args) {
   if (args.json) std::cout << text;
 }
 
-const bool registered = register_command(
+const bool param_command_registered = register_command(
     {"param", [](CLI::App& app) {
        auto args = std::make_shared<ParamArguments>();
        auto* sub =

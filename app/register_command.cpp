@@ -174,7 +174,7 @@ void run_register(RegisterArguments args) {
   }
 }
 
-const bool registered = register_command(
+const bool register_command_registered = register_command(
     {"register", [](CLI::App& app) {
        auto args = std::make_shared<RegisterArguments>();
        auto* sub = app.add_subcommand(

@@ -124,7 +124,7 @@ void run_repair(const RepairArguments& args) {
     print_text(j);
 }
 
-const bool registered = register_command(
+const bool repair_command_registered = register_command(
     {"repair", [](CLI::App& app) {
        auto args = std::make_shared<RepairArguments>();
        auto* sub = app.add_subcommand(

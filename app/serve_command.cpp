@@ -172,7 +172,7 @@ void run_serve(const ServeArguments& args, bool host_given) {
   std::cerr << "serve: stopped\n";
 }
 
-const bool registered = register_command(
+const bool serve_command_registered = register_command(
     {"serve", [](CLI::App& app) {
        auto args = std::make_shared<ServeArguments>();
        auto* sub = app.add_subcommand(

@@ -247,7 +247,7 @@ void add_solver_options(CLI::App& sub, SimulateArguments& args) {
       ->capture_default_str();
 }
 
-const bool registered = register_command(
+const bool simulate_command_registered = register_command(
     {"simulate", [](CLI::App& app) {
        auto args = std::make_shared<SimulateArguments>();
        auto* sub =

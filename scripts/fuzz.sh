@@ -12,7 +12,7 @@ if [ ! -x build-asan/tests/iarap_tests ]; then
     -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG"
 fi
 # halt_on_error: the first report stops the run with the input's trace; the driver saves the input.
-export ASAN_OPTIONS=detect_leaks=0:halt_on_error=1 UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1
+export ASAN_OPTIONS=detect_leaks=0:halt_on_error=1:handle_sigill=1
 IARAP_FUZZ_SECONDS=$seconds IARAP_FUZZ_PIPELINE_INPUTS=$inputs \
   build-asan/tests/iarap_tests --gtest_filter='Fuzz.*' 2>&1 | tee fuzz.log | grep -E "mutated inputs|inputs|OK|FAILED|PASSED"
 echo "fuzz: full log in fuzz.log"

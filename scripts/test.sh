@@ -23,6 +23,6 @@ if [ "${CI:-}" = "true" ] || [ "${1:-}" = "--sanitize" ]; then
   # The packaging tests (install, .deb) check file layout and RPATHs, which the Release run covers.
   # Long loops of kernels that shorter tests also run under the sanitizers (bunny solves to a weight or
   # iteration count: 20-40 s each here) stay in the Release run only.
-  ASAN_OPTIONS=detect_leaks=0 ctest --test-dir build-asan --output-on-failure -j"$(nproc)" -LE packaging \
+  ASAN_OPTIONS=detect_leaks=0:handle_sigill=1 ctest --test-dir build-asan --output-on-failure -j"$(nproc)" -LE packaging \
     -E 'SharedSurfaceMeshes|SharedMeshesGetOneVerdict|SharedDisksFlipFreeAtThePeersEnergy|BoundaryRefinementOnSharedMeshes|SharedMeshesWithBoundaryStayAtRest|EndsWherePlainDoesOnTheBentBunny|FewerIterationsThanPlainOnTheBunny|FiftyIterationsMatchThePlainIteration|WeightReproducesTheHardResult|SoftPointsConvergeToHardOnesAsTheWeightGrows|SmallWeightEndsBetweenRestAndHard|RestStabilityOnBunny|BenchConvergeReportsReachedOrStationaryRuns|BenchConvergeTimesTheHybridsSwitch|web_browser'
 fi

@@ -9,8 +9,6 @@
 #include "iarap/mesh/repair.h"
 #include "iarap/mesh/validate.h"
 
-#include <pybind11/stl.h>
-
 namespace iarap::python {
 namespace {
 

@@ -5,8 +5,6 @@
 #include "iarap/laplacian/laplacians.h"
 #include "iarap/laplacian/mass_matrix.h"
 
-#include <pybind11/stl.h>
-
 #include <optional>
 
 namespace iarap::python {

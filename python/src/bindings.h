@@ -1,6 +1,9 @@
 // The parts of the `iarap` Python module, each defined in its own bind_*.cpp and called from module.cpp.
 #pragma once
 #include <pybind11/pybind11.h>
+// Every file of the module sees the same casters (std::vector, std::optional, ...): pybind11 requires it,
+// and a unity build that batched a file without them before one with them bound the wrong ones.
+#include <pybind11/stl.h>
 
 namespace iarap::python {
 

@@ -5,6 +5,8 @@
 #pragma once
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
+// The STL casters in every file of the module (bindings.h says why).
+#include <pybind11/stl.h>
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>

@@ -102,11 +102,11 @@ TEST(RepairCli, TextReportSaysWhatChanged) {
             std::string::npos)
       << run.out;
   // A clean mesh comes back as it was.
-  const std::string bunny = iarap::test::data_path("bunny.off");
-  const CliRun clean = iarap_cli("repair '" + bunny + "' --out '" + (dir / "bunny.off").string() + "'");
+  const std::string clean_mesh = iarap::test::data_path("bunny.off");
+  const CliRun clean = iarap_cli("repair '" + clean_mesh + "' --out '" + (dir / "bunny.off").string() + "'");
   ASSERT_EQ(clean.code, 0) << clean.out;
   EXPECT_NE(clean.out.find("nothing to repair"), std::string::npos) << clean.out;
-  const iarap::MeshData before = iarap::read_mesh(bunny),
+  const iarap::MeshData before = iarap::read_mesh(clean_mesh),
                         after = iarap::read_mesh((dir / "bunny.off").string());
   EXPECT_EQ(after.V, before.V);
   EXPECT_EQ(after.F, before.F);

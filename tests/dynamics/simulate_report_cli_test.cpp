@@ -29,8 +29,8 @@ TEST(SimulateReportCli, EachStepHasTheSolveReport) {
   ASSERT_EQ(run.code, 0) << run.out;
   const nlohmann::json j = parse_json(run);
   ASSERT_EQ(j["per_step"].size(), 3u);
-  const std::set<std::string> stop_reasons = {"max_iterations", "energy_tolerance", "gradient_tolerance",
-                                              "time_budget", "callback"};
+  const std::set<std::string> reasons = {"max_iterations", "energy_tolerance", "gradient_tolerance",
+                                         "time_budget", "callback"};
   for (const nlohmann::json& step : j["per_step"]) {
     SCOPED_TRACE(step.dump());
     visit_arap_report(ArapReport{},
@@ -40,7 +40,7 @@ TEST(SimulateReportCli, EachStepHasTheSolveReport) {
       EXPECT_TRUE(step.contains(name)) << name;
     const int iterations = step["iterations"].get<int>();
     EXPECT_GE(iterations, 1);
-    EXPECT_TRUE(stop_reasons.count(step["stop_reason"].get<std::string>()));
+    EXPECT_TRUE(reasons.count(step["stop_reason"].get<std::string>()));
     EXPECT_EQ(step["energies"].size(), static_cast<size_t>(iterations));
     EXPECT_EQ(step["accelerator"].get<std::string>(), "newton");
     // The old names and the report's name the same values; the last energy is Phi = E + inertia + potential.

@@ -15,7 +15,7 @@ std::vector<std::vector<int>> parse(const std::string& text, int num_vertices = 
 }
 
 // Expects an InputError whose message contains every part.
-void expect_error(const std::string& text, std::initializer_list<std::string> parts) {
+void expect_rigid_groups_error(const std::string& text, std::initializer_list<std::string> parts) {
   iarap::test::expect_input_error([&] { parse(text); }, parts);
 }
 
@@ -27,16 +27,17 @@ TEST(ReadRigidGroups, OneGroupPerLineCommentsSkipped) {
 }
 
 TEST(ReadRigidGroups, BadLinesNameFileAndLine) {
-  expect_error("0 1\n\n2 3\n", {"g.txt:2:", "empty line"});
-  expect_error("0 1\n   \n", {"g.txt:2:", "empty line"});
-  expect_error("0 1\n4\n", {"g.txt:2:", "1 vertex"});
-  expect_error("0 10\n", {"g.txt:1:", "out of range", "10 vertices"});
-  expect_error("0 -1\n", {"g.txt:1:", "out of range"});
-  expect_error("0 x\n", {"g.txt:1:", "bad vertex index 'x'"});
-  expect_error("0 1.5\n", {"g.txt:1:", "bad vertex index '1.5'"});
-  expect_error("0 1 0\n", {"g.txt:1:", "vertex 0 is named twice"});
-  expect_error("0 1\n# gap\n2 1\n", {"g.txt:3:", "vertex 1 is already in the rigid group of line 1"});
-  expect_error("# nothing\n", {"g.txt", "no rigid group"});
+  expect_rigid_groups_error("0 1\n\n2 3\n", {"g.txt:2:", "empty line"});
+  expect_rigid_groups_error("0 1\n   \n", {"g.txt:2:", "empty line"});
+  expect_rigid_groups_error("0 1\n4\n", {"g.txt:2:", "1 vertex"});
+  expect_rigid_groups_error("0 10\n", {"g.txt:1:", "out of range", "10 vertices"});
+  expect_rigid_groups_error("0 -1\n", {"g.txt:1:", "out of range"});
+  expect_rigid_groups_error("0 x\n", {"g.txt:1:", "bad vertex index 'x'"});
+  expect_rigid_groups_error("0 1.5\n", {"g.txt:1:", "bad vertex index '1.5'"});
+  expect_rigid_groups_error("0 1 0\n", {"g.txt:1:", "vertex 0 is named twice"});
+  expect_rigid_groups_error("0 1\n# gap\n2 1\n",
+                            {"g.txt:3:", "vertex 1 is already in the rigid group of line 1"});
+  expect_rigid_groups_error("# nothing\n", {"g.txt", "no rigid group"});
 }
 
 TEST(ReadRigidGroups, MissingFileIsNamed) {

@@ -9,7 +9,7 @@
 
 namespace {
 
-void expect_error(const std::string& text, const std::vector<std::string>& fragments) {
+void expect_scenario_error(const std::string& text, const std::vector<std::string>& fragments) {
   try {
     iarap::parse_scenario(text, "s.json");
     FAIL() << "no error for: " << text;
@@ -66,7 +66,7 @@ TEST(ReadScenario, ParsesEveryRegionKindAndMotion) {
 }
 
 TEST(ReadScenario, SyntaxErrorGivesLineAndColumn) {
-  expect_error("{\n  \"fixed\": [1, 2,\n}", {"s.json", "parse error at line 3"});
+  expect_scenario_error("{\n  \"fixed\": [1, 2,\n}", {"s.json", "parse error at line 3"});
 }
 
 // A planar scene may give points and offsets as [x, y] (z = 0); a rotation axis stays three numbers.
@@ -83,28 +83,31 @@ TEST(ReadScenario, TwoNumbersArePointsInThePlane) {
 }
 
 TEST(ReadScenario, ErrorsNameTheJsonPath) {
-  expect_error(R"({"fixed": [1], "handels": []})", {"s.json: $: unknown key 'handels'"});
-  expect_error(R"({"fixed": {"bottom": 1.5}})", {"$.fixed.bottom: fraction must be in (0, 1]"});
-  expect_error(R"({"fixed": {"bottom": 0.1, "axis": "w"}})", {"$.fixed.axis", "\"w\""});
-  expect_error(R"({"fixed": [0], "handles": [{"vertices": [1], "rotate": {"axis": [0, 0], "degrees": 3}}]})",
-               {"$.handles[0].rotate.axis: expected an array of 3 numbers"});
-  expect_error(
+  expect_scenario_error(R"({"fixed": [1], "handels": []})", {"s.json: $: unknown key 'handels'"});
+  expect_scenario_error(R"({"fixed": {"bottom": 1.5}})", {"$.fixed.bottom: fraction must be in (0, 1]"});
+  expect_scenario_error(R"({"fixed": {"bottom": 0.1, "axis": "w"}})", {"$.fixed.axis", "\"w\""});
+  expect_scenario_error(
+      R"({"fixed": [0], "handles": [{"vertices": [1], "rotate": {"axis": [0, 0], "degrees": 3}}]})",
+      {"$.handles[0].rotate.axis: expected an array of 3 numbers"});
+  expect_scenario_error(
       R"({"fixed": [0], "handles": [{"vertices": [1], "rotate": {"axis": [0, 0, 0], "degrees": 3}}]})",
       {"$.handles[0].rotate.axis: rotation axis must be non-zero"});
-  expect_error(R"({"fixed": [0], "handles": [{"vertices": [1], "translate": [1, 2, "x"]}]})",
-               {"$.handles[0].translate[2]: expected a number"});
-  expect_error(R"({"fixed": [0], "handles": [{"translate": [1, 2, 3]}]})", {"$.handles[0]: a handle needs"});
-  expect_error(R"({"fixed": [0, -3]})", {"$.fixed[1]", "out of range"});
-  expect_error(R"({"fixed": [0, 1.5]})", {"$.fixed[1]", "expected a vertex index"});
-  expect_error(R"({"fixed": {"box": {"min": [1, 0, 0], "max": [0, 1, 1]}}})",
-               {"$.fixed.box: min exceeds max"});
-  expect_error(R"({"fixed": {"cylinder": 1}})", {"$.fixed: a region needs one of"});
+  expect_scenario_error(R"({"fixed": [0], "handles": [{"vertices": [1], "translate": [1, 2, "x"]}]})",
+                        {"$.handles[0].translate[2]: expected a number"});
+  expect_scenario_error(R"({"fixed": [0], "handles": [{"translate": [1, 2, 3]}]})",
+                        {"$.handles[0]: a handle needs"});
+  expect_scenario_error(R"({"fixed": [0, -3]})", {"$.fixed[1]", "out of range"});
+  expect_scenario_error(R"({"fixed": [0, 1.5]})", {"$.fixed[1]", "expected a vertex index"});
+  expect_scenario_error(R"({"fixed": {"box": {"min": [1, 0, 0], "max": [0, 1, 1]}}})",
+                        {"$.fixed.box: min exceeds max"});
+  expect_scenario_error(R"({"fixed": {"cylinder": 1}})", {"$.fixed: a region needs one of"});
   // Keys a region needs (found by the fuzz test: json's out_of_range escaped as a non-input error).
-  expect_error(R"({"fixed": {"box": {"min": [0, 0, 0]}}})", {"$.fixed.box: missing key 'max'"});
-  expect_error(R"({"fixed": {"sphere": {"radius": 1}}})", {"$.fixed.sphere: missing key 'center'"});
-  expect_error(R"({"fixed": {"sphere": {"center": [0, 0, 0]}}})", {"$.fixed.sphere: missing key 'radius'"});
-  expect_error(R"({"description": "nothing"})", {"s.json: $: a scenario needs"});
-  expect_error(R"([1, 2])", {"s.json: $: expected an object"});
+  expect_scenario_error(R"({"fixed": {"box": {"min": [0, 0, 0]}}})", {"$.fixed.box: missing key 'max'"});
+  expect_scenario_error(R"({"fixed": {"sphere": {"radius": 1}}})", {"$.fixed.sphere: missing key 'center'"});
+  expect_scenario_error(R"({"fixed": {"sphere": {"center": [0, 0, 0]}}})",
+                        {"$.fixed.sphere: missing key 'radius'"});
+  expect_scenario_error(R"({"description": "nothing"})", {"s.json: $: a scenario needs"});
+  expect_scenario_error(R"([1, 2])", {"s.json: $: expected an object"});
 }
 
 TEST(ReadScenario, BundledExamplesParse) {

@@ -60,8 +60,8 @@ TEST(ServeDragMotion, ScaleIsTheRepeatedShareOfTheTargetsStep) {
 
 namespace {
 
-constexpr int columns = 10, rows = 3;
-constexpr double width = 3.0, lift = 0.2;
+constexpr int drag_columns = 10, drag_rows = 3;
+constexpr double drag_width = 3.0, drag_lift = 0.2;
 
 // The strip's handle (right column) lifted by `up` in z: one update of a drag of one plain iteration.
 SolveRequest drag_update(const Session& session, double up, bool extrapolate) {
@@ -88,17 +88,18 @@ double drag(Session& session, int steps, bool extrapolate, std::vector<double>* 
   return energy;
 }
 
-Session strip_session() {
+Session drag_strip_session() {
   Session session;
-  session.load_mesh("strip", grid_mesh(columns, rows, width, lift));
-  session.set_constraints(grid_column(columns, rows, 0), grid_column(columns, rows, columns));
+  session.load_mesh("strip", grid_mesh(drag_columns, drag_rows, drag_width, drag_lift));
+  session.set_constraints(grid_column(drag_columns, drag_rows, 0),
+                          grid_column(drag_columns, drag_rows, drag_columns));
   return session;
 }
 
 } // namespace
 
 TEST(ServeDragMotion, ExtrapolatedDragLagsLess) {
-  Session plain = strip_session(), predicted = strip_session();
+  Session plain = drag_strip_session(), predicted = drag_strip_session();
   const int steps = 20;
   const double plain_energy = drag(plain, steps, false);
   std::vector<double> scales;
@@ -127,9 +128,10 @@ TEST(ServeDragMotion, ExtrapolatedDragLagsLess) {
 }
 
 TEST(ServeDragMotion, NewConstraintsForgetTheMotion) {
-  Session session = strip_session();
+  Session session = drag_strip_session();
   drag(session, 3, true);
-  session.set_constraints(grid_column(columns, rows, 0), grid_column(columns, rows, columns));
+  session.set_constraints(grid_column(drag_columns, drag_rows, 0),
+                          grid_column(drag_columns, drag_rows, drag_columns));
   std::vector<double> scales;
   drag(session, 3, true, &scales); // the first two updates after new constraints predict nothing
   EXPECT_EQ(scales[0], 0);
@@ -147,8 +149,9 @@ TEST(ServeDragMotion, NewDataForgetsTheHistory) {
   // carried pairs, of the planar problem's size, must not reach the solver (it refuses a history of
   // another size).
   Session session;
-  session.load_mesh("flat strip", grid_mesh(columns, rows, width, 0.0));
-  session.set_constraints(grid_column(columns, rows, 0), grid_column(columns, rows, columns));
+  session.load_mesh("flat strip", grid_mesh(drag_columns, drag_rows, drag_width, 0.0));
+  session.set_constraints(grid_column(drag_columns, drag_rows, 0),
+                          grid_column(drag_columns, drag_rows, drag_columns));
   const Eigen::MatrixXd rest = rows_of(session.snapshot(std::nullopt).V, session.handle());
   SolveProgress progress;
   SolveRequest request;

@@ -22,18 +22,18 @@ using iarap::serve::SessionFrame;
 using iarap::serve::SharedSession;
 using iarap::test::grid_column;
 
-constexpr int columns = 16, rows = 6;
+constexpr int fit_columns = 16, fit_rows = 6;
 
 // A curved strip and points of it bent by ARAP (left column held, right column lifted by 0.4 of the strip's
 // length): the target a fit should find again.
 void load_strip_and_bent_samples(SharedSession& shared) {
-  const iarap::MeshData mesh = iarap::test::grid_mesh(columns, rows, 2.0, 0.3);
-  Eigen::VectorXi held(2 * (rows + 1));
-  held << grid_column(columns, rows, 0), grid_column(columns, rows, columns);
+  const iarap::MeshData mesh = iarap::test::grid_mesh(fit_columns, fit_rows, 2.0, 0.3);
+  Eigen::VectorXi held(2 * (fit_rows + 1));
+  held << grid_column(fit_columns, fit_rows, 0), grid_column(fit_columns, fit_rows, fit_columns);
   iarap::ArapData data = iarap::arap_precompute(mesh.V, mesh.F, held);
   Eigen::MatrixXd targets(held.size(), 3);
   for (Eigen::Index k = 0; k < held.size(); ++k) targets.row(k) = mesh.V.row(held[k]);
-  targets.bottomRows(rows + 1).col(2).array() += 0.8;
+  targets.bottomRows(fit_rows + 1).col(2).array() += 0.8;
   Eigen::MatrixXd bent = mesh.V;
   iarap::ArapSolveOptions options;
   options.max_iterations = 100;
@@ -135,7 +135,8 @@ TEST(ServeFit, OneAtATimeAndCancelled) {
 
 TEST(ServeFit, NeedsATarget) {
   SharedSession shared;
-  shared.change([](Session& s) { s.load_mesh("strip", iarap::test::grid_mesh(columns, rows, 2.0, 0.3)); });
+  shared.change(
+      [](Session& s) { s.load_mesh("strip", iarap::test::grid_mesh(fit_columns, fit_rows, 2.0, 0.3)); });
   EXPECT_THROW(shared.fits().start(shared, FitRequest()), SessionConflict);
   EXPECT_FALSE(shared.fits().running());
 }

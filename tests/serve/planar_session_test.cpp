@@ -27,8 +27,8 @@ using iarap::serve::SolveRequest;
 using iarap::test::grid_column;
 using iarap::test::grid_mesh;
 
-constexpr int columns = 12, rows = 3;
-constexpr double width = 3.0;
+constexpr int planar_columns = 12, planar_rows = 3;
+constexpr double planar_width = 3.0;
 
 std::string exact(double x) {
   char buffer[32];
@@ -61,9 +61,9 @@ iarap::ArapSolveOptions solve_options() {
 } // namespace
 
 TEST(ServePlanarSession, FlatMeshMatchesDeformInThePlane) {
-  const iarap::MeshData mesh = grid_mesh(columns, rows, width);
-  const Eigen::VectorXi fixed = grid_column(columns, rows, 0);
-  const Eigen::VectorXi handle = grid_column(columns, rows, columns);
+  const iarap::MeshData mesh = grid_mesh(planar_columns, planar_rows, planar_width);
+  const Eigen::VectorXi fixed = grid_column(planar_columns, planar_rows, 0);
+  const Eigen::VectorXi handle = grid_column(planar_columns, planar_rows, planar_columns);
   const Eigen::MatrixXd targets = folded_targets(mesh.V, handle);
 
   // Through the server's session, as POST /api/constraints then POST /api/solve with handle_targets.

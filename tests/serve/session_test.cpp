@@ -19,14 +19,15 @@ using iarap::test::grid_column;
 using iarap::test::grid_mesh;
 using iarap::test::rows_of;
 
-constexpr int columns = 8, rows = 3;
-constexpr double width = 2.0, lift = 0.3;
+constexpr int session_columns = 8, session_rows = 3;
+constexpr double session_width = 2.0, session_lift = 0.3;
 
 // A curved strip (z = 0.3 x^2 / 4), left column fixed, right column the handle.
 Session loaded_session() {
   Session session;
-  session.load_mesh("strip", grid_mesh(columns, rows, width, lift));
-  session.set_constraints(grid_column(columns, rows, 0), grid_column(columns, rows, columns));
+  session.load_mesh("strip", grid_mesh(session_columns, session_rows, session_width, session_lift));
+  session.set_constraints(grid_column(session_columns, session_rows, 0),
+                          grid_column(session_columns, session_rows, session_columns));
   return session;
 }
 
@@ -61,8 +62,8 @@ TEST(ServeSession, SolveMovesTheShapeTowardTheTargets) {
   // The free columns follow: each rises by a positive amount below the handle's (a bent strip between a
   // fixed and a lifted end), more the nearer it is to the handle.
   double previous = 0;
-  for (int i = 1; i < columns; ++i) {
-    const Eigen::VectorXi column = grid_column(columns, rows, i);
+  for (int i = 1; i < session_columns; ++i) {
+    const Eigen::VectorXi column = grid_column(session_columns, session_rows, i);
     const double rise = (rows_of(U, column) - rows_of(V, column)).col(2).mean();
     EXPECT_GT(rise, previous) << "column " << i;
     EXPECT_LT(rise, up) << "column " << i;
@@ -109,7 +110,7 @@ TEST(ServeSession, BadVertexIndexIsNamedAndChangesNothing) {
 TEST(ServeSession, WrongTargetCountIsRefused) {
   Session session = loaded_session();
   SolveRequest request;
-  request.handle_targets = Eigen::MatrixXd::Zero(2, 3); // the handle has rows + 1 = 4 vertices
+  request.handle_targets = Eigen::MatrixXd::Zero(2, 3); // the handle has session_rows + 1 = 4 vertices
   SolveProgress progress;
   const std::uint64_t generation = session.generation();
   try {
@@ -129,7 +130,7 @@ TEST(ServeSession, ConflictsWithoutMeshOrConstraints) {
   EXPECT_THROW(empty.set_constraints(Eigen::VectorXi(), Eigen::VectorXi()), SessionConflict);
 
   Session session;
-  session.load_mesh("strip", grid_mesh(columns, rows, width));
+  session.load_mesh("strip", grid_mesh(session_columns, session_rows, session_width));
   SolveProgress progress;
   EXPECT_THROW(session.solve(SolveRequest(), progress), SessionConflict);
   EXPECT_THROW(session.restore_constraints(7), SessionConflict);
@@ -141,10 +142,11 @@ TEST(ServeSession, UndoBringsBackTheSetsAndAnchors) {
   SolveProgress progress;
   session.solve(lift_request(session, 0.4, 20), progress);
   // A new handle on the deformed shape: its anchors are where the solve left it.
-  session.set_constraints(grid_column(columns, rows, 0), grid_column(columns, rows, columns / 2));
+  session.set_constraints(grid_column(session_columns, session_rows, 0),
+                          grid_column(session_columns, session_rows, session_columns / 2));
   EXPECT_GT(session.revision(), first);
   session.restore_constraints(first);
-  EXPECT_EQ(session.handle(), grid_column(columns, rows, columns));
+  EXPECT_EQ(session.handle(), grid_column(session_columns, session_rows, session_columns));
   // The restored anchors are the rest positions: a solve without targets goes back to the rest shape.
   SolveRequest back;
   back.solve.max_iterations = 200;

@@ -15,15 +15,16 @@ using iarap::serve::SharedSession;
 using iarap::serve::SolveRequest;
 using iarap::test::grid_column;
 
-constexpr int columns = 8, rows = 3;
+constexpr int shared_columns = 8, shared_rows = 3;
 
 } // namespace
 
 TEST(ServeSharedSession, RefinesInTheBackgroundAndYields) {
   SharedSession shared;
   shared.change([](Session& s) {
-    s.load_mesh("strip", iarap::test::grid_mesh(columns, rows, 2.0, 0.3));
-    s.set_constraints(grid_column(columns, rows, 0), grid_column(columns, rows, columns));
+    s.load_mesh("strip", iarap::test::grid_mesh(shared_columns, shared_rows, 2.0, 0.3));
+    s.set_constraints(grid_column(shared_columns, shared_rows, 0),
+                      grid_column(shared_columns, shared_rows, shared_columns));
   });
   SolveRequest request;
   request.solve.max_iterations = 1; // the answer stops early; the refinement goes on

@@ -20,13 +20,14 @@ using iarap::test::grid_column;
 using iarap::test::grid_mesh;
 using iarap::test::rows_of;
 
-constexpr int columns = 8, rows = 3;
+constexpr int soft_columns = 8, soft_rows = 3;
 
 // A flat strip bent out of its plane: left column fixed, right column the handle lifted by `up` in z.
-Session strip_session() {
+Session soft_strip_session() {
   Session session;
-  session.load_mesh("strip", grid_mesh(columns, rows, 2.0, 0.3));
-  session.set_constraints(grid_column(columns, rows, 0), grid_column(columns, rows, columns));
+  session.load_mesh("strip", grid_mesh(soft_columns, soft_rows, 2.0, 0.3));
+  session.set_constraints(grid_column(soft_columns, soft_rows, 0),
+                          grid_column(soft_columns, soft_rows, soft_columns));
   return session;
 }
 
@@ -54,7 +55,7 @@ double handle_lag(Session& session, const SolveRequest& request) {
 } // namespace
 
 TEST(ServeSoftHandle, LagsBehindItsTargetsLessAsTheWeightGrows) {
-  Session session = strip_session();
+  Session session = soft_strip_session();
   const double up = 0.5, diagonal = session.mesh_summary().bbox_diagonal;
   const double hard = handle_lag(session, lift(session, up, std::nullopt));
   EXPECT_LE(hard, 1e-12 * diagonal); // a hard handle sits on its targets
@@ -84,7 +85,7 @@ TEST(ServeSoftHandle, LagsBehindItsTargetsLessAsTheWeightGrows) {
 }
 
 TEST(ServeSoftHandle, BadWeightsAreNamed) {
-  Session session = strip_session();
+  Session session = soft_strip_session();
   SolveProgress progress;
   SolveRequest request = lift(session, 0.5, 1.0);
   request.handle_weights = Eigen::VectorXd::Ones(2);
@@ -106,7 +107,7 @@ TEST(ServeSoftHandle, BadWeightsAreNamed) {
 }
 
 TEST(ServeSoftHandle, SavedAsSoftLinesOfAConstraintsFile) {
-  Session session = strip_session();
+  Session session = soft_strip_session();
   const SolveRequest request = lift(session, 0.5, 3.0);
   const iarap::serve::ConstraintTargets saved = session.constraint_targets(request.method, request);
   EXPECT_EQ(saved.handle.size(), 0);

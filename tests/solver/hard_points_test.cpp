@@ -178,7 +178,7 @@ Eigen::MatrixXd point_positions(const ArapSoftConstraints& points, const Eigen::
   return P;
 }
 
-ArapSolveOptions converge(ArapAccelerator accelerator, int iterations = 300) {
+ArapSolveOptions converge_hard(ArapAccelerator accelerator, int iterations = 300) {
   ArapSolveOptions options;
   options.accelerator = accelerator;
   options.max_iterations = iterations;
@@ -207,7 +207,7 @@ TEST_F(HardPoints, FaceCentroidsEndOnTheirTargetsWithEveryAccelerator) {
     const bool plain = accelerator == ArapAccelerator::None;
     const int iterations = plain ? 200 : 300;
     const ArapReport report =
-        arap_solve(data, Eigen::MatrixXd(0, 3), s.targets, U, converge(accelerator, iterations));
+        arap_solve(data, Eigen::MatrixXd(0, 3), s.targets, U, converge_hard(accelerator, iterations));
     const double off = (point_positions(s.points, s.mesh.F, U, true) - s.targets).rowwise().norm().maxCoeff();
     std::printf("%s: %d iterations, energy %.8g, points off their targets by %.3g of the diagonal\n",
                 arap_accelerator_name(accelerator).c_str(), report.iterations, report.arap_energy,
@@ -234,7 +234,7 @@ TEST_F(HardPoints, SoftPointsConvergeToHardOnesAsTheWeightGrows) {
   const HardScene s = hard_scene();
   ArapData hard = arap_precompute(s.mesh.V, s.mesh.F, Eigen::VectorXi(), s.points);
   Eigen::MatrixXd U_hard = s.mesh.V;
-  arap_solve(hard, Eigen::MatrixXd(0, 3), s.targets, U_hard, converge(ArapAccelerator::Newton));
+  arap_solve(hard, Eigen::MatrixXd(0, 3), s.targets, U_hard, converge_hard(ArapAccelerator::Newton));
   double previous = std::numeric_limits<double>::infinity();
   for (const double W : {1e2, 1e3, 1e4, 1e5}) {
     ArapSoftConstraints soft;
@@ -243,7 +243,7 @@ TEST_F(HardPoints, SoftPointsConvergeToHardOnesAsTheWeightGrows) {
     soft.face_weights = Eigen::VectorXd::Constant(soft.faces.size(), W);
     ArapData data = arap_precompute(s.mesh.V, s.mesh.F, Eigen::VectorXi(), soft);
     Eigen::MatrixXd U = U_hard; // from the hard result: the gradient rule is then relative to a small start
-    arap_solve(data, Eigen::MatrixXd(0, 3), s.targets, U, converge(ArapAccelerator::Newton));
+    arap_solve(data, Eigen::MatrixXd(0, 3), s.targets, U, converge_hard(ArapAccelerator::Newton));
     const double distance = (U - U_hard).rowwise().norm().maxCoeff() / s.diagonal;
     std::printf("W = %g: max distance to the hard result %.3g of the diagonal\n", W, distance);
     EXPECT_LT(distance, previous);
@@ -265,7 +265,7 @@ TEST_F(HardPoints, ContradictoryPointsAreRefused) {
   ArapData data = arap_precompute(m.V, m.F, Eigen::VectorXi(), points);
   Eigen::MatrixXd T = point_positions(points, m.F, m.V, true);
   Eigen::MatrixXd U = m.V;
-  EXPECT_NO_THROW(arap_solve(data, Eigen::MatrixXd(0, 3), T, U, converge(ArapAccelerator::Newton, 5)));
+  EXPECT_NO_THROW(arap_solve(data, Eigen::MatrixXd(0, 3), T, U, converge_hard(ArapAccelerator::Newton, 5)));
   T(2, 0) += 0.01;
   U = m.V;
   try {
@@ -286,7 +286,7 @@ TEST_F(HardPoints, ContradictoryPointsAreRefused) {
   const Eigen::VectorXi fixed = Eigen::VectorXi::Constant(1, m.F(7, 0));
   ArapData held = arap_precompute(m.V, m.F, fixed, at_vertex);
   const Eigen::MatrixXd target = m.V.row(m.F(7, 0));
-  EXPECT_NO_THROW(arap_solve(held, target, target, U, converge(ArapAccelerator::Newton, 2)));
+  EXPECT_NO_THROW(arap_solve(held, target, target, U, converge_hard(ArapAccelerator::Newton, 2)));
   EXPECT_THROW(arap_solve(held, target, target.array() + 0.01, U), HardPointConflict);
 }
 

@@ -17,7 +17,6 @@
 namespace iarap {
 namespace {
 
-constexpr ArapMethod kMethods[] = {ArapMethod::Arap, ArapMethod::SpokesRims, ArapMethod::Iarap};
 constexpr ArapAccelerator kAccelerators[] = {ArapAccelerator::None, ArapAccelerator::Anderson,
                                              ArapAccelerator::Lbfgs, ArapAccelerator::Newton};
 
@@ -60,7 +59,7 @@ Eigen::MatrixXd at_z0(const Eigen::MatrixXd& X2) {
   return X3;
 }
 
-ArapOptions options_for(ArapMethod method, bool planar = false) {
+ArapOptions planar_options_for(ArapMethod method, bool planar = false) {
   ArapOptions o;
   o.method = method;
   o.planar = planar;
@@ -82,17 +81,17 @@ ArapSolveOptions fixed_iterations(ArapAccelerator accelerator) {
 
 void expect_planar_equals_embedded(const PlanarScene& s, const std::string& name, bool delaunay) {
   const double diagonal = test::bbox_diagonal(at_z0(s.V2));
-  for (ArapMethod method : kMethods)
+  for (ArapMethod method : test::kAllMethods)
     for (ArapAccelerator accelerator : kAccelerators) {
       const std::string what =
           name + ", " + arap_method_name(method) + ", " + arap_accelerator_name(accelerator);
-      ArapData planar = arap_precompute(s.V2, s.F, s.fixed, options_for(method));
+      ArapData planar = arap_precompute(s.V2, s.F, s.fixed, planar_options_for(method));
       ASSERT_TRUE(planar.planar) << what;
       Eigen::MatrixXd U2 = s.V2;
       arap_solve(planar, s.targets2, U2, fixed_iterations(accelerator));
       ASSERT_EQ(U2.cols(), 2) << what;
 
-      ArapData space = arap_precompute(at_z0(s.V2), s.F, s.fixed, options_for(method));
+      ArapData space = arap_precompute(at_z0(s.V2), s.F, s.fixed, planar_options_for(method));
       ASSERT_FALSE(space.planar) << what;
       Eigen::MatrixXd U3 = at_z0(s.V2);
       arap_solve(space, at_z0(s.targets2), U3, fixed_iterations(accelerator));
@@ -139,9 +138,9 @@ TEST_F(PlanarArap, ReflectedCellsKeepRotationsAboutZ) {
   PlanarScene s = bend(test::planar_grid(6), 0.0);
   for (Eigen::Index k = 0; k < s.fixed.size(); ++k)
     if (s.V2(s.fixed(k), 0) > 0.5) s.targets2(k, 0) = -0.6; // right column to the far left
-  for (ArapMethod method : kMethods) {
+  for (ArapMethod method : test::kAllMethods) {
     const std::string what = arap_method_name(method);
-    ArapData planar = arap_precompute(s.V2, s.F, s.fixed, options_for(method));
+    ArapData planar = arap_precompute(s.V2, s.F, s.fixed, planar_options_for(method));
     Eigen::MatrixXd U2 = s.V2;
     arap_solve(planar, s.targets2, U2, fixed_iterations(ArapAccelerator::None));
     EXPECT_TRUE(U2.allFinite()) << what;
@@ -151,7 +150,7 @@ TEST_F(PlanarArap, ReflectedCellsKeepRotationsAboutZ) {
       EXPECT_EQ(R(2, 0), 0.0) << what;
       EXPECT_NEAR(R.determinant(), 1.0, 1e-12) << what;
     }
-    ArapData space = arap_precompute(at_z0(s.V2), s.F, s.fixed, options_for(method));
+    ArapData space = arap_precompute(at_z0(s.V2), s.F, s.fixed, planar_options_for(method));
     Eigen::MatrixXd U3 = at_z0(s.V2);
     arap_solve(space, at_z0(s.targets2), U3, fixed_iterations(ArapAccelerator::None));
     int turned_over = 0;
@@ -165,8 +164,8 @@ TEST_F(PlanarArap, RestTargetsStayAtRestExactly) {
   const PlanarScene s = bend(m, 0.0);
   Eigen::MatrixXd rest_targets(s.fixed.size(), 2);
   for (Eigen::Index k = 0; k < s.fixed.size(); ++k) rest_targets.row(k) = s.V2.row(s.fixed(k));
-  for (ArapMethod method : kMethods) {
-    ArapData data = arap_precompute(s.V2, s.F, s.fixed, options_for(method));
+  for (ArapMethod method : test::kAllMethods) {
+    ArapData data = arap_precompute(s.V2, s.F, s.fixed, planar_options_for(method));
     Eigen::MatrixXd U = s.V2;
     const ArapReport report = arap_solve(data, rest_targets, U);
     EXPECT_EQ(report.initial_energy, 0.0) << arap_method_name(method);
@@ -200,12 +199,12 @@ TEST(PlanarArapInput, OutOfPlanePositionsAreNamed) {
   Eigen::MatrixXd V = m.V;
   V(5, 2) = 1e-3;
   try {
-    arap_precompute(V, m.F, fixed, options_for(ArapMethod::Arap, true));
+    arap_precompute(V, m.F, fixed, planar_options_for(ArapMethod::Arap, true));
     FAIL() << "expected InputError";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("vertex 5 has z"), std::string::npos) << e.what();
   }
-  ArapData data = arap_precompute(m.V.leftCols(2).eval(), m.F, fixed, options_for(ArapMethod::Arap));
+  ArapData data = arap_precompute(m.V.leftCols(2).eval(), m.F, fixed, planar_options_for(ArapMethod::Arap));
   Eigen::MatrixXd targets = Eigen::MatrixXd::Zero(2, 3);
   targets(1, 2) = 0.5;
   Eigen::MatrixXd U = m.V;
@@ -218,7 +217,7 @@ TEST(PlanarArapInput, OutOfPlanePositionsAreNamed) {
   Eigen::MatrixXd short_U = Eigen::MatrixXd::Zero(4, 2);
   EXPECT_THROW(arap_solve(data, targets.leftCols(2), short_U), InputError);
   // Two columns are for planar data only.
-  ArapData space = arap_precompute(m.V, m.F, fixed, options_for(ArapMethod::Arap));
+  ArapData space = arap_precompute(m.V, m.F, fixed, planar_options_for(ArapMethod::Arap));
   Eigen::MatrixXd U2 = m.V.leftCols(2);
   EXPECT_THROW(arap_solve(space, targets.leftCols(2), U2), InputError);
 }

@@ -26,8 +26,6 @@ using test::SolverMesh;
 
 class RigidGroups : public test::SingleThreadTest {};
 
-const ArapMethod kMethods[] = {ArapMethod::Arap, ArapMethod::SpokesRims, ArapMethod::Iarap};
-
 // max over the members of |x_i - (R p_i + t)| for the least-squares rigid fit (R, t) of the members' rest
 // positions p onto x (Kabsch by SVD, computed here independently of the library).
 double rigid_misfit(const Eigen::MatrixXd& P_all, const Eigen::MatrixXd& X_all,
@@ -137,7 +135,7 @@ TEST_F(RigidGroups, EveryMethodTouchingGroupsAndAPivotStayRigidAndMonotone) {
   std::vector<int> pivot = slab(s.m.V, 0, 0.12, 0.25);
   pivot.push_back(s.fixed(0));
   const double diagonal = test::bbox_diagonal(s.m.V);
-  for (const ArapMethod method : kMethods) {
+  for (const ArapMethod method : test::kAllMethods) {
     SCOPED_TRACE(arap_method_name(method));
     ArapData data = arap_precompute(s.m.V, s.m.F, s.fixed, with_groups(method, {left, right, pivot}));
     EXPECT_EQ(data.rigid.kind[0], RigidGroupKind::Free);
@@ -271,7 +269,7 @@ TEST_F(RigidGroups, GradientAndHessianProductAreDerivatives) {
   const PivotScene p = pivot_scene(8);
   const Scene& s = p.scene;
   const double diagonal = test::bbox_diagonal(s.m.V);
-  for (const ArapMethod method : kMethods) {
+  for (const ArapMethod method : test::kAllMethods) {
     SCOPED_TRACE(arap_method_name(method));
     ArapData data = arap_precompute(s.m.V, s.m.F, s.fixed, with_groups(method, {p.middle, p.pivot}));
     Eigen::MatrixXd U = s.m.V;
@@ -327,7 +325,7 @@ TEST_F(RigidGroups, EveryAcceleratorReachesThePlainMinimum) {
   const Scene& s = p.scene;
   const std::vector<int>&middle = p.middle, &pivot = p.pivot;
   const double diagonal = test::bbox_diagonal(s.m.V);
-  for (const ArapMethod method : kMethods) {
+  for (const ArapMethod method : test::kAllMethods) {
     SCOPED_TRACE(arap_method_name(method));
     ArapData data = arap_precompute(s.m.V, s.m.F, s.fixed, with_groups(method, {middle, pivot}));
     Eigen::MatrixXd U_plain;

@@ -29,8 +29,6 @@ namespace {
 using namespace iarap;
 using test::SolverMesh;
 
-const ArapMethod kMethods[] = {ArapMethod::Arap, ArapMethod::SpokesRims, ArapMethod::Iarap};
-
 // A torus (major radius 1, minor 0.4) on an n x m grid with every quad split along the same diagonal:
 // every vertex has valence 6, where the symmetric term and CGAL's per-vertex one agree.
 SolverMesh torus(int n, int m) {
@@ -138,7 +136,7 @@ class RotationSmoothingTest : public test::SingleThreadTest {};
 // ALPHA = 0 is the solver without the term, bit for bit (the coupled path is not entered).
 TEST_F(RotationSmoothingTest, ZeroAlphaIsTheSolverWithoutIt) {
   const Scene s = patch_scene();
-  for (const ArapMethod method : kMethods) {
+  for (const ArapMethod method : test::kAllMethods) {
     ArapData data = arap_precompute(s.mesh.V, s.mesh.F, s.fixed, method_options(method));
     ArapSolveOptions without;
     without.max_iterations = 10;
@@ -158,7 +156,7 @@ TEST_F(RotationSmoothingTest, ZeroAlphaIsTheSolverWithoutIt) {
 // Tolerances: an increase is judged at 1e-12 of the energy (rounding of sums of ~10^3 terms is ~1e-14).
 TEST_F(RotationSmoothingTest, PlainIterationsNeverRaiseTheEnergy) {
   const Scene s = patch_scene();
-  for (const ArapMethod method : kMethods)
+  for (const ArapMethod method : test::kAllMethods)
     for (const double alpha : {0.02, 0.2, 2.0}) {
       ArapData data = arap_precompute(s.mesh.V, s.mesh.F, s.fixed, method_options(method));
       Eigen::MatrixXd U = s.mesh.V;
@@ -274,7 +272,7 @@ TEST_F(RotationSmoothingTest, ConstantValenceMinimumIsAFixedPointOfCgalsUpdate) 
 // solved over all cells): central differences of g, as AcceleratedSolve's test does for the uncoupled case.
 TEST_F(RotationSmoothingTest, GradientAndHessianProductAreDerivatives) {
   const Scene s = patch_scene();
-  for (const ArapMethod method : kMethods)
+  for (const ArapMethod method : test::kAllMethods)
     for (const double alpha : {0.02, 0.2}) {
       const std::string name = arap_method_name(method) + " alpha " + std::to_string(alpha);
       ArapData data = arap_precompute(s.mesh.V, s.mesh.F, s.fixed, method_options(method));
@@ -444,7 +442,7 @@ Scene bunny_bend60() {
 // (13 / 16 / 13 against Newton's 4: 3.3x; docs/smoothing.md). All end at the same energy to 1e-9.
 TEST_F(RotationSmoothingTest, NewtonIsFiveTimesFewerIterationsThanPlainOnTheBunny) {
   const Scene s = bunny_bend60();
-  for (const ArapMethod method : kMethods) {
+  for (const ArapMethod method : test::kAllMethods) {
     const std::string name = arap_method_name(method);
     ArapData data = arap_precompute(s.mesh.V, s.mesh.F, s.fixed, method_options(method));
     const auto run = [&](ArapAccelerator accelerator, int iterations) {
@@ -486,7 +484,7 @@ TEST_F(RotationSmoothingTest, IsolatedVerticesAndComponentsAreHandled) {
   fixed << s.fixed, s.fixed.array() + static_cast<int>(n);
   Eigen::MatrixXd targets(fixed.size(), 3);
   targets << s.targets, test::rows_of(two.V, s.fixed.array() + static_cast<int>(n));
-  for (const ArapMethod method : kMethods) {
+  for (const ArapMethod method : test::kAllMethods) {
     ArapData data = arap_precompute(two.V, two.F, fixed, method_options(method));
     Eigen::MatrixXd U = two.V;
     const ArapReport r = arap_solve(data, targets, U, plain(10, 0.2));

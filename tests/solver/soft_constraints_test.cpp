@@ -59,7 +59,7 @@ Eigen::MatrixXd stack(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
   return out;
 }
 
-ArapSolveOptions converge(ArapAccelerator accelerator = ArapAccelerator::Newton, int iterations = 200) {
+ArapSolveOptions converge_soft(ArapAccelerator accelerator = ArapAccelerator::Newton, int iterations = 200) {
   ArapSolveOptions options;
   options.accelerator = accelerator;
   options.max_iterations = iterations;
@@ -92,13 +92,13 @@ TEST_F(SoftConstraints, LargeWeightReproducesTheHardResult) {
   const double diagonal = test::bbox_diagonal(s.mesh.V);
   ArapData hard = arap_precompute(s.mesh.V, s.mesh.F, concat(s.bottom, s.top));
   Eigen::MatrixXd U_hard = s.mesh.V;
-  arap_solve(hard, stack(s.bottom_targets, s.top_targets), U_hard, converge());
+  arap_solve(hard, stack(s.bottom_targets, s.top_targets), U_hard, converge_soft());
   ArapData soft = arap_precompute(s.mesh.V, s.mesh.F, s.bottom, soft_top(s, 1e8));
   // Started with the handle on its targets: from rest the initial gradient would be 2 W times the shift,
   // and the gradient rule (relative to it) would stop long before the elastic part converged.
   Eigen::MatrixXd U_soft = s.mesh.V;
   for (Eigen::Index k = 0; k < s.top.size(); ++k) U_soft.row(s.top(k)) = s.top_targets.row(k);
-  const ArapReport report = arap_solve(soft, s.bottom_targets, s.top_targets, U_soft, converge());
+  const ArapReport report = arap_solve(soft, s.bottom_targets, s.top_targets, U_soft, converge_soft());
   const double distance = max_row_distance(U_hard, U_soft) / diagonal;
   std::printf("W = 1e8: max distance to the hard result %.3g of the diagonal, penalty %.3g, arap %.6g\n",
               distance, report.penalty, report.arap_energy);
@@ -108,7 +108,7 @@ TEST_F(SoftConstraints, LargeWeightReproducesTheHardResult) {
   // A moderate weight is visibly soft: the test above can fail.
   arap_set_soft_weights(soft, Eigen::VectorXd::Constant(s.top.size(), 1e-1), Eigen::VectorXd());
   Eigen::MatrixXd U_mid = s.mesh.V;
-  arap_solve(soft, s.bottom_targets, s.top_targets, U_mid, converge());
+  arap_solve(soft, s.bottom_targets, s.top_targets, U_mid, converge_soft());
   EXPECT_GT(max_row_distance(U_hard, U_mid) / diagonal, 1e-5);
 }
 
@@ -118,10 +118,10 @@ TEST_F(SoftConstraints, SmallWeightEndsBetweenRestAndHard) {
   const SoftScene s = soft_scene(test::bunny());
   ArapData hard = arap_precompute(s.mesh.V, s.mesh.F, concat(s.bottom, s.top));
   Eigen::MatrixXd U_hard = s.mesh.V;
-  arap_solve(hard, stack(s.bottom_targets, s.top_targets), U_hard, converge());
+  arap_solve(hard, stack(s.bottom_targets, s.top_targets), U_hard, converge_soft());
   ArapData soft = arap_precompute(s.mesh.V, s.mesh.F, s.bottom, soft_top(s, 1e-3));
   Eigen::MatrixXd U = s.mesh.V;
-  arap_solve(soft, s.bottom_targets, s.top_targets, U, converge());
+  arap_solve(soft, s.bottom_targets, s.top_targets, U, converge_soft());
   const Eigen::RowVector3d shift = (s.top_targets - test::rows_of(s.mesh.V, s.top)).row(0);
   const Eigen::VectorXd along = (test::rows_of(U, s.top) - test::rows_of(s.mesh.V, s.top)) *
                                 shift.transpose() / shift.squaredNorm(); // 1 at the hard result
@@ -176,7 +176,7 @@ TEST_F(SoftConstraints, TotalEnergyNeverIncreasesForEveryAccelerator) {
     ArapData data = arap_precompute(p.s.mesh.V, p.s.mesh.F, p.s.bottom, p.soft, options);
     for (ArapAccelerator a : kAll) {
       Eigen::MatrixXd U = p.s.mesh.V;
-      ArapSolveOptions o = converge(a, 60);
+      ArapSolveOptions o = converge_soft(a, 60);
       o.gradient_tolerance = 0.0;
       const ArapReport report = arap_solve(data, p.s.bottom_targets, p.soft_targets, U, o);
       const std::string name = arap_method_name(method) + " " + arap_accelerator_name(a);
@@ -205,7 +205,8 @@ TEST_F(SoftConstraints, GradientIsTheDerivativeOfEnergyPlusPenalty) {
   const PatchScene p = patch_scene(3.0);
   ArapData data = arap_precompute(p.s.mesh.V, p.s.mesh.F, p.s.bottom, p.soft);
   Eigen::MatrixXd U = p.s.mesh.V;
-  arap_solve(data, p.s.bottom_targets, p.soft_targets, U, converge(ArapAccelerator::None, 4)); // unconverged
+  arap_solve(data, p.s.bottom_targets, p.soft_targets, U,
+             converge_soft(ArapAccelerator::None, 4)); // unconverged
   const double h = 1e-6 * test::bbox_diagonal(p.s.mesh.V);
   std::srand(11);
   double worst = 0.0;
@@ -273,8 +274,8 @@ TEST_F(SoftConstraints, FacePointAtACornerIsTheSoftVertex) {
              d2 = arap_precompute(m.V, m.F, bottom, as_face);
     Eigen::MatrixXd U1 = m.V, U2 = m.V;
     const Eigen::MatrixXd rest = test::rows_of(m.V, bottom);
-    const ArapReport r1 = arap_solve(d1, rest, target, U1, converge(a, 30));
-    const ArapReport r2 = arap_solve(d2, rest, target, U2, converge(a, 30));
+    const ArapReport r1 = arap_solve(d1, rest, target, U1, converge_soft(a, 30));
+    const ArapReport r2 = arap_solve(d2, rest, target, U2, converge_soft(a, 30));
     EXPECT_EQ(max_row_distance(U1, U2), 0.0) << arap_accelerator_name(a);
     EXPECT_EQ(r1.penalty, r2.penalty) << arap_accelerator_name(a);
   }
@@ -301,7 +302,7 @@ TEST_F(SoftConstraints, FacePointsConvergeToHardConstraintsAsTheWeightGrows) {
     soft.face_weights = Eigen::VectorXd::Constant(1, W);
     ArapData data = arap_precompute(m.V, m.F, bottom, soft);
     Eigen::MatrixXd U = m.V;
-    arap_solve(data, rest, target, U, converge());
+    arap_solve(data, rest, target, U, converge_soft());
     Eigen::RowVector3d x = Eigen::RowVector3d::Zero();
     for (int j = 0; j < 3; ++j) x += B(j) * U.row(m.F(f, j));
     const double distance = (x - target).norm() / diagonal;
@@ -315,7 +316,7 @@ TEST_F(SoftConstraints, FacePointsConvergeToHardConstraintsAsTheWeightGrows) {
   const Eigen::MatrixXd corner_target = m.V.row(v) + Eigen::RowVector3d(0.1, 0.2, -0.1);
   ArapData hard = arap_precompute(m.V, m.F, concat(bottom, Eigen::VectorXi::Constant(1, v)));
   Eigen::MatrixXd U_hard = m.V;
-  arap_solve(hard, stack(rest, corner_target), U_hard, converge());
+  arap_solve(hard, stack(rest, corner_target), U_hard, converge_soft());
   ArapSoftConstraints soft;
   soft.faces = Eigen::VectorXi::Constant(1, f);
   soft.barycentric = Eigen::RowVector3d(1.0, 0.0, 0.0);
@@ -323,7 +324,7 @@ TEST_F(SoftConstraints, FacePointsConvergeToHardConstraintsAsTheWeightGrows) {
   ArapData data = arap_precompute(m.V, m.F, bottom, soft);
   Eigen::MatrixXd U = m.V;
   U.row(v) = corner_target; // see LargeWeightReproducesTheHardResult
-  arap_solve(data, rest, corner_target, U, converge());
+  arap_solve(data, rest, corner_target, U, converge_soft());
   std::printf("corner point W = 1e8 vs the hard vertex: %.3g of the diagonal\n",
               max_row_distance(U, U_hard) / diagonal);
   EXPECT_LT(max_row_distance(U, U_hard) / diagonal, 1e-5);
@@ -336,8 +337,8 @@ TEST_F(SoftConstraints, NewWeightsEqualAFreshPrecompute) {
   arap_set_soft_weights(data, q.soft.vertex_weights, q.soft.face_weights);
   ArapData fresh = arap_precompute(q.s.mesh.V, q.s.mesh.F, q.s.bottom, q.soft);
   Eigen::MatrixXd U1 = p.s.mesh.V, U2 = p.s.mesh.V;
-  arap_solve(data, p.s.bottom_targets, q.soft_targets, U1, converge(ArapAccelerator::Newton, 40));
-  arap_solve(fresh, p.s.bottom_targets, q.soft_targets, U2, converge(ArapAccelerator::Newton, 40));
+  arap_solve(data, p.s.bottom_targets, q.soft_targets, U1, converge_soft(ArapAccelerator::Newton, 40));
+  arap_solve(fresh, p.s.bottom_targets, q.soft_targets, U2, converge_soft(ArapAccelerator::Newton, 40));
   EXPECT_LT(max_row_distance(U1, U2), 1e-12 * test::bbox_diagonal(p.s.mesh.V));
   EXPECT_THROW(
       arap_set_soft_weights(data, Eigen::VectorXd::Constant(p.s.top.size(), -1.0), q.soft.face_weights),
@@ -357,7 +358,7 @@ TEST_F(SoftConstraints, SoftPointsAloneHoldAComponent) {
   ArapData data = arap_precompute(m.V, m.F, Eigen::VectorXi(), soft);
   Eigen::MatrixXd U = m.V;
   const Eigen::MatrixXd targets = test::rows_of(m.V, soft.vertices).rowwise() + Eigen::RowVector3d(1, 2, 3);
-  const ArapReport report = arap_solve(data, Eigen::MatrixXd(0, 3), targets, U, converge());
+  const ArapReport report = arap_solve(data, Eigen::MatrixXd(0, 3), targets, U, converge_soft());
   // The minimizer is the rigid translation (zero energy, zero penalty).
   const Eigen::MatrixXd moved = m.V.rowwise() + Eigen::RowVector3d(1, 2, 3);
   EXPECT_LT(max_row_distance(U, moved), 1e-8 * test::bbox_diagonal(m.V));
@@ -386,13 +387,13 @@ TEST_F(SoftConstraints, PlanarSoftTargetsInTwoOrThreeColumns) {
   for (int j = 0; j < 3; ++j) point += soft.barycentric(0, j) * V2.row(grid.F(soft.faces(0), j));
   const Eigen::MatrixXd target2 = point + Eigen::RowVector2d(0.3, -0.1);
   Eigen::MatrixXd U2 = V2;
-  const ArapReport report = arap_solve(data, rest2, target2, U2, converge(ArapAccelerator::Newton, 30));
+  const ArapReport report = arap_solve(data, rest2, target2, U2, converge_soft(ArapAccelerator::Newton, 30));
   Eigen::MatrixXd rest3 = Eigen::MatrixXd::Zero(rest2.rows(), 3), target3 = Eigen::MatrixXd::Zero(1, 3),
                   U3 = Eigen::MatrixXd::Zero(V2.rows(), 3);
   rest3.leftCols(2) = rest2;
   target3.leftCols(2) = target2;
   U3.leftCols(2) = V2;
-  arap_solve(data, rest3, target3, U3, converge(ArapAccelerator::Newton, 30));
+  arap_solve(data, rest3, target3, U3, converge_soft(ArapAccelerator::Newton, 30));
   EXPECT_TRUE((U3.col(2).array() == 0.0).all());
   EXPECT_EQ(U3.leftCols(2), U2);
   EXPECT_LT(report.penalty, 5.0 * (target2 - point).squaredNorm());

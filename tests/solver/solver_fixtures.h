@@ -3,6 +3,7 @@
 #pragma once
 #include "iarap/core/threads.h"
 #include "iarap/io/read_mesh.h"
+#include "iarap/solver/arap_types.h"
 #include "test_support.h"
 
 #include <Eigen/Core>
@@ -21,6 +22,9 @@ protected:
   void SetUp() override { set_thread_count(1); }
   void TearDown() override { set_thread_count(0); }
 };
+
+// The three energies, for tests that run each.
+inline constexpr ArapMethod kAllMethods[] = {ArapMethod::Arap, ArapMethod::SpokesRims, ArapMethod::Iarap};
 
 struct SolverMesh {
   Eigen::MatrixXd V;

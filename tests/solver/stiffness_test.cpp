@@ -18,8 +18,6 @@ namespace {
 using namespace iarap;
 using test::SolverMesh;
 
-const ArapMethod kMethods[] = {ArapMethod::Arap, ArapMethod::SpokesRims, ArapMethod::Iarap};
-
 // Factors in [0.5, 4] from a fixed seed.
 Eigen::VectorXd random_stiffness(Eigen::Index n, unsigned seed) {
   std::mt19937 rng(seed);
@@ -75,7 +73,7 @@ TEST(Stiffness, OneEverywhereGivesTheSameBytes) {
   ArapSolveOptions solve;
   solve.max_iterations = 10;
   solve.tolerance = 0;
-  for (const ArapMethod method : kMethods) {
+  for (const ArapMethod method : test::kAllMethods) {
     ArapData plain = arap_precompute(m.V, m.F, fixed, with(method, Eigen::VectorXd()));
     ArapData ones = arap_precompute(m.V, m.F, fixed, with(method, Eigen::VectorXd::Ones(m.V.rows())));
     Eigen::MatrixXd U0 = m.V, U1 = m.V;
@@ -93,7 +91,7 @@ TEST(Stiffness, EachCellEnergyScalesByItsFactor) {
   const Eigen::VectorXd s = random_stiffness(m.V.rows(), 5);
   const Eigen::MatrixXd U = bent(m.V);
   const Eigen::VectorXi fixed = Eigen::VectorXi::LinSpaced(3, 0, 2);
-  for (const ArapMethod method : kMethods) {
+  for (const ArapMethod method : test::kAllMethods) {
     ArapOptions options = with(method, Eigen::VectorXd());
     options.intrinsic.refine_boundary = false; // cells = vertices, each with its own factor
     const Eigen::VectorXd e1 = arap_cell_energy(arap_precompute(m.V, m.F, fixed, options), U);
@@ -113,7 +111,7 @@ TEST(Stiffness, GradientMatchesFiniteDifferences) {
   const SolverMesh m = test::bumpy_patch(6);
   const Eigen::VectorXd s = random_stiffness(m.V.rows(), 9);
   const Eigen::MatrixXd U = bent(m.V);
-  for (const ArapMethod method : kMethods) {
+  for (const ArapMethod method : test::kAllMethods) {
     const ArapData data = arap_precompute(m.V, m.F, Eigen::VectorXi::LinSpaced(3, 0, 2), with(method, s));
     const Eigen::MatrixXd g = arap_gradient(data, U);
     const double h = 1e-5, scale = g.cwiseAbs().maxCoeff();

@@ -22,15 +22,13 @@ namespace {
 
 using test::SolverMesh;
 
-ArapOptions options_for(ArapMethod method) {
+ArapOptions visit_options_for(ArapMethod method) {
   ArapOptions options;
   options.method = method;
   options.intrinsic.refine_boundary = true; // the bunny has holes: inserted boundary cells after the vertices
   options.keep_elements = true;             // compared with the element arrays
   return options;
 }
-
-const ArapMethod kMethods[] = {ArapMethod::Arap, ArapMethod::SpokesRims, ArapMethod::Iarap};
 
 // Mean |position(i) - position(j)| over the directed edges of F, position[v] = where v sits in an order.
 double mean_edge_span(const Eigen::MatrixXi& F, const std::vector<int>& position) {
@@ -85,8 +83,8 @@ TEST(VisitOrderPermutation, InPlaceEqualsTheCopy) {
 TEST_F(VisitOrder, PermutesTheCellsWithTheVerticesFirst) {
   const SolverMesh m = test::bunny();
   const Eigen::VectorXi fixed = test::to_vector(test::axis_band(m.V, 1, 0.1, -1));
-  for (ArapMethod method : kMethods) {
-    const ArapData data = arap_precompute(m.V, m.F, fixed, options_for(method));
+  for (ArapMethod method : test::kAllMethods) {
+    const ArapData data = arap_precompute(m.V, m.F, fixed, visit_options_for(method));
     const ArapElements& el = data.elements;
     const detail::StreamedLayout& sl = detail::streamed(el);
     const int n = el.num_vertices;
@@ -118,7 +116,7 @@ TEST_F(VisitOrder, KeepsNeighboursCloseWhereTheFileDoesNot) {
       renumbered(test::bunny(), shuffled_indices(static_cast<int>(test::bunny().V.rows()), 5));
   for (const SolverMesh* m : {static_cast<const SolverMesh*>(&subdivided), &shuffled}) {
     const Eigen::VectorXi fixed = test::to_vector(test::axis_band(m->V, 1, 0.1, -1));
-    const ArapData data = arap_precompute(m->V, m->F, fixed, options_for(ArapMethod::Arap));
+    const ArapData data = arap_precompute(m->V, m->F, fixed, visit_options_for(ArapMethod::Arap));
     const int n = static_cast<int>(m->V.rows());
     std::vector<int> file(static_cast<size_t>(n)), visit(static_cast<size_t>(n));
     std::iota(file.begin(), file.end(), 0);
@@ -151,9 +149,9 @@ TEST_F(VisitOrder, SolveDoesNotDependOnTheFileVertexOrder) {
   solve.tolerance = -1;
   solve.accelerator = ArapAccelerator::None;
   const double diagonal = test::bbox_diagonal(m.V);
-  for (ArapMethod method : kMethods) {
-    ArapData data_m = arap_precompute(m.V, m.F, test::to_vector(fixed_m), options_for(method));
-    ArapData data_s = arap_precompute(s.V, s.F, test::to_vector(fixed_s), options_for(method));
+  for (ArapMethod method : test::kAllMethods) {
+    ArapData data_m = arap_precompute(m.V, m.F, test::to_vector(fixed_m), visit_options_for(method));
+    ArapData data_s = arap_precompute(s.V, s.F, test::to_vector(fixed_s), visit_options_for(method));
     Eigen::MatrixXd U_m = m.V, U_s = s.V;
     const ArapReport report_m = arap_solve(data_m, targets, U_m, solve);
     const ArapReport report_s = arap_solve(data_s, targets, U_s, solve);
