@@ -105,8 +105,8 @@ TEST(DeformJob, RepairCarriesSoftConstraintsAndFacePointsOver) {
   soft.vertices = Eigen::VectorXi::Constant(1, 0); // the tip: split in two
   soft.vertex_weights = Eigen::VectorXd::Constant(1, 4.0);
   soft.vertex_targets = Eigen::RowVector3d(0.1, 0.2, 0.05);
-  soft.faces = (Eigen::VectorXi(3) << 2, 12, 7)
-                   .finished(); // the reversed face, the duplicate, a face on the tip's copy
+  // The reversed face, the duplicate, a face on the tip's copy.
+  soft.faces = (Eigen::VectorXi(3) << 2, 12, 7).finished();
   soft.barycentric = Eigen::MatrixXd(3, 3);
   soft.barycentric << 0.2, 0.3, 0.5, 0.6, 0.3, 0.1, 0.1, 0.1, 0.8;
   soft.face_weights = Eigen::Vector3d(1, 2, 3);
