@@ -110,7 +110,7 @@ TEST(ServeSession, BadVertexIndexIsNamedAndChangesNothing) {
 TEST(ServeSession, WrongTargetCountIsRefused) {
   Session session = loaded_session();
   SolveRequest request;
-  request.handle_targets.emplace(Eigen::MatrixXd::Zero(2, 3)); // the handle has session_rows + 1 = 4 vertices
+  request.handle_targets = Eigen::MatrixXd::Zero(2, 3); // the handle has session_rows + 1 = 4 vertices
   SolveProgress progress;
   const std::uint64_t generation = session.generation();
   try {
