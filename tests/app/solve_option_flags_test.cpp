@@ -19,7 +19,7 @@ namespace fs = std::filesystem;
 using iarap::ArapSolveOptions;
 using iarap::SolveOptionField;
 
-const std::string bunny = iarap::test::data_path("bunny.off");
+const std::string bunny_mesh = iarap::test::data_path("bunny.off");
 const std::string scenario = iarap::test::data_path("bunny_scenario.json");
 
 // The line of `help` that shows `flag`, or "".
@@ -50,9 +50,9 @@ TEST(SolveOptionFlags, DeformAndSimulateShowEveryOptionWithItsDefault) {
 TEST(SolveOptionFlags, ABadValueIsAUsageErrorInTheLibrarysWords) {
   const auto dir = iarap::test::temp_dir("solve_option_flags");
   const std::string deform =
-      "deform '" + bunny + "' --scenario '" + scenario + "' --out '" + (dir / "o.obj").string() + "' ";
-  const std::string simulate = "simulate '" + bunny + "' --scenario '" + scenario + "' --dt 0.1 --steps 1 " +
-                               "--out-dir '" + (dir / "frames").string() + "' ";
+      "deform '" + bunny_mesh + "' --scenario '" + scenario + "' --out '" + (dir / "o.obj").string() + "' ";
+  const std::string simulate = "simulate '" + bunny_mesh + "' --scenario '" + scenario +
+                               "' --dt 0.1 --steps 1 " + "--out-dir '" + (dir / "frames").string() + "' ";
   const std::pair<std::string, std::string> cases[] = {
       {deform + "--tolerance nan", "--tolerance: tolerance must be a finite number; got nan"},
       {deform + "--iterations 1.5", "--iterations: iterations must be an integer in [0, 1000000]; got 1.5"},
@@ -81,10 +81,10 @@ void expect_options(const nlohmann::json& report, const char* given) {
 // Every option given reaches the solve (the JSON's "options"), and every field of the report is written.
 TEST(SolveOptionFlags, DeformWritesItsOptionsAndTheWholeReport) {
   const auto dir = iarap::test::temp_dir("solve_option_report");
-  const CliRun run =
-      iarap_cli("deform '" + bunny + "' --scenario '" + scenario + "' --out '" + (dir / "o.obj").string() +
-                "' --quiet --json --iterations 4 --tolerance -1 --accel lbfgs --window 3 --grad-tol 1e-12 "
-                "--time-budget 60000");
+  const CliRun run = iarap_cli(
+      "deform '" + bunny_mesh + "' --scenario '" + scenario + "' --out '" + (dir / "o.obj").string() +
+      "' --quiet --json --iterations 4 --tolerance -1 --accel lbfgs --window 3 --grad-tol 1e-12 "
+      "--time-budget 60000");
   ASSERT_EQ(run.code, 0) << run.out;
   const nlohmann::json j = parse_json(run);
   expect_options(j, R"({"iterations": 4, "tolerance": -1.0, "accelerator": "lbfgs", "window": 3,
@@ -99,7 +99,7 @@ TEST(SolveOptionFlags, DeformWritesItsOptionsAndTheWholeReport) {
 // simulate takes the options deform takes, --grad-tol and --time-budget included.
 TEST(SolveOptionFlags, SimulateTakesEveryOption) {
   const auto dir = iarap::test::temp_dir("solve_option_simulate");
-  const CliRun run = iarap_cli("simulate '" + bunny + "' --scenario '" + scenario +
+  const CliRun run = iarap_cli("simulate '" + bunny_mesh + "' --scenario '" + scenario +
                                "' --dt 0.1 --steps 1 --quiet --json --out-dir '" + (dir / "frames").string() +
                                "' --iterations 3 --tolerance 0 --accel none --window 0 --grad-tol 1e-3 "
                                "--time-budget 5000");

@@ -12,6 +12,7 @@
 namespace {
 
 using namespace iarap;
+using test::max_row_distance;
 using test::SolverMesh;
 
 const ArapMethod kAllMethods[] = {ArapMethod::Arap, ArapMethod::SpokesRims, ArapMethod::Iarap};
@@ -29,10 +30,6 @@ Eigen::VectorXi bottom_and_top(const Eigen::MatrixXd& V) {
   const std::vector<int> top = test::axis_band(V, 1, 0.1, +1);
   fixed.insert(fixed.end(), top.begin(), top.end());
   return test::to_vector(fixed);
-}
-
-double max_row_distance(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B) {
-  return (A - B).rowwise().norm().maxCoeff();
 }
 
 template <class F> void expect_error_mentions(F&& call, const std::string& words) {

@@ -55,7 +55,7 @@ std::vector<int> slab(const Eigen::MatrixXd& V, int axis, double lo, double hi) 
   return out;
 }
 
-struct Scene {
+struct BandedScene {
   SolverMesh m;
   Eigen::VectorXi fixed;
   Eigen::MatrixXd targets;
@@ -63,8 +63,8 @@ struct Scene {
 
 // The mesh with its bottom 10% along `axis` at rest and its top 10% moved by `shift` diagonals along
 // `direction` and turned by `turn` radians about that axis.
-Scene banded(SolverMesh m, int axis, const Eigen::Vector3d& direction, double shift, double turn) {
-  Scene s;
+BandedScene banded(SolverMesh m, int axis, const Eigen::Vector3d& direction, double shift, double turn) {
+  BandedScene s;
   s.m = std::move(m);
   const Eigen::VectorXi bottom = test::to_vector(test::axis_band(s.m.V, axis, 0.1, -1));
   const Eigen::VectorXi top = test::to_vector(test::axis_band(s.m.V, axis, 0.1, +1));
@@ -108,7 +108,7 @@ void expect_monotone(const ArapReport& report) {
 // the diagonal (it is rigid by construction: the misfit is rounding, ~1e-16 relative), while the mesh
 // around it bends; the energy falls monotonically.
 TEST_F(RigidGroups, BunnyMiddleGroupMovesRigidly) {
-  Scene s = banded(test::bunny(), 1, Eigen::Vector3d::UnitX(), 0.15, 0.5);
+  BandedScene s = banded(test::bunny(), 1, Eigen::Vector3d::UnitX(), 0.15, 0.5);
   const std::vector<int> middle = slab(s.m.V, 1, 0.4, 0.6);
   ASSERT_GT(middle.size(), 100u);
   ArapData data = arap_precompute(s.m.V, s.m.F, s.fixed, with_groups(ArapMethod::Iarap, {middle}));
@@ -129,7 +129,7 @@ TEST_F(RigidGroups, BunnyMiddleGroupMovesRigidly) {
 // Every method, two groups that touch (their elements share cells: the Gauss-Seidel pass over the groups
 // must see the one before) and a group turning about its one fixed vertex (Pivot).
 TEST_F(RigidGroups, EveryMethodTouchingGroupsAndAPivotStayRigidAndMonotone) {
-  Scene s = banded(test::bumpy_patch(12), 0, Eigen::Vector3d::UnitZ(), 0.2, 0.4);
+  BandedScene s = banded(test::bumpy_patch(12), 0, Eigen::Vector3d::UnitZ(), 0.2, 0.4);
   const std::vector<int> left = slab(s.m.V, 0, 0.3, 0.45), right = slab(s.m.V, 0, 0.46, 0.6);
   // The pivot group: a vertex of the fixed bottom band and a strip beside the band.
   std::vector<int> pivot = slab(s.m.V, 0, 0.12, 0.25);
@@ -151,7 +151,7 @@ TEST_F(RigidGroups, EveryMethodTouchingGroupsAndAPivotStayRigidAndMonotone) {
 
 // Targets at rest: the rest shape is the minimum (E = 0) and the solve stays there.
 TEST_F(RigidGroups, AtRestStaysAtRest) {
-  Scene s = banded(test::bunny(), 1, Eigen::Vector3d::UnitX(), 0.0, 0.0);
+  BandedScene s = banded(test::bunny(), 1, Eigen::Vector3d::UnitX(), 0.0, 0.0);
   ArapData data =
       arap_precompute(s.m.V, s.m.F, s.fixed, with_groups(ArapMethod::Iarap, {slab(s.m.V, 1, 0.4, 0.6)}));
   for (const ArapAccelerator accelerator :
@@ -199,7 +199,7 @@ TEST_F(RigidGroups, OneGroupOfEverythingIsARigidMotion) {
 // A Held group follows its fixed members' rigid motion exactly; targets off a rigid motion, and fixed
 // members that cannot determine the rotation, are refused naming the group.
 TEST_F(RigidGroups, HeldGroupFollowsItsTargetsAndContradictionsAreRefused) {
-  Scene s = banded(test::bumpy_patch(10), 0, Eigen::Vector3d::UnitZ(), 0.1, 0.0);
+  BandedScene s = banded(test::bumpy_patch(10), 0, Eigen::Vector3d::UnitZ(), 0.1, 0.0);
   const std::vector<int> group = slab(s.m.V, 0, 0.85, 1.0); // holds the whole top band
   ArapData data = arap_precompute(s.m.V, s.m.F, s.fixed, with_groups(ArapMethod::Iarap, {group}));
   EXPECT_EQ(data.rigid.kind[0], RigidGroupKind::Held);
@@ -247,7 +247,7 @@ TEST_F(RigidGroups, BadGroupsAreRefusedNamingTheGroup) {
 // An n x n bumpy patch bent by its x bands (0.2 diagonals up, turned 0.4 rad) with a Free group across the
 // middle and a Pivot group: a strip beside the fixed band and one vertex of that band.
 struct PivotScene {
-  Scene scene;
+  BandedScene scene;
   std::vector<int> middle, pivot;
 };
 
@@ -267,7 +267,7 @@ PivotScene pivot_scene(int n) {
 // missing or doubled term (order-1 errors), as the other problems' tests do.
 TEST_F(RigidGroups, GradientAndHessianProductAreDerivatives) {
   const PivotScene p = pivot_scene(8);
-  const Scene& s = p.scene;
+  const BandedScene& s = p.scene;
   const double diagonal = test::bbox_diagonal(s.m.V);
   for (const ArapMethod method : test::kAllMethods) {
     SCOPED_TRACE(arap_method_name(method));
@@ -298,7 +298,7 @@ TEST_F(RigidGroups, GradientAndHessianProductAreDerivatives) {
 }
 
 // The scene solved from its rest shape with `accelerator` to a relative energy decrease `tolerance`.
-ArapReport solve_with(ArapData& data, const Scene& s, ArapAccelerator accelerator, double tolerance,
+ArapReport solve_with(ArapData& data, const BandedScene& s, ArapAccelerator accelerator, double tolerance,
                       int iterations, Eigen::MatrixXd& U) {
   U = s.m.V;
   ArapSolveOptions o;
@@ -322,7 +322,7 @@ int iterations_to_gap(const ArapReport& r, double E_star) {
 // ~1e-15: U is placed from R_g and t_g) and the pivot on its target.
 TEST_F(RigidGroups, EveryAcceleratorReachesThePlainMinimum) {
   const PivotScene p = pivot_scene(10);
-  const Scene& s = p.scene;
+  const BandedScene& s = p.scene;
   const std::vector<int>&middle = p.middle, &pivot = p.pivot;
   const double diagonal = test::bbox_diagonal(s.m.V);
   for (const ArapMethod method : test::kAllMethods) {
@@ -363,7 +363,7 @@ TEST_F(RigidGroups, EveryAcceleratorReachesThePlainMinimum) {
 // fewer (measured: plain 1682, Newton 16; Newton stops at the 1e-12 decrease after 23, plain is 1.4e-7
 // above E* after 2000); both keep the groups rigid to 1e-9 of the diagonal.
 TEST_F(RigidGroups, NewtonIsFiveTimesFewerIterationsThanPlainOnTheBunny) {
-  Scene s = banded(test::bunny(), 1, Eigen::Vector3d::UnitX(), 0.15, 0.5);
+  BandedScene s = banded(test::bunny(), 1, Eigen::Vector3d::UnitX(), 0.15, 0.5);
   const std::vector<int> middle = slab(s.m.V, 1, 0.4, 0.55), upper = slab(s.m.V, 1, 0.7, 0.8);
   ArapData data = arap_precompute(s.m.V, s.m.F, s.fixed, with_groups(ArapMethod::Iarap, {middle, upper}));
   Eigen::MatrixXd U_plain, U_newton;
@@ -390,7 +390,7 @@ TEST_F(RigidGroups, NewtonIsFiveTimesFewerIterationsThanPlainOnTheBunny) {
 
 // Rotation smoothing couples the cells' rotations, the groups tie theirs: no joint local step, refused.
 TEST_F(RigidGroups, RotationSmoothingIsRefused) {
-  Scene s = banded(test::bumpy_patch(6), 0, Eigen::Vector3d::UnitZ(), 0.1, 0.0);
+  BandedScene s = banded(test::bumpy_patch(6), 0, Eigen::Vector3d::UnitZ(), 0.1, 0.0);
   ArapData data =
       arap_precompute(s.m.V, s.m.F, s.fixed, with_groups(ArapMethod::Iarap, {slab(s.m.V, 0, 0.4, 0.6)}));
   ArapSolveOptions solve;
@@ -408,7 +408,7 @@ TEST_F(RigidGroups, RotationSmoothingIsRefused) {
 // Soft points, forces, a new fixed set (arap_set_fixed rebuilds the groups' system), a planar mesh and a
 // tetrahedral one: the groups stay rigid and the energy monotone.
 TEST_F(RigidGroups, SoftPointsForcesNewFixedSetPlanarAndTets) {
-  Scene s = banded(test::bumpy_patch(10), 0, Eigen::Vector3d::UnitZ(), 0.1, 0.0);
+  BandedScene s = banded(test::bumpy_patch(10), 0, Eigen::Vector3d::UnitZ(), 0.1, 0.0);
   const std::vector<int> group = slab(s.m.V, 0, 0.4, 0.6);
   const double diagonal = test::bbox_diagonal(s.m.V);
   ArapSoftConstraints soft;
@@ -438,7 +438,7 @@ TEST_F(RigidGroups, SoftPointsForcesNewFixedSetPlanarAndTets) {
   // Planar: the patch flattened, its top band moved in the plane; z stays 0.
   SolverMesh flat = test::bumpy_patch(10);
   flat.V.col(2).setZero();
-  Scene p = banded(flat, 0, Eigen::Vector3d::UnitY(), 0.2, 0.0);
+  BandedScene p = banded(flat, 0, Eigen::Vector3d::UnitY(), 0.2, 0.0);
   ArapOptions planar = with_groups(ArapMethod::Iarap, {slab(flat.V, 0, 0.4, 0.6)});
   planar.planar = true;
   ArapData flat_data = arap_precompute(flat.V, flat.F, p.fixed, planar);
@@ -472,7 +472,7 @@ TEST_F(RigidGroups, SoftPointsForcesNewFixedSetPlanarAndTets) {
         }
   Eigen::MatrixXi T(static_cast<Eigen::Index>(tets.size()), 4);
   for (size_t t = 0; t < tets.size(); ++t) T.row(static_cast<Eigen::Index>(t)) = tets[t].transpose();
-  Scene c = banded({V, Eigen::MatrixXi()}, 2, Eigen::Vector3d::UnitX(), 0.2, 0.3);
+  BandedScene c = banded({V, Eigen::MatrixXi()}, 2, Eigen::Vector3d::UnitX(), 0.2, 0.3);
   const std::vector<int> layer = slab(V, 2, 0.3, 0.7);
   ArapData tet_data = arap_precompute_tets(V, T, c.fixed, with_groups(ArapMethod::Iarap, {layer}));
   for (const ArapAccelerator accelerator : {ArapAccelerator::None, ArapAccelerator::Newton}) {

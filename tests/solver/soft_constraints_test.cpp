@@ -15,10 +15,9 @@
 namespace {
 
 using namespace iarap;
+using test::kPlainAndAccelerators;
+using test::max_row_distance;
 using test::SolverMesh;
-
-const ArapAccelerator kAll[] = {ArapAccelerator::None, ArapAccelerator::Anderson, ArapAccelerator::Lbfgs,
-                                ArapAccelerator::Newton};
 
 // Bottom 10% along y hard at rest, top 10% either hard or soft (weight W) pulled to a rigid shift of
 // (0.2, -0.1, 0.05) diagonals, plus two soft face points: a mid-height face's centroid pulled sideways.
@@ -66,10 +65,6 @@ ArapSolveOptions converge_soft(ArapAccelerator accelerator = ArapAccelerator::Ne
   options.tolerance = -1.0;
   options.gradient_tolerance = 1e-11;
   return options;
-}
-
-double max_row_distance(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B) {
-  return (A - B).rowwise().norm().maxCoeff();
 }
 
 // call() throws an E whose message contains words.
@@ -174,7 +169,7 @@ TEST_F(SoftConstraints, TotalEnergyNeverIncreasesForEveryAccelerator) {
     ArapOptions options;
     options.method = method;
     ArapData data = arap_precompute(p.s.mesh.V, p.s.mesh.F, p.s.bottom, p.soft, options);
-    for (ArapAccelerator a : kAll) {
+    for (ArapAccelerator a : kPlainAndAccelerators) {
       Eigen::MatrixXd U = p.s.mesh.V;
       ArapSolveOptions o = converge_soft(a, 60);
       o.gradient_tolerance = 0.0;
@@ -269,7 +264,7 @@ TEST_F(SoftConstraints, FacePointAtACornerIsTheSoftVertex) {
   as_face.faces = Eigen::VectorXi::Constant(1, f);
   as_face.barycentric = Eigen::RowVector3d(1.0, 0.0, 0.0);
   as_face.face_weights = Eigen::VectorXd::Constant(1, 4.0);
-  for (ArapAccelerator a : kAll) {
+  for (ArapAccelerator a : kPlainAndAccelerators) {
     ArapData d1 = arap_precompute(m.V, m.F, bottom, as_vertex),
              d2 = arap_precompute(m.V, m.F, bottom, as_face);
     Eigen::MatrixXd U1 = m.V, U2 = m.V;

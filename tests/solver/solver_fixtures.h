@@ -26,6 +26,15 @@ protected:
 // The three energies, for tests that run each.
 inline constexpr ArapMethod kAllMethods[] = {ArapMethod::Arap, ArapMethod::SpokesRims, ArapMethod::Iarap};
 
+// Plain iterations and the three accelerators that run alone (the hybrid chains two of them).
+inline constexpr ArapAccelerator kPlainAndAccelerators[] = {ArapAccelerator::None, ArapAccelerator::Anderson,
+                                                            ArapAccelerator::Lbfgs, ArapAccelerator::Newton};
+
+// The largest distance between corresponding rows of A and B.
+inline double max_row_distance(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B) {
+  return (A - B).rowwise().norm().maxCoeff();
+}
+
 struct SolverMesh {
   Eigen::MatrixXd V;
   Eigen::MatrixXi F;
