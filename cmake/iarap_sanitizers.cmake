@@ -14,28 +14,3 @@ if(IARAP_SANITIZE)
     add_compile_options(-Wno-maybe-uninitialized)
   endif()
 endif()
-
-# The test program is compiled at -O0 in this build: a third less compile time for its files, most of this
-# build's; its own code is checked the same, only slower, and it mostly calls the library. The library binds
-# its own function calls (-Bsymbolic-functions), so the -O0 copies of inline functions (Eigen's, ours) that the
-# program carries never stand in for the library's own -O1 ones. Files named after OPTIMIZED run long loops of
-# their own (brute-force references) and keep -O1, outside the unity batches. (The tool stays at -O1: at -O0
-# its HTTP tests took longer than its compile saved.)
-function(iarap_sanitized_program target)
-  cmake_parse_arguments(PARSE_ARGV 1 arg "" "" "OPTIMIZED")
-  # Outside the unity batches in every build, so that both builds batch the same files (a name that two
-  # files of one batch define would otherwise break one build only).
-  set_source_files_properties(${arg_OPTIMIZED} TARGET_DIRECTORY ${target} PROPERTIES
-    SKIP_UNITY_BUILD_INCLUSION ON)
-  if(IARAP_SANITIZE)
-    target_compile_options(${target} PRIVATE -O0)
-    set_source_files_properties(${arg_OPTIMIZED} TARGET_DIRECTORY ${target} PROPERTIES
-      COMPILE_OPTIONS -O1 SKIP_PRECOMPILE_HEADERS ON)
-  endif()
-endfunction()
-
-function(iarap_sanitized_library target)
-  if(IARAP_SANITIZE)
-    target_link_options(${target} PRIVATE -Wl,-Bsymbolic-functions)
-  endif()
-endfunction()
