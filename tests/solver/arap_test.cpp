@@ -12,10 +12,9 @@
 namespace {
 
 using namespace iarap;
+using test::kAllMethods;
 using test::max_row_distance;
 using test::SolverMesh;
-
-const ArapMethod kAllMethods[] = {ArapMethod::Arap, ArapMethod::SpokesRims, ArapMethod::Iarap};
 
 ArapOptions with_method(ArapMethod method) {
   ArapOptions options;
