@@ -4,6 +4,7 @@
 #include <sys/resource.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -38,8 +39,11 @@ void trace_resident(const char* phase) {
   static const bool enabled = std::getenv("IARAP_MEMORY_TRACE") != nullptr;
   if (!enabled) return;
   const struct mallinfo2 heap = mallinfo2();
-  std::fprintf(stderr, "memory: %s resident %.1f MB peak %.1f MB (malloc in use %.1f MB)\n", phase,
-               current_resident_bytes() / 1e6, peak_resident_bytes() / 1e6,
+  // Seconds since the first trace of the process: where a precompute's phases end on both threads.
+  static const auto first = std::chrono::steady_clock::now();
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - first).count();
+  std::fprintf(stderr, "memory: %s at %.2f s resident %.1f MB peak %.1f MB (malloc in use %.1f MB)\n", phase,
+               seconds, current_resident_bytes() / 1e6, peak_resident_bytes() / 1e6,
                static_cast<double>(heap.uordblks + heap.hblkhd) / 1e6);
 }
 

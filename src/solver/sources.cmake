@@ -1,7 +1,7 @@
 # Sources of the solver module, relative to src/, by layer (docs/architecture.md): the pieces of the
 # problem, the LocalGlobalProblem oracle, stopping and line search, the optimizers, the facade.
 list(APPEND IARAP_SOURCES
-  solver/polar_rotation.cpp solver/closest_rotation_2d.cpp solver/sparse_cholesky.cpp solver/supernodal_solve.cpp solver/visit_order.cpp
+  solver/polar_rotation.cpp solver/closest_rotation_2d.cpp solver/sparse_cholesky.cpp solver/metis_ordering.cpp solver/supernodal_solve.cpp solver/visit_order.cpp
   solver/arap_elements.cpp solver/streamed_layout.cpp solver/fit_rotations.cpp solver/arap_rhs.cpp
   solver/system_pattern.cpp solver/constraint_layout.cpp solver/constrained_solve.cpp solver/cell_stiffness.cpp
   solver/soft_terms.cpp solver/quadratic_terms.cpp solver/hard_points.cpp solver/cover_elements.cpp

@@ -3,6 +3,7 @@
 #include "iarap/core/blas_library.h"
 #include "iarap/core/errors.h"
 #include "iarap/core/threads.h"
+#include "metis_ordering.h"
 #include "supernodal_solve.h"
 
 #include <omp.h>
@@ -12,6 +13,7 @@
 #include <algorithm>
 #include <cmath>
 #include <utility>
+#include <vector>
 
 namespace iarap {
 
@@ -54,7 +56,36 @@ void configure_ordering(cholmod_common& common, FillOrdering ordering) {
 class CholmodLlt : public Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>> {
 public:
   cholmod_factor* factor() const { return m_cholmodFactor; }
+
+  // analyzePattern(matrix), its fill-reducing ordering given (CHOLMOD postorders it): Eigen's analyzePattern
+  // with cholmod_analyze_p in place of cholmod_analyze.
+  void analyze_given(const Eigen::SparseMatrix<double>& matrix, std::vector<int>& perm) {
+    cholmod_common& common = cholmod();
+    if (m_cholmodFactor) cholmod_free_factor(&m_cholmodFactor, &common);
+    common.nmethods = 1;
+    common.method[0].ordering = CHOLMOD_GIVEN;
+    cholmod_sparse A = Eigen::viewAsCholmod(matrix.selfadjointView<Eigen::Lower>());
+    m_cholmodFactor = cholmod_analyze_p(&A, perm.data(), nullptr, 0, &common);
+    m_isInitialized = true;
+    m_info = m_cholmodFactor ? Eigen::Success : Eigen::NumericalIssue;
+    m_analysisIsOk = m_cholmodFactor != nullptr;
+    m_factorizationIsOk = false;
+  }
 };
+
+// The symbolic analysis of llt on `pattern` with `ordering` (resolved). METIS is called directly
+// (metis_ordering.h: cheaper options, no A + A^T) where it can be; CHOLMOD's own ordering otherwise.
+void analyze_pattern(CholmodLlt& llt, const Eigen::SparseMatrix<double>& pattern, FillOrdering ordering) {
+  configure_ordering(llt.cholmod(), ordering);
+  if (ordering == FillOrdering::Metis) {
+    std::vector<int> perm = detail::metis_nested_dissection(pattern);
+    if (!perm.empty()) {
+      llt.analyze_given(pattern, perm);
+      return;
+    }
+  }
+  llt.analyzePattern(pattern);
+}
 
 // cholmod_solve2's solution and workspaces, allocated by CHOLMOD on the first solve and reused after.
 // Freed with the CHOLMOD common of the factor that allocated them, before that factor goes.
@@ -265,9 +296,8 @@ void SparseCholesky::analyze(const Eigen::SparseMatrix<double>& pattern) {
   impl_->analyzed = pattern;
   impl_->llt = std::make_unique<CholmodLlt>();
   impl_->used = resolved_ordering(ordering, pattern.rows());
-  configure_ordering(impl_->llt->cholmod(), impl_->used);
   const CholmodTeams teams;
-  impl_->llt->analyzePattern(impl_->analyzed);
+  analyze_pattern(*impl_->llt, impl_->analyzed, impl_->used);
 }
 
 void SparseCholesky::factorize(const Eigen::SparseMatrix<double>& A) {
@@ -318,8 +348,8 @@ void SparseCholesky::factorize(const Eigen::SparseMatrix<double>& A) {
     } else {
       next.llt = std::make_unique<CholmodLlt>();
       next.used = resolved_ordering(ordering, next.A.rows());
-      configure_ordering(next.llt->cholmod(), next.used);
-      next.llt->compute(next.A);
+      analyze_pattern(*next.llt, next.A, next.used);
+      if (next.llt->info() == Eigen::Success) next.llt->factorize(next.A);
     }
     if (next.llt->info() == Eigen::Success) {
       // CHOLMOD's workspaces (sized by the rows and the supernodes) serve the next analysis or

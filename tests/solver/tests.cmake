@@ -1,6 +1,6 @@
 # Tests of the solver module, relative to tests/.
 list(APPEND IARAP_TEST_SOURCES
-  solver/polar_rotation_test.cpp solver/sparse_cholesky_test.cpp solver/arap_elements_test.cpp
+  solver/polar_rotation_test.cpp solver/sparse_cholesky_test.cpp solver/metis_ordering_test.cpp solver/arap_elements_test.cpp
   solver/arap_test.cpp solver/boundary_refine_test.cpp solver/system_pattern_test.cpp
   solver/fit_rotations_test.cpp solver/visit_order_test.cpp
   solver/accelerated_solve_test.cpp solver/supernodal_solve_test.cpp solver/planar_arap_test.cpp

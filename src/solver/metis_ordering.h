@@ -1,0 +1,15 @@
+// Internal: the nested-dissection ordering of a symmetric pattern's graph, METIS called directly with the
+// options chosen for the large meshes that use it (issue 44; docs/performance.md, "The BLAS and the
+// ordering").
+#pragma once
+#include <Eigen/SparseCore>
+#include <vector>
+
+namespace iarap::detail {
+
+// A fill-reducing permutation of the n x n symmetric `pattern` (only its entries below the diagonal are
+// read; values ignored): perm[k] is the row eliminated k-th, for cholmod_analyze_p. Empty when METIS is not
+// in the process in the form this calls (CHOLMOD's own METIS ordering then) or fails.
+std::vector<int> metis_nested_dissection(const Eigen::SparseMatrix<double>& pattern);
+
+} // namespace iarap::detail
