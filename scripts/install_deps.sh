@@ -3,7 +3,7 @@
 set -euo pipefail
 packages=(
   cmake ninja-build g++ pkg-config clang-format-14
-  libeigen3-dev libsuitesparse-dev libspectra-dev libopenblas0-pthread
+  libeigen3-dev libsuitesparse-dev libmetis-dev libspectra-dev libopenblas0-pthread
   libcli11-dev nlohmann-json3-dev libnanoflann-dev libpng-dev libcpp-httplib-dev libtinyobjloader-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   pybind11-dev python3-dev python3-numpy python3-scipy python3-pytest python3-matplotlib python3-distributed

@@ -39,4 +39,9 @@ TuftedCover tufted_cover(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, con
 // another fan (open fans meeting at a vertex, sheets touching at a point, are accepted).
 bool is_oriented_manifold(const Eigen::MatrixXi& F, const EdgeTopology& topology, int num_vertices);
 
+// On edges with at most two faces each, traversed in opposite directions by the two: true when the faces
+// at every vertex form one fan (open or closed). False where some vertex has several fans, or where an
+// edge breaks the premise.
+bool every_vertex_has_one_fan(const Eigen::MatrixXi& F, const EdgeTopology& topology, int num_vertices);
+
 } // namespace iarap::detail

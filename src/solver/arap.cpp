@@ -25,6 +25,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <exception>
 #include <memory>
 #include <optional>
 #include <string>
@@ -177,14 +178,16 @@ void take_traced_elements(const Eigen::MatrixXd& V, std::optional<detail::Traced
 // Delaunay triangulation of the tufted cover (src/intrinsic/tufted_cover.h), its traced edges and the
 // elements on them, folded back to the input's vertices (fold_cover_elements); the pattern of L and its
 // analysis run beside. L is assembled from the elements afterwards (system.factorized stays false).
+// `analyzed`: the analysis ran already (beside the manifold check, build_intrinsic_elements).
 void build_tufted_elements(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const EdgeTopology& topology,
                            const IntrinsicOptions& intrinsic, const detail::ConstraintLayout& layout,
-                           ArapData& data, SystemBuild& system) {
+                           ArapData& data, SystemBuild& system, bool analyzed = false) {
   double intrinsic_ms = 0.0, elements_ms = 0.0;
   const auto start = Clock::now();
   const int n = static_cast<int>(V.rows());
   detail::run_beside(
       [&] {
+        if (analyzed) return;
         system.pattern = system_pattern(F, n, topology);
         analyze(layout, system);
       },
@@ -228,32 +231,46 @@ void build_intrinsic_elements(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F
   const auto start = Clock::now();
   detail::SignpostInput input =
       timed(intrinsic_ms, [&] { return detail::signpost_input(V, F, intrinsic.refine_boundary); });
-  // Input that is not an oriented manifold takes the tufted cover (docs/nonmanifold.md).
-  if (intrinsic.tufted_cover || !timed(intrinsic_ms, [&] {
-        return detail::is_oriented_manifold(F, *input.topology, static_cast<int>(V.rows()));
-      }))
+  trace_resident("signpost input");
+  if (intrinsic.tufted_cover)
     return build_tufted_elements(V, F, *input.topology, intrinsic, layout, data, system);
   std::shared_ptr<const EdgeTopology> topology = input.topology;
   std::shared_ptr<const Eigen::MatrixXd> C = input.C;
+  bool manifold = true;
+  std::exception_ptr cotan_error;
   detail::run_beside(
       [&] {
         system.pattern = system_pattern(F, static_cast<int>(V.rows()), *topology);
         topology.reset();
+        trace_resident("pattern");
         analyze(layout, system);
         release_free_heap(V.rows()); // the ordering's workspaces
         trace_resident("analyzed");
         // Degenerate faces (mollified lengths) or stiffness: the identity does not hold.
         if (!cotan_identity || !C->allFinite()) return;
-        data.L = timed(cotan_ms, [&] { return cotan_system_matrix(F, *C, system.pattern); });
-        C.reset();
-        // The pattern (its face slots alone are 36 bytes per face) is not needed again unless the intrinsic
-        // build mollified lengths; factorize_element_system rebuilds it then.
-        free_pattern(system.pattern);
-        factorize(data.L, layout, system);
+        // A failure counts only for a manifold (below): the tufted cover's L is another matrix.
+        try {
+          data.L = timed(cotan_ms, [&] { return cotan_system_matrix(F, *C, system.pattern); });
+          C.reset();
+          trace_resident("cotan matrix");
+          // The pattern (its face slots alone are 36 bytes per face) is not needed again unless the
+          // intrinsic build mollified lengths; factorize_element_system rebuilds it then.
+          free_pattern(system.pattern);
+          factorize(data.L, layout, system);
+        } catch (const std::exception&) {
+          cotan_error = std::current_exception();
+        }
         release_free_heap(V.rows()); // CHOLMOD's permuted copies and update matrices
         trace_resident("factorized");
       },
       [&] {
+        // Input that is not an oriented manifold takes the tufted cover (docs/nonmanifold.md), below. The
+        // check runs here, beside the analysis, which serves either build (2.77M vertices: 1.0 s).
+        manifold = timed(intrinsic_ms, [&] {
+          return detail::is_oriented_manifold(F, *input.topology, static_cast<int>(V.rows()));
+        });
+        trace_resident("manifold checked");
+        if (!manifold) return;
         timed(intrinsic_ms,
               [&] { traced = detail::trace_phase(detail::flip_phase(V, F, intrinsic, &input), false); });
         trace_resident("traced");
@@ -268,6 +285,16 @@ void build_intrinsic_elements(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F
         });
       },
       detail::Beside::CallerOutsideOpenMP);
+  if (!manifold) {
+    // The cotan factorization beside (if any) was of the input's cotan Laplacian; the tufted cover's L comes
+    // from its elements, on the same pattern (a numeric refactorization).
+    system.factorized = false;
+    const double check_ms = intrinsic_ms;
+    build_tufted_elements(V, F, *input.topology, intrinsic, layout, data, system, true);
+    data.timings.intrinsic_ms += check_ms;
+    return;
+  }
+  if (cotan_error) std::rethrow_exception(cotan_error);
   data.timings.intrinsic_ms = intrinsic_ms;
   data.timings.assembly_ms = elements_ms + cotan_ms;
   // What the intrinsic and element build did not hide of the analysis and factorization.

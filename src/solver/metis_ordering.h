@@ -8,8 +8,8 @@
 namespace iarap::detail {
 
 // A fill-reducing permutation of the n x n symmetric `pattern` (only its entries below the diagonal are
-// read; values ignored): perm[k] is the row eliminated k-th, for cholmod_analyze_p. Empty when METIS is not
-// in the process in the form this calls (CHOLMOD's own METIS ordering then) or fails.
+// read; values ignored): perm[k] is the row eliminated k-th, for cholmod_analyze_p. Empty when METIS fails
+// (CHOLMOD's own ordering then).
 std::vector<int> metis_nested_dissection(const Eigen::SparseMatrix<double>& pattern);
 
 } // namespace iarap::detail

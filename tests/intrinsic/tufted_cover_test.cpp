@@ -168,6 +168,23 @@ TEST(TuftedCover, OrientedManifoldTest) {
   };
   const SmallMesh sphere = iarap::test::subdivided_octahedron();
   EXPECT_TRUE(oriented_manifold(sphere));
+  // With a hole (the faces at vertex 0 taken out): the fans around the hole are open, one per vertex.
+  SmallMesh holed = sphere;
+  int kept = 0;
+  for (Eigen::Index f = 0; f < sphere.F.rows(); ++f)
+    if ((sphere.F.row(f).array() != 0).all()) holed.F.row(kept++) = sphere.F.row(f);
+  holed.F.conservativeResize(kept, 3);
+  ASSERT_LT(kept, sphere.F.rows());
+  EXPECT_TRUE(oriented_manifold(holed));
+  // The walk around the vertices that decides these without grouping corners: one fan at every vertex of
+  // the sphere and the holed sphere, two at the cones' tip and the bowtie's middle (below).
+  const auto one_fan = [](const SmallMesh& m) {
+    return detail::every_vertex_has_one_fan(m.F, edge_topology(m.F, static_cast<int>(m.V.rows())),
+                                            static_cast<int>(m.V.rows()));
+  };
+  EXPECT_TRUE(one_fan(sphere));
+  EXPECT_TRUE(one_fan(holed));
+  EXPECT_FALSE(one_fan(iarap::test::two_cones_sharing_a_tip()));
   EXPECT_FALSE(oriented_manifold(iarap::test::with_mixed_orientation(sphere, 7)));
   EXPECT_FALSE(oriented_manifold(iarap::test::two_cubes_at_a_corner()));
   EXPECT_FALSE(oriented_manifold(iarap::test::two_cones_sharing_a_tip()));
@@ -181,6 +198,7 @@ TEST(TuftedCover, OrientedManifoldTest) {
   bowtie.F.resize(2, 3);
   bowtie.F << 0, 1, 2, 0, 3, 4;
   EXPECT_TRUE(oriented_manifold(bowtie));
+  EXPECT_FALSE(one_fan(bowtie));
 }
 
 // The glued build refuses twins that do not pair opposite halfedges, naming the halfedge.

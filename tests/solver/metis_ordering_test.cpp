@@ -43,7 +43,7 @@ int largest_part(int side, const std::vector<bool>& removed) {
       stack.pop_back();
       ++size;
       const int x = v % side, y = v / side;
-      for (const auto [nx, ny] : {std::pair{x - 1, y}, {x + 1, y}, {x, y - 1}, {x, y + 1}}) {
+      for (const auto& [nx, ny] : {std::pair{x - 1, y}, {x + 1, y}, {x, y - 1}, {x, y + 1}}) {
         if (nx < 0 || ny < 0 || nx >= side || ny >= side || seen[ny * side + nx]) continue;
         seen[ny * side + nx] = true;
         stack.push_back(ny * side + nx);
@@ -56,8 +56,7 @@ int largest_part(int side, const std::vector<bool>& removed) {
 
 } // namespace
 
-// METIS is in the process (CHOLMOD links it) and answers through the looked-up interface with a
-// permutation; the same one from the full pattern and from its lower triangle alone.
+// METIS answers with a permutation; the same one from the full pattern and from its lower triangle alone.
 TEST(MetisOrdering, IsAPermutationOfTheRows) {
   const Eigen::SparseMatrix<double> A = grid_pattern(40);
   const std::vector<int> perm = iarap::detail::metis_nested_dissection(A);
