@@ -177,7 +177,7 @@ bool every_vertex_has_one_fan(const Eigen::MatrixXi& F, const EdgeTopology& t, i
   return one_fan;
 }
 
-bool is_oriented_manifold(const Eigen::MatrixXi& F, const EdgeTopology& topology, int num_vertices) {
+bool edges_are_oriented_manifold(const Eigen::MatrixXi& F, const EdgeTopology& topology) {
   const Eigen::Index ne = topology.E.rows();
   for (Eigen::Index e = 0; e < ne; ++e) {
     if (topology.face_count(e) > 2) return false;
@@ -185,6 +185,11 @@ bool is_oriented_manifold(const Eigen::MatrixXi& F, const EdgeTopology& topology
     const int f0 = topology.EF(e, 0), f1 = topology.EF(e, 1), k0 = topology.EK(e, 0), k1 = topology.EK(e, 1);
     if (F(f0, (k0 + 1) % 3) == F(f1, (k1 + 1) % 3)) return false; // both run the same way
   }
+  return true;
+}
+
+bool is_oriented_manifold(const Eigen::MatrixXi& F, const EdgeTopology& topology, int num_vertices) {
+  if (!edges_are_oriented_manifold(F, topology)) return false;
   // Most meshes have no vertex where fans meet: the walk says so without grouping corners. Where some
   // vertex has several fans, pinched_vertices tells closed fans (refused) from open ones (accepted).
   if (every_vertex_has_one_fan(F, topology, num_vertices)) return true;

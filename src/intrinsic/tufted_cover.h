@@ -39,9 +39,12 @@ TuftedCover tufted_cover(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, con
 // another fan (open fans meeting at a vertex, sheets touching at a point, are accepted).
 bool is_oriented_manifold(const Eigen::MatrixXi& F, const EdgeTopology& topology, int num_vertices);
 
-// On edges with at most two faces each, traversed in opposite directions by the two: true when the faces
-// at every vertex form one fan (open or closed). False where some vertex has several fans, or where an
-// edge breaks the premise.
+// True when every edge has at most two faces and two faces traverse their edge in opposite directions.
+bool edges_are_oriented_manifold(const Eigen::MatrixXi& F, const EdgeTopology& topology);
+
+// On edges that are an oriented manifold (edges_are_oriented_manifold): true when the faces at every
+// vertex form one fan (open or closed). False where some vertex has several fans, or where an edge breaks
+// the premise.
 bool every_vertex_has_one_fan(const Eigen::MatrixXi& F, const EdgeTopology& topology, int num_vertices);
 
 } // namespace iarap::detail
