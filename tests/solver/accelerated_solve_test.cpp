@@ -234,6 +234,30 @@ TEST_F(AcceleratedSolve, DefaultAcceleratorEndsWherePlainDoesOnTheBentBunny) {
   }
 }
 
+// Newton run on past its minimum: once its predicted decrease reaches the energy's rounding, the energy
+// cannot tell a good step from a bad one, and a raw achieved / predicted ratio (noise) rejected about every
+// other step and shrank the trust radius towards zero (a 43K drag start: 2000 such iterations). Measured
+// against the rounding level (newton_trust_region.cpp), 110 more iterations at the floor reject nothing
+// more and keep the radius (rho near 1 grows it at most), and the energy stays within rounding (1e-12
+// relative) of the minimum's.
+TEST_F(AcceleratedSolve, NewtonAtItsMinimumKeepsItsRadius) {
+  for (const Scene& s : small_scenes()) {
+    ArapData data = arap_precompute(s.mesh.V, s.mesh.F, s.fixed, s.options);
+    Eigen::MatrixXd U_short = s.mesh.V, U_long = s.mesh.V;
+    ArapSolveOptions options = accelerated(ArapAccelerator::Newton, 40);
+    const ArapReport at_minimum = arap_solve(data, s.targets, U_short, options);
+    // At the minimum after 40 iterations: the gradient at rounding level (1e-9 leaves a wide margin).
+    ASSERT_LT(at_minimum.gradient_norms.back(), 1e-9 * at_minimum.initial_gradient_norm) << s.name;
+    options.max_iterations = 150;
+    const ArapReport past = arap_solve(data, s.targets, U_long, options);
+    EXPECT_EQ(past.rejected, at_minimum.rejected) << s.name;
+    EXPECT_GE(past.newton_trust_radius, at_minimum.newton_trust_radius) << s.name;
+    const double minimum = at_minimum.energies.back();
+    for (size_t k = 40; k < past.energies.size(); ++k)
+      EXPECT_NEAR(past.energies[k], minimum, 1e-12 * minimum) << s.name << " iteration " << k + 1;
+  }
+}
+
 // The reported gradient norm is that of Eq. 14 at the returned U's free rows, computed independently by
 // arap_gradient; both sum the same terms in another order, so they agree to rounding (1e-9 relative).
 TEST_F(AcceleratedSolve, ReportedGradientNormIsTheGradientAtTheResult) {
