@@ -47,9 +47,9 @@ struct RefineJob {
 // earlier = {d_2, d_1} those of the two before, the decreases shrink at the rate r = max(d / d_1, d_1 / d_2)
 // (the slower of the last two: Newton's steps cut short by the trust region shrink unevenly), and if they
 // go on shrinking so the gap left after the last is d r / (1 - r) (a geometric series). True when
-// d <= tolerance and that estimate is too, or when d <= 0 (no iterate gains any more: the minimum to
-// rounding). False without a previous decrease (d_1 <= 0; without d_2 the one rate d / d_1 counts) and when
-// the decreases do not shrink.
+// d <= tolerance and that estimate is too, or when d <= 100 eps (no iterate gains more than the rounding
+// of the energy's sum: the minimum to rounding). False without a previous decrease (d_1 <= 0; without d_2 the
+// one rate d / d_1 counts) and when the decreases do not shrink.
 bool refinement_converged(const std::array<double, 2>& earlier, double decrease, double tolerance);
 
 // (E_prev - E) / |E_prev| of the report's last iteration: what the energy tolerance compares.

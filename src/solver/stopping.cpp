@@ -40,20 +40,23 @@ bool Progress::record(double energy, double gradient_norm, bool accelerated, dou
                            (energy == 0.0 || previous - energy <= options_.tolerance * std::abs(previous));
   const bool gradient_rule = options_.gradient_tolerance > 0 &&
                              gradient_norm <= options_.gradient_tolerance * report_.initial_gradient_norm;
+  bool stop = true;
   if (energy_rule || gradient_rule) {
     report_.converged = true;
     report_.stop_reason = energy_rule ? ArapStopReason::EnergyTolerance : ArapStopReason::GradientTolerance;
-    return true;
-  }
-  if (options_.time_budget_ms > 0 && report_.elapsed_ms.back() >= options_.time_budget_ms) {
+  } else if (options_.time_budget_ms > 0 && report_.elapsed_ms.back() >= options_.time_budget_ms) {
     report_.stop_reason = ArapStopReason::TimeBudget;
-    return true;
+  } else {
+    stop = false;
   }
-  if (options_.on_iteration && !options_.on_iteration(report_)) {
+  // The callback sees every iteration, the last included: a caller's own stopping rule (the viewer's
+  // refinement, whose chunk of a time budget can be one iteration long) must not miss the iterations that
+  // end a solve for another reason.
+  if (options_.on_iteration && !options_.on_iteration(report_) && !stop) {
     report_.stop_reason = ArapStopReason::Callback;
-    return true;
+    stop = true;
   }
-  return false;
+  return stop;
 }
 
 } // namespace iarap::detail

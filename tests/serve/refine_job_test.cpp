@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cmath>
+#include <limits>
 
 namespace iarap::serve {
 namespace {
@@ -53,6 +54,18 @@ TEST(ServeRefinementRule, OneSmallDecreaseIsNotEnough) {
   EXPECT_TRUE(refinement_converged({1e-2, 1e-4}, 1e-8, 1e-6));
   EXPECT_TRUE(refinement_converged({0, 0}, 0.0, 1e-6));
   EXPECT_TRUE(refinement_converged({1e-2, 1e-3}, -1e-15, 1e-6));
+}
+
+TEST(ServeRefinementRule, DecreasesAtTheRoundingOfTheEnergyEndIt) {
+  // Accepted steps at the minimum gain a few ulps at random (the bunny's refinement: 1.3e-16 after a step
+  // the trust region had cut short): their rate never reads below 1, and each ends it on its own.
+  for (const double ulps : {1.0, 3.0, 50.0}) {
+    const double decrease = ulps * std::numeric_limits<double>::epsilon();
+    EXPECT_TRUE(refinement_converged({1e-9, 2e-9}, decrease, 1e-6)) << ulps;
+    EXPECT_TRUE(refinement_converged({decrease, decrease / 2}, decrease, 1e-6)) << ulps;
+  }
+  // Above that level a decrease still needs its rate: 1e-12 after 1e-12 (no shrinking) goes on.
+  EXPECT_FALSE(refinement_converged({1e-12, 1e-12}, 1e-12, 1e-6));
 }
 
 } // namespace

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <limits>
+#include <vector>
 
 namespace iarap {
 namespace {
@@ -76,6 +77,43 @@ TEST_F(Stopping, EachRuleNamesItself) {
   options.time_budget_ms = 1e9;
   EXPECT_EQ(solve(options).stop_reason, ArapStopReason::MaxIterations);
   EXPECT_EQ(arap_stop_reason_name(ArapStopReason::TimeBudget), "time_budget");
+}
+
+// on_iteration sees each iteration, also the one a rule of the options ends the solve on (the viewer's
+// refinement judges its own stopping rule there: with chunks one iteration long it never saw one).
+TEST_F(Stopping, CallbackSeesEveryIterationTheLastIncluded) {
+  ArapSolveOptions options;
+  std::vector<int> seen;
+  options.on_iteration = [&seen](const ArapReport& r) {
+    seen.push_back(r.iterations);
+    return true;
+  };
+  const auto check = [&](ArapStopReason reason) {
+    seen.clear();
+    const ArapReport report = solve(options);
+    EXPECT_EQ(report.stop_reason, reason);
+    ASSERT_EQ(seen.size(), static_cast<std::size_t>(report.iterations));
+    for (std::size_t k = 0; k < seen.size(); ++k) EXPECT_EQ(seen[k], static_cast<int>(k) + 1);
+  };
+  for (ArapAccelerator accelerator : {ArapAccelerator::None, ArapAccelerator::Newton}) {
+    options.accelerator = accelerator;
+    options.max_iterations = 100;
+    options.tolerance = -1;
+    options.time_budget_ms = 1e-6;
+    check(ArapStopReason::TimeBudget);
+    options.time_budget_ms = 0;
+    options.tolerance = 1e-3;
+    check(ArapStopReason::EnergyTolerance);
+    options.tolerance = -1;
+    options.max_iterations = 4;
+    check(ArapStopReason::MaxIterations);
+  }
+  // A callback that says stop on the iteration a rule ends leaves that rule's name.
+  options.accelerator = ArapAccelerator::None;
+  options.max_iterations = 100;
+  options.time_budget_ms = 1e-6;
+  options.on_iteration = [](const ArapReport&) { return false; };
+  EXPECT_EQ(solve(options).stop_reason, ArapStopReason::TimeBudget);
 }
 
 TEST_F(Stopping, BadBudgetIsAnInputError) {

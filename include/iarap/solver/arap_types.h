@@ -161,8 +161,9 @@ struct ArapReport;
 // ArapSolveOptions::accelerator_history.
 struct ArapAcceleratorHistory;
 
-// Called after each iteration with the report so far; returning false stops the solve (converged stays
-// false). For progress display and for stopping on an outside criterion (the bench's energy gap).
+// Called after each iteration with the report so far, the last one included (whatever ended the solve);
+// returning false stops the solve (converged stays false) unless a rule of the options already did. For
+// progress display and for stopping on an outside criterion (the bench's energy gap).
 using ArapIterationCallback = std::function<bool(const ArapReport&)>;
 
 struct ArapSolveOptions {
