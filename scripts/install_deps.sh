@@ -6,7 +6,7 @@ packages=(
   libeigen3-dev libsuitesparse-dev libmetis-dev libspectra-dev libopenblas0-pthread
   libcli11-dev nlohmann-json3-dev libnanoflann-dev libpng-dev libcpp-httplib-dev libtinyobjloader-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  pybind11-dev python3-dev python3-numpy python3-scipy python3-pytest python3-matplotlib python3-distributed
+  pybind11-dev python3-dev python3-numpy python3-scipy python3-pytest python3-pytest-xdist python3-matplotlib python3-distributed
   python3-venv python3-setuptools python3-wheel python3-build python3-mypy dpkg-dev
   python3-vtk9 xvfb xauth
   chromium

@@ -11,11 +11,15 @@ bash scripts/build.sh
 if command -v npm >/dev/null; then npm ci --prefix web --no-audit --no-fund; fi
 ctest --test-dir build --output-on-failure -j"$(nproc)"
 if [ -d python/tests ] && [ -n "$(ls build/python/iarap/_core*.so 2>/dev/null)" ]; then
-  PYTHONPATH="$PWD/build/python" /usr/bin/python3 -m pytest -q python/tests experiments/tests
+  # Two workers when pytest-xdist is there (install_deps.sh installs it), a file to a worker so that a
+  # module's fixtures (the experiments' report: 17 s) run once: 83 -> 56 s on two cores.
+  xdist=()
+  if /usr/bin/python3 -c 'import xdist' 2>/dev/null; then xdist=(-n "$(nproc)" --dist loadfile); fi
+  PYTHONPATH="$PWD/build/python" /usr/bin/python3 -m pytest -q "${xdist[@]}" python/tests experiments/tests
 fi
 if [ "${CI:-}" = "true" ] || [ "${1:-}" = "--sanitize" ]; then
-  # -g1: line tables are all a sanitizer report needs (this build: 7m42s with -g1, about 11 min with -g on
-  # a busier 2-core machine).
+  # -g1: line tables are all a sanitizer report needs (-g0 compiles no faster). UBSan's checks and the
+  # optimization levels there: cmake/iarap_sanitizers.cmake, docs/building.md (a fresh clone: 404 s).
   # The examples (a page of API calls each) run in the Release suite; the library paths they take run here
   # in the tests of registration and deformation (19 s of this run's tests saved).
   IARAP_BUILD_DIR=build-asan bash scripts/build.sh -DIARAP_SANITIZE=ON -DIARAP_BUILD_PYTHON=OFF -DIARAP_BUILD_EXAMPLES=OFF -DCMAKE_BUILD_TYPE=RelWithDebInfo \
