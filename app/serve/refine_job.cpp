@@ -16,9 +16,9 @@ constexpr double refinement_aim = 0.25;
 
 // A relative decrease this small is the rounding of the energy's sum, not progress: Newton's steps at the
 // minimum are accepted at that level (its trust region raises both decreases by the same 100 eps |E|,
-// newton_trust_region.cpp) and their decreases then wander between 0 and a few ulps without shrinking, so
-// the rate estimate never stops them (seen: the bunny's spokes-rims refinement ran its 1000 iterations at
-// a decrease of 1.3e-16 when the trust region's cut steps had made the rate read 2 just before).
+// newton_trust_region.cpp) and their decreases then wander between -5e-16 and +5e-16 without shrinking
+// (the bunny's spokes-rims refinement), so a rate read from them says nothing; without this floor only a
+// draw at or below zero would end the rule there.
 constexpr double rounding_decrease = 100 * std::numeric_limits<double>::epsilon();
 
 } // namespace
