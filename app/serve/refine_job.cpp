@@ -75,7 +75,8 @@ RefineJob refine_job_after(const SolveRequest& request, const ArapReport& report
 }
 
 SessionFrame refine_chunk(RefineJob& job, ArapData& data, Eigen::MatrixXd& U, double budget_ms,
-                          const std::function<bool()>& keep_going) {
+                          const std::function<bool()>& keep_going,
+                          const std::function<void()>& iteration_done) {
   ArapSolveOptions options = job.options;
   options.time_budget_ms = budget_ms;
   options.warm_start_rotations = true; // the chunk goes on from the last one's rotations
@@ -90,6 +91,7 @@ SessionFrame refine_chunk(RefineJob& job, ArapData& data, Eigen::MatrixXd& U, do
   // The iteration boundary where a caller of the session takes over (or the server stops), and the
   // energy rule on accelerated iterates.
   options.on_iteration = [&](const ArapReport& report) {
+    if (iteration_done) iteration_done();
     if (job.tolerance >= 0 && (plain || report.accepted.back() != 0)) {
       const double decrease = last_relative_decrease(report);
       energy_rule = refinement_converged(job.earlier_decreases, decrease, refinement_aim * job.tolerance);

@@ -64,10 +64,12 @@ RefineJob refine_job_after(const SolveRequest& request, const ArapReport& report
 // One chunk of job from U: solves for about budget_ms (the last iteration may run over), stopping early at
 // the job's rules or at an iteration boundary where keep_going() is false (a request waits for the
 // session). U becomes the last finished iterate; the job counts the iterations and carries Newton's
-// state. The frame (positions, energy, refining: more chunks are due) is not numbered yet; a solver
-// error ends the job with frame.error and U unchanged.
+// state. iteration_done, when given, is called at each iteration's end before keep_going (SharedSession
+// counts what a waiting request cost). The frame (positions, energy, refining: more chunks are due) is
+// not numbered yet; a solver error ends the job with frame.error and U unchanged.
 SessionFrame refine_chunk(RefineJob& job, ArapData& data, Eigen::MatrixXd& U, double budget_ms,
-                          const std::function<bool()>& keep_going);
+                          const std::function<bool()>& keep_going,
+                          const std::function<void()>& iteration_done = {});
 
 // The frame that says the refinement was stopped at U: the energy the solves report, E_ARAP + P - f . (U -
 // V).

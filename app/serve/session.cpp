@@ -474,10 +474,11 @@ SolveResult Session::solve(const SolveRequest& request, SolveProgress& progress)
   return result;
 }
 
-SessionFrame Session::refine_chunk(double budget_ms, const std::function<bool()>& keep_going) {
+SessionFrame Session::refine_chunk(double budget_ms, const std::function<bool()>& keep_going,
+                                   const std::function<void()>& iteration_done) {
   RefineJob& job = *refine_job_;
   MethodState& state = state_of(job.method);
-  SessionFrame frame = serve::refine_chunk(job, *state.data, state.U, budget_ms, keep_going);
+  SessionFrame frame = serve::refine_chunk(job, *state.data, state.U, budget_ms, keep_going, iteration_done);
   frame.generation = generation_;
   if (!frame.refining) refine_job_.reset();
   return frame;

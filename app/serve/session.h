@@ -146,7 +146,8 @@ public:
   bool refining() const { return refine_job_.has_value(); }
   // One chunk of the pending refinement (refine_job.h); the job ends when the frame says it is not
   // refining. Frame numbered by the caller's FrameBoard.
-  SessionFrame refine_chunk(double budget_ms, const std::function<bool()>& keep_going);
+  SessionFrame refine_chunk(double budget_ms, const std::function<bool()>& keep_going,
+                            const std::function<void()>& iteration_done = {});
   // Ends the pending refinement (its last iterate stays): the frame saying so, nullopt when none was pending.
   std::optional<SessionFrame> stop_refinement();
 

@@ -22,10 +22,16 @@ SessionFrame answer_frame(const SolveRequest& request, const SolveResult& result
 
 } // namespace
 
+// Counted after waiting_ is raised: an iteration that ends later was bound to see the caller at its end.
 SharedSession::SessionLock::SessionLock(const SharedSession& shared) : shared_(shared) {
   ++shared_.waiting_;
+  refine_iterations_at_arrival_ = shared_.refine_iterations_.load();
   lock_ = std::unique_lock<std::mutex>(shared_.mutex_);
   --shared_.waiting_;
+}
+
+int SharedSession::SessionLock::refinement_iterations_waited() const {
+  return static_cast<int>(shared_.refine_iterations_.load() - refine_iterations_at_arrival_);
 }
 
 SharedSession::SessionLock::~SessionLock() {
@@ -60,9 +66,9 @@ void SharedSession::refine_in_background() {
       refine_wake_.wait_until(lock, start); // then everything is checked again
       continue;
     }
-    frames_.publish(session_.refine_chunk(refine_frame_ms, [this] { // the preemption
-      return waiting_.load() == 0 && !stopping_.load();
-    }));
+    frames_.publish(session_.refine_chunk(
+        refine_frame_ms, [this] { return waiting_.load() == 0 && !stopping_.load(); }, // the preemption
+        [this] { ++refine_iterations_; }));
   }
 }
 
@@ -70,8 +76,10 @@ SolveResult SharedSession::solve(const SolveRequest& request) {
   const auto arrival = Clock::now();
   const SessionLock lock(*this);
   const double wait_ms = ms_since(arrival);
+  const int refinement_iterations_waited = lock.refinement_iterations_waited();
   SolveResult result = session_.solve(request, progress_);
   result.wait_ms = wait_ms;
+  result.refinement_iterations_waited = refinement_iterations_waited;
   result.sequence = frames_.publish(answer_frame(request, result));
   return result;
 }

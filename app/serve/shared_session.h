@@ -54,6 +54,8 @@ public:
   // none was running.
   bool stop_refinement();
 
+  // The refinement iterations ended since the session was made (every job's, counted as they end).
+  std::uint64_t refinement_iterations() const { return refine_iterations_.load(); }
   // Read without the session mutex (see SolveProgress).
   SolveProgress& progress() { return progress_; }
   // The answers, refinement and fit frames, read without the session mutex.
@@ -71,8 +73,12 @@ private:
     SessionLock(const SessionLock&) = delete;
     SessionLock& operator=(const SessionLock&) = delete;
 
+    // The refinement iterations that ended while this caller queued: at most the one it interrupted.
+    int refinement_iterations_waited() const;
+
   private:
     const SharedSession& shared_;
+    std::uint64_t refine_iterations_at_arrival_;
     std::unique_lock<std::mutex> lock_;
   };
 
@@ -83,6 +89,7 @@ private:
   SolveProgress progress_;
   FrameBoard frames_;
   mutable std::atomic<int> waiting_{0};
+  std::atomic<std::uint64_t> refine_iterations_{0}; // every refinement iteration ended, counted as it ends
   mutable std::condition_variable refine_wake_;
   mutable Clock::time_point last_release_; // when a caller last released the session (under mutex_)
   std::atomic<bool> stopping_{false};

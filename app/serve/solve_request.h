@@ -51,7 +51,10 @@ struct SolveResult {
   ArapReport report;
   double wait_ms = 0; // for the session: another request's work, or the refinement's last iteration
   bool refinement_preempted = false; // an unfinished refinement (of an earlier solve) ended for this one
-  double precompute_ms = 0;          // > 0 when this solve built or refactorized the method's data
+  // The refinement iterations that ended during wait_ms: the preemption's own measure, where wait_ms also
+  // holds how long that iteration and the threads' scheduling took (seconds on a loaded machine).
+  int refinement_iterations_waited = 0;
+  double precompute_ms = 0; // > 0 when this solve built or refactorized the method's data
   double solve_ms = 0;
   int pinned = 0;                 // vertices pinned because their component had no constrained vertex
   bool planar = false;            // solved in the plane z = 0 (the mesh and every target lie in it)

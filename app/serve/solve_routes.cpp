@@ -27,6 +27,7 @@ std::string solve_frame(const SolveRequest& request, const SolveResult& result) 
                        {"gradient_norms", report.gradient_norms},
                        {"wait_ms", result.wait_ms},
                        {"refinement_preempted", result.refinement_preempted},
+                       {"refinement_iterations_waited", result.refinement_iterations_waited},
                        {"precompute_ms", result.precompute_ms},
                        {"solve_ms", result.solve_ms},
                        {"local_ms", report.local_ms},

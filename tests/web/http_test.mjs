@@ -639,9 +639,9 @@ describe('background refinement', () => {
     const preempting = await solveFrame({ method: 'arap', iterations: 1, transform });
     const roundTrip = performance.now() - started;
     // It waited for at most the refinement's current iteration (about 2 ms on the bunny; the remaining
-    // refinement takes hundreds of them). 1 s leaves room for a loaded machine, far below the remainder.
-    console.log(`preempting solve: waited ${preempting.header.wait_ms.toFixed(1)} ms for the session, round trip ${roundTrip.toFixed(1)} ms`);
-    assert.ok(preempting.header.wait_ms < 1000, `${preempting.header.wait_ms} ms`);
+    // refinement takes hundreds of them), as the server counts it: the milliseconds are the machine's.
+    console.log(`preempting solve: waited ${preempting.header.wait_ms.toFixed(1)} ms and ${preempting.header.refinement_iterations_waited} refinement iterations for the session, round trip ${roundTrip.toFixed(1)} ms`);
+    assert.ok(preempting.header.refinement_iterations_waited <= 1, `${preempting.header.refinement_iterations_waited} iterations, ${preempting.header.wait_ms} ms`);
     assert.equal(preempting.header.generation, answer.header.generation + 1);
     assert.equal(preempting.header.refinement_preempted, true);
     assert.equal(answer.header.refinement_preempted, false); // bend() set new constraints: nothing to end
